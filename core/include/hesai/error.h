@@ -1,0 +1,65 @@
+// Error codes of the whole core: one code per distinct cause.
+#pragma once
+
+#include <cstdint>
+
+namespace hesai {
+
+/// Outcome of every fallible core operation. `ok` is zero; every other value names one cause.
+/// Bad input is a normal outcome: callers count it, nothing asserts or throws.
+enum class Error : std::uint8_t {
+  ok = 0,
+
+  // Byte reading.
+  truncated,              ///< a read would pass the end of the input
+
+  // Packet recognition.
+  bad_length,             ///< the length fits no supported layout
+  bad_magic,              ///< start bytes or block preamble are not the manual's
+  unsupported_version,    ///< a Hesai header with a protocol version we do not implement
+  unsupported_model,      ///< a Hesai header whose laser/block counts match no supported sensor
+  unsupported_section,    ///< a section whose layout the manual does not give (QT128 IMU)
+  flags_length_mismatch,  ///< header flags announce sections that do not add up to the length
+  bad_header,             ///< a header field out of its documented range (distance unit 0, return count)
+
+  // Field validation.
+  bad_azimuth,            ///< block azimuth >= 360.00 degrees
+  bad_return_mode,        ///< return-mode byte not listed in the manual
+  bad_date_time,          ///< tail date-time outside the calendar
+  bad_timestamp,          ///< microsecond field >= 1 000 000 (>= 3 600 000 000 for Pandar40)
+  dual_block_mismatch,    ///< the two blocks of one dual-return firing disagree in azimuth
+
+  // Integrity.
+  crc_body,               ///< QT128 CRC1 (body) does not match
+  crc_functional_safety,  ///< QT128 CRC2 (functional safety) does not match
+  crc_tail,               ///< QT128 CRC3 (tail) does not match
+  signature_missing,      ///< a key is configured but the packet carries no signature
+  signature_invalid,      ///< the HMAC-SHA256 signature does not match
+
+  // Decoder use.
+  model_mismatch,         ///< the packet is of another model than the decoder's calibration
+  buffer_too_small,       ///< caller-provided storage cannot hold the result
+  invalid_argument,       ///< a parameter outside its documented range
+
+  // GPS packets.
+  bad_gps_field,          ///< a GPS date/time digit or status byte outside its range
+
+  // Calibration files.
+  calib_bad_header,       ///< the header row is not one the manuals give
+  calib_bad_row,          ///< a row has the wrong number of fields
+  calib_bad_number,       ///< a field is not a decimal number
+  calib_bad_channel,      ///< a channel number outside 1..N, or repeated
+  calib_channel_count,    ///< the file has another number of channels than the model
+
+  // Capture files (read by port/, named here so that one enum covers the project).
+  capture_bad_magic,      ///< not a pcap or pcapng file
+  capture_truncated,      ///< a record or block ends past the end of the file
+  capture_bad_record,     ///< a record or block length that cannot be (absurd, misaligned)
+  capture_unsupported_link, ///< a link type we do not read
+  capture_not_udp,        ///< the frame carries no UDP datagram (skipped, not fatal)
+};
+
+/// Stable lower-case name of an error code, for logs and JSON ("crc_body").
+const char* error_name(Error e) noexcept;
+
+}  // namespace hesai
