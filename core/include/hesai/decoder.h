@@ -1,0 +1,155 @@
+// The packet decoder: recognise, validate, then decode one UDP payload into points.
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+
+#include "hesai/bytes.h"
+#include "hesai/calibration.h"
+#include "hesai/civil_time.h"
+#include "hesai/error.h"
+#include "hesai/gps.h"
+#include "hesai/hmac.h"
+#include "hesai/model.h"
+#include "hesai/point.h"
+
+namespace hesai {
+
+/// What kind of payload identify() found.
+enum class PacketKind : std::uint8_t { point_cloud, gps };
+
+/// Identifies a payload by its length, magic bytes and header fields (never by length alone).
+/// Point cloud packets set `model`; GPS packets (512 bytes, FF EE) set kind = gps and model = unknown.
+/// Errors: bad_length, bad_magic, unsupported_version, unsupported_model, flags_length_mismatch.
+Error identify(ByteView payload, Model& model, PacketKind& kind) noexcept;
+
+/// Return-mode bytes of the manuals.
+enum class ReturnMode : std::uint8_t {
+  first = 0x33,                   ///< QT128
+  second = 0x34,                  ///< QT128
+  strongest = 0x37,
+  last = 0x38,
+  last_strongest = 0x39,          ///< dual: odd block last, even block strongest
+  first_second = 0x3A,            ///< QT128 dual
+  first_last = 0x3B,              ///< QT128 dual
+  first_strongest = 0x3C,         ///< QT128 dual
+  strongest_second_strongest = 0x3E,  ///< QT128 dual
+};
+/// True for the dual-return codes.
+constexpr bool is_dual(ReturnMode m) {
+  return m == ReturnMode::last_strongest || m == ReturnMode::first_second || m == ReturnMode::first_last ||
+         m == ReturnMode::first_strongest || m == ReturnMode::strongest_second_strongest;
+}
+/// "strongest", "last", "last_strongest", ... ("unknown" for other bytes).
+const char* return_mode_name(std::uint8_t mode) noexcept;
+
+/// What became of a packet's signature.
+enum class SignatureStatus : std::uint8_t {
+  not_signed,         ///< no signature section, or all-zero bytes (signing not started); no key configured
+  unverified,         ///< a signature is present but no key is configured: not checked
+  valid,              ///< HMAC-SHA256 verified under the session key
+  accepted_unsigned,  ///< a key is configured, the packet is unsigned, and unsigned packets are allowed
+};
+
+/// Whether PacketInfo::time_ns and Point::time_ns are absolute.
+enum class TimeReference : std::uint8_t {
+  utc,            ///< ns since the Unix epoch, UTC
+  hour_relative,  ///< Pandar40 before its first GPS packet: ns since the top of an unknown hour
+};
+
+/// QT128 functional-safety section (flags bit 2), decoded.
+struct FunctionalSafety {
+  bool present = false;
+  std::uint8_t version = 0;           ///< FS version (0x01)
+  std::uint8_t lidar_state = 0;       ///< 0 init, 1 normal, 2 report fault, 3 pre-degradation, 4 degradation, 5 pre-shutdown, 6 shutdown, 7 standby
+  std::uint8_t fault_code_type = 0;   ///< 1 current fault, 2 past fault
+  std::uint8_t rolling_counter = 0;   ///< 0..7
+  std::uint8_t total_fault_codes = 0; ///< 0..15
+  std::uint8_t fault_code_id = 0;     ///< 0..15
+  std::uint16_t fault_code = 0;       ///< outgoing fault code
+};
+
+/// Packet-level fields, filled by validate() and decode().
+struct PacketInfo {
+  Model model = Model::unknown;
+  std::uint8_t return_mode = 0;   ///< raw return-mode byte (see ReturnMode)
+  std::uint8_t returns = 1;       ///< 1 single return, 2 dual return
+  std::uint8_t blocks = 0;
+  std::uint8_t dis_unit_mm = 4;   ///< distance step, mm
+  std::uint16_t motor_rpm = 0;
+  std::array<std::uint16_t, 10> block_azimuth{};  ///< 0.01 degree, per block
+  std::int64_t time_ns = 0;       ///< packet time t0 = date-time + timestamp, ns
+  TimeReference time_reference = TimeReference::utc;
+  DateTime date_time;             ///< the tail's date-time (Pandar40: from the last GPS packet)
+  std::uint32_t timestamp_us = 0; ///< the tail's timestamp field as sent
+  bool has_sequence = false;
+  std::uint32_t sequence = 0;     ///< UDP sequence when present
+  std::uint8_t high_temperature = 0;  ///< Pandar40/40P/64 shutdown flag
+  std::uint8_t factory_info = 0;
+  std::uint8_t flags = 0;         ///< QT128 header flags
+  std::uint8_t mode_flag = 0;     ///< QT128 tail mode flag (bit 0: block 1 uses firing sequence 1)
+  SignatureStatus signature = SignatureStatus::not_signed;
+  FunctionalSafety safety;        ///< QT128 only
+};
+
+/// Decoder state for one sensor: per-channel geometry from the built-in tables or a
+/// calibration file, the session key, and the Pandar40 GPS time base. About 5 KiB.
+class Decoder {
+ public:
+  /// A decoder for `model` using the manual's design angles and firing times.
+  explicit Decoder(Model model) noexcept;
+
+  Model model() const noexcept { return model_; }
+
+  /// Uses a unit's angle corrections. Error::calib_channel_count if the channel count differs.
+  Error set_angles(const AngleCorrection& angles) noexcept;
+  /// Uses a firing-time file. Error::calib_channel_count if the channel count differs, or if a
+  /// QT128 decoder is given a one-loop file.
+  Error set_firetimes(const FiretimeCorrection& firetimes) noexcept;
+  /// Azimuth firing-time correction (on by default): adds firing time x spin rate to each point.
+  void set_firetime_correction(bool on) noexcept { firetime_correction_ = on; }
+
+  /// Verifies QT128 signatures with this 32-byte session key (see hesai_session_key()).
+  void set_session_key(const std::uint8_t key[32]) noexcept;
+  void clear_session_key() noexcept;
+  /// With a key: accept packets that carry no signature instead of rejecting them
+  /// (Error::signature_missing). Off by default.
+  void set_allow_unsigned(bool allow) noexcept { allow_unsigned_ = allow; }
+
+  /// Pandar40: takes the date and hour from a GPS packet for the packets that follow.
+  void update_gps(const GpsPacket& gps) noexcept;
+
+  /// Runs every check (length, header, flags, CRCs, signature, fields) and fills `info`.
+  Error validate(ByteView payload, PacketInfo& info) noexcept;
+  /// validate(), then the points: distance 0 yields no point. On error out.count is 0.
+  Error decode(ByteView payload, PacketInfo& info, PacketPoints& out) noexcept;
+
+ private:
+  struct Channel {
+    float cos_el, sin_el;        // elevation
+    float cos_az, sin_az;        // channel azimuth offset
+    float elevation_deg, azimuth_deg;
+    std::array<float, 2> fire_us;         // firing time offset per firing sequence (loop)
+    std::array<std::int32_t, 2> fire_ns;  // the same in ns
+  };
+
+  void set_channel_angle(std::size_t ch, double elevation_deg, double azimuth_deg) noexcept;
+  Error validate_pandar40(ByteView p, PacketInfo& info) noexcept;
+  Error validate_pandar64(ByteView p, PacketInfo& info) noexcept;
+  Error validate_qt128(ByteView p, PacketInfo& info) noexcept;
+  template <std::size_t kPointBytes>
+  void emit_block(const std::uint8_t* points, std::size_t channels, const PacketInfo& info, std::size_t block,
+                  std::int64_t block_time_ns, std::size_t loop, PacketPoints& out) const noexcept;
+
+  Model model_;
+  bool firetime_correction_ = true;
+  bool has_key_ = false;
+  bool allow_unsigned_ = false;
+  bool has_gps_ = false;
+  DateTime gps_time_;            // Pandar40: last GPS date-time
+  std::array<Channel, kMaxChannels> channels_{};
+  HmacSha256Key key_;
+};
+
+}  // namespace hesai

@@ -1,0 +1,45 @@
+// Wire layout of Pandar64 point cloud packets.
+// Source: seed 000 (Pandar64 manual) section 3.1.2: header 3.1.2.1, body 3.1.2.2, tail 3.1.2.3.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+
+namespace hesai::pandar64 {
+
+// Header, 8 bytes.
+inline constexpr std::uint8_t kMagic0 = 0xEE;
+inline constexpr std::uint8_t kMagic1 = 0xFF;
+inline constexpr std::size_t kLaserNum = 2;  ///< 0x40
+inline constexpr std::size_t kBlockNum = 3;  ///< 0x06
+inline constexpr std::size_t kDisUnit = 5;   ///< mm per distance step (0x04)
+inline constexpr std::size_t kHeaderBytes = 8;
+
+// Body: 6 blocks x (azimuth u16, 64 x {distance u16, reflectivity u8}).
+inline constexpr std::size_t kBlocks = 6;
+inline constexpr std::size_t kChannels = 64;
+inline constexpr std::size_t kPointBytes = 3;
+inline constexpr std::size_t kBlockPoints = 2;  ///< offset of channel 1 inside a block
+inline constexpr std::size_t kBlockBytes = kBlockPoints + kChannels * kPointBytes;
+inline constexpr std::size_t kBody = kHeaderBytes;
+static_assert(kBlockBytes == 194);
+
+// Tail, 22 bytes, then the optional u32 UDP sequence.
+inline constexpr std::size_t kTail = kBody + kBlocks * kBlockBytes;
+inline constexpr std::size_t kHighTemperature = kTail + 5;
+inline constexpr std::size_t kMotorSpeed = kTail + 8;   ///< u16 RPM
+inline constexpr std::size_t kTimestamp = kTail + 10;   ///< u32 us within the second
+inline constexpr std::size_t kReturnMode = kTail + 14;
+inline constexpr std::size_t kFactoryInfo = kTail + 15;
+inline constexpr std::size_t kDateTime = kTail + 16;    ///< year - 2000, month, day, hour, minute, second
+inline constexpr std::size_t kPacketBytes = kTail + 22;
+inline constexpr std::size_t kSequence = kPacketBytes;
+inline constexpr std::size_t kSequencePacketBytes = kPacketBytes + 4;
+static_assert(kTail == 1172 && kPacketBytes == 1194 && kSequencePacketBytes == 1198);
+
+// Block end times (App. B.3): block N of 6 ends at t0 - 42.58 - 55.56 (6 - N) us; in dual return
+// blocks 5 and 6 end at t0 - 42.58, 3 and 4 one period earlier, 1 and 2 two periods earlier.
+inline constexpr std::int64_t kLastBlockEndNs = -42580;
+inline constexpr std::int64_t kFiringPeriodNs = 55560;
+
+}  // namespace hesai::pandar64

@@ -1,0 +1,270 @@
+// Decoder set-up, identification and the per-block point computation shared by every model.
+#include "hesai/decoder.h"
+
+#include "hesai/math.h"
+#include "hesai/pandar40_packet.h"
+#include "hesai/pandar64_packet.h"
+#include "hesai/qt128_packet.h"
+#include "hesai/tables/pandar40_tables.h"
+#include "hesai/tables/pandar64_tables.h"
+#include "hesai/tables/qt128_tables.h"
+
+namespace hesai {
+
+namespace {
+
+constexpr std::size_t kGpsBytes = 512;
+
+std::int32_t round_to_int(double v) {
+  return static_cast<std::int32_t>(v < 0 ? v - 0.5 : v + 0.5);
+}
+
+}  // namespace
+
+Error identify(ByteView p, Model& model, PacketKind& kind) noexcept {
+  model = Model::unknown;
+  kind = PacketKind::point_cloud;
+  if (p.size < 4) return Error::bad_length;
+  if (p[0] == 0xFF && p[1] == 0xEE) {
+    // Pandar40 family (block preamble FF EE first) or a GPS packet.
+    switch (p.size) {
+      case kGpsBytes: kind = PacketKind::gps; return Error::ok;
+      case pandar40::kPandar40Bytes: model = Model::pandar40; return Error::ok;
+      case pandar40::kPandar40PBytes:
+      case pandar40::kPandar40PSequenceBytes: model = Model::pandar40p; return Error::ok;
+      default: return Error::bad_length;
+    }
+  }
+  if (p[0] != 0xEE || p[1] != 0xFF) return Error::bad_magic;
+  // Pandar64: EE FF, laser num 0x40, block num 0x06. QT128: EE FF, protocol 3.2, 0x80, 0x02.
+  if (p[pandar64::kLaserNum] == 0x40 && p[pandar64::kBlockNum] == 0x06) {
+    if (p.size != pandar64::kPacketBytes && p.size != pandar64::kSequencePacketBytes) return Error::bad_length;
+    model = Model::pandar64;
+    return Error::ok;
+  }
+  if (p[qt128::kVersionMajor] != 0x03 || p[qt128::kVersionMinor] != 0x02) return Error::unsupported_version;
+  if (p.size < qt128::kHeaderEnd) return Error::bad_length;
+  if (p[qt128::kLaserNum] != 0x80 || p[qt128::kBlockNum] != 0x02) return Error::unsupported_model;
+  if (p.size != qt128::Layout::from_flags(p[qt128::kFlags]).total) return Error::flags_length_mismatch;
+  model = Model::qt128c2x;
+  return Error::ok;
+}
+
+const char* return_mode_name(std::uint8_t mode) noexcept {
+  switch (static_cast<ReturnMode>(mode)) {
+    case ReturnMode::first: return "first";
+    case ReturnMode::second: return "second";
+    case ReturnMode::strongest: return "strongest";
+    case ReturnMode::last: return "last";
+    case ReturnMode::last_strongest: return "last_strongest";
+    case ReturnMode::first_second: return "first_second";
+    case ReturnMode::first_last: return "first_last";
+    case ReturnMode::first_strongest: return "first_strongest";
+    case ReturnMode::strongest_second_strongest: return "strongest_second_strongest";
+  }
+  return "unknown";
+}
+
+Decoder::Decoder(Model model) noexcept : model_(model) {
+  switch (model) {
+    case Model::pandar40:
+    case Model::pandar40p:
+      for (std::size_t i = 0; i < pandar40::kChannels; ++i) {
+        set_channel_angle(i, tables::pandar40_channel_angles[i].elevation_deg,
+                          tables::pandar40_channel_angles[i].azimuth_deg);
+        channels_[i].fire_us = {static_cast<float>(tables::pandar40_firetime_us[i]),
+                                static_cast<float>(tables::pandar40_firetime_us[i])};
+        channels_[i].fire_ns = {round_to_int(tables::pandar40_firetime_us[i] * 1000),
+                                round_to_int(tables::pandar40_firetime_us[i] * 1000)};
+      }
+      break;
+    case Model::pandar64:
+      for (std::size_t i = 0; i < pandar64::kChannels; ++i) {
+        set_channel_angle(i, tables::pandar64_channel_angles[i].elevation_deg,
+                          tables::pandar64_channel_angles[i].azimuth_deg);
+        channels_[i].fire_us = {static_cast<float>(tables::pandar64_firetime_us[i]),
+                                static_cast<float>(tables::pandar64_firetime_us[i])};
+        channels_[i].fire_ns = {round_to_int(tables::pandar64_firetime_us[i] * 1000),
+                                round_to_int(tables::pandar64_firetime_us[i] * 1000)};
+      }
+      break;
+    case Model::qt128c2x:
+      for (std::size_t i = 0; i < qt128::kChannels; ++i) {
+        set_channel_angle(i, tables::qt128_channel_angles[i].elevation_deg,
+                          tables::qt128_channel_angles[i].azimuth_deg);
+        const double t1 = tables::qt128_firetime_us_loop1[i];
+        const double t2 = tables::qt128_firetime_us_loop2[i];
+        channels_[i].fire_us = {static_cast<float>(t1), static_cast<float>(t2)};
+        channels_[i].fire_ns = {round_to_int(t1 * 1000), round_to_int(t2 * 1000)};
+      }
+      break;
+    case Model::unknown: break;
+  }
+}
+
+void Decoder::set_channel_angle(std::size_t ch, double elevation_deg, double azimuth_deg) noexcept {
+  const SinCos e = sin_cos_deg(elevation_deg);
+  const SinCos a = sin_cos_deg(azimuth_deg);
+  Channel& c = channels_[ch];
+  c.cos_el = static_cast<float>(e.cos);
+  c.sin_el = static_cast<float>(e.sin);
+  c.cos_az = static_cast<float>(a.cos);
+  c.sin_az = static_cast<float>(a.sin);
+  c.elevation_deg = static_cast<float>(elevation_deg);
+  c.azimuth_deg = static_cast<float>(azimuth_deg);
+}
+
+Error Decoder::set_angles(const AngleCorrection& angles) noexcept {
+  if (angles.channels != channel_count(model_)) return Error::calib_channel_count;
+  for (std::size_t i = 0; i < angles.channels; ++i) set_channel_angle(i, angles.elevation_deg[i], angles.azimuth_deg[i]);
+  return Error::ok;
+}
+
+Error Decoder::set_firetimes(const FiretimeCorrection& f) noexcept {
+  if (f.channels != channel_count(model_)) return Error::calib_channel_count;
+  const bool two_loops = model_ == Model::qt128c2x;
+  if (two_loops && f.loops != 2) return Error::calib_channel_count;
+  for (std::size_t i = 0; i < f.channels; ++i) {
+    for (std::size_t loop = 0; loop < 2; ++loop) {
+      const std::size_t src = two_loops ? loop : 0;
+      const double us = f.fires[src][i] ? f.firetime_us[src][i] : 0.0;
+      channels_[i].fire_us[loop] = static_cast<float>(us);
+      channels_[i].fire_ns[loop] = round_to_int(us * 1000);
+    }
+  }
+  return Error::ok;
+}
+
+void Decoder::set_session_key(const std::uint8_t key[32]) noexcept {
+  key_.set(ByteView{key, 32});
+  has_key_ = true;
+}
+
+void Decoder::clear_session_key() noexcept {
+  key_.wipe();
+  has_key_ = false;
+}
+
+void Decoder::update_gps(const GpsPacket& gps) noexcept {
+  gps_time_ = gps.time;
+  has_gps_ = true;
+}
+
+Error Decoder::validate(ByteView payload, PacketInfo& info) noexcept {
+  info = PacketInfo{};
+  Model m = Model::unknown;
+  PacketKind kind = PacketKind::point_cloud;
+  const Error e = identify(payload, m, kind);
+  if (e != Error::ok) return e;
+  if (kind != PacketKind::point_cloud || m != model_) return Error::model_mismatch;
+  info.model = m;
+  switch (m) {
+    case Model::pandar40:
+    case Model::pandar40p: return validate_pandar40(payload, info);
+    case Model::pandar64: return validate_pandar64(payload, info);
+    case Model::qt128c2x: return validate_qt128(payload, info);
+    case Model::unknown: break;
+  }
+  return Error::unsupported_model;
+}
+
+template <std::size_t kPointBytes>
+void Decoder::emit_block(const std::uint8_t* points, std::size_t channels, const PacketInfo& info,
+                         std::size_t block, std::int64_t block_time_ns, std::size_t loop,
+                         PacketPoints& out) const noexcept {
+  const float block_deg = static_cast<float>(info.block_azimuth[block]) * 0.01f;
+  const SinCos ab = sin_cos_deg(static_cast<double>(info.block_azimuth[block]) * 0.01);
+  const float sin_a = static_cast<float>(ab.sin);
+  const float cos_a = static_cast<float>(ab.cos);
+  // Spin rate in radians per microsecond: rpm x 2 pi / 60e6.
+  const float omega = firetime_correction_ ? static_cast<float>(info.motor_rpm) * static_cast<float>(2 * kPi / 60e6) : 0.0f;
+  const float unit_m = static_cast<float>(info.dis_unit_mm) * 0.001f;
+  const std::uint8_t return_index = info.returns == 2 ? static_cast<std::uint8_t>(block & 1) : 0;
+  const std::uint16_t min_distance = model_ == Model::qt128c2x ? 2 : 1;  // QT128 reserves distance 1 as a marker
+  constexpr float kRadToDeg = static_cast<float>(180.0 / kPi);
+
+  for (std::size_t ch = 0; ch < channels; ++ch) {
+    const std::uint8_t* p = points + ch * kPointBytes;
+    const std::uint16_t raw = load_le16(p);
+    if (raw < min_distance) continue;
+    const Channel& c = channels_[ch];
+    // Channel angle b = azimuth offset + firing-time correction d (|d| < 0.01 rad: a short series).
+    const float d = c.fire_us[loop] * omega;
+    const float cos_d = 1.0f - 0.5f * d * d;
+    const float sin_d = d - d * d * d * (1.0f / 6.0f);
+    const float cos_b = c.cos_az * cos_d - c.sin_az * sin_d;
+    const float sin_b = c.sin_az * cos_d + c.cos_az * sin_d;
+    // Point azimuth a = block azimuth + b, by the angle-sum identities.
+    const float sin_ab = sin_a * cos_b + cos_a * sin_b;
+    const float cos_ab = cos_a * cos_b - sin_a * sin_b;
+    const float r = static_cast<float>(raw) * unit_m;
+    const float rh = r * c.cos_el;
+
+    Point& o = out.points[out.count++];
+    o.x = rh * sin_ab;
+    o.y = rh * cos_ab;
+    o.z = r * c.sin_el;
+    o.distance_m = r;
+    float az = block_deg + c.azimuth_deg + d * kRadToDeg;
+    if (az < 0) az += 360.0f;
+    if (az >= 360.0f) az -= 360.0f;
+    o.azimuth_deg = az;
+    o.elevation_deg = c.elevation_deg;
+    o.time_ns = block_time_ns + c.fire_ns[loop];
+    o.intensity = p[2];
+    o.channel = static_cast<std::uint8_t>(ch + 1);
+    o.return_index = return_index;
+    if constexpr (kPointBytes == 4) o.confidence = p[3];
+    o.block = static_cast<std::uint8_t>(block);
+  }
+}
+
+Error Decoder::decode(ByteView payload, PacketInfo& info, PacketPoints& out) noexcept {
+  out.count = 0;
+  const Error e = validate(payload, info);
+  if (e != Error::ok) return e;
+  const std::uint8_t* p = payload.data;
+  const bool dual = info.returns == 2;
+  switch (model_) {
+    case Model::pandar40:
+    case Model::pandar40p: {
+      // Appendix II: block N ends at t0 - 28.58 - 55.56 (10 - N) us; dual pairs share a firing.
+      for (std::size_t b = 0; b < pandar40::kBlocks; ++b) {
+        const std::size_t firings_after = dual ? (pandar40::kBlocks - 1 - b) / 2 : pandar40::kBlocks - 1 - b;
+        const std::int64_t t = info.time_ns + pandar40::kLastBlockEndNs -
+                               pandar40::kFiringPeriodNs * static_cast<std::int64_t>(firings_after);
+        emit_block<pandar40::kPointBytes>(p + b * pandar40::kBlockBytes + pandar40::kBlockPoints,
+                                          pandar40::kChannels, info, b, t, 0, out);
+      }
+      break;
+    }
+    case Model::pandar64: {
+      // App. B.3: block N ends at t0 - 42.58 - 55.56 (6 - N) us; dual pairs share a firing.
+      for (std::size_t b = 0; b < pandar64::kBlocks; ++b) {
+        const std::size_t firings_after = dual ? (pandar64::kBlocks - 1 - b) / 2 : pandar64::kBlocks - 1 - b;
+        const std::int64_t t = info.time_ns + pandar64::kLastBlockEndNs -
+                               pandar64::kFiringPeriodNs * static_cast<std::int64_t>(firings_after);
+        emit_block<pandar64::kPointBytes>(p + pandar64::kBody + b * pandar64::kBlockBytes + pandar64::kBlockPoints,
+                                          pandar64::kChannels, info, b, t, 0, out);
+      }
+      break;
+    }
+    case Model::qt128c2x: {
+      // App. II: block 1 starts at t0 + 9 us, block 2 111.11 us later; dual: one firing at t0 + 9 us.
+      // Mode flag bit 0: block 1 uses firing sequence 1 (loop 0) when set, sequence 2 otherwise.
+      const std::size_t loop1 = (info.mode_flag & 1) ? 0 : 1;
+      for (std::size_t b = 0; b < qt128::kBlocks; ++b) {
+        const std::size_t loop = (dual || b == 0) ? loop1 : 1 - loop1;
+        const std::int64_t t = info.time_ns + qt128::kFirstBlockStartNs +
+                               (dual ? 0 : qt128::kBlockPeriodNs * static_cast<std::int64_t>(b));
+        emit_block<qt128::kPointBytes>(p + qt128::kBody + b * qt128::kBlockBytes + qt128::kBlockPoints,
+                                       qt128::kChannels, info, b, t, loop, out);
+      }
+      break;
+    }
+    case Model::unknown: break;
+  }
+  return Error::ok;
+}
+
+}  // namespace hesai

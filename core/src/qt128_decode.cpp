@@ -1,0 +1,115 @@
+// Validation of QT128C2X protocol 3.2 packets: header and flags, the three CRCs, the signature,
+// then the fields.
+#include "hesai/crc32.h"
+#include "hesai/ct.h"
+#include "hesai/decoder.h"
+#include "hesai/qt128_packet.h"
+
+namespace hesai {
+
+namespace {
+
+bool qt128_return_mode(std::uint8_t byte, std::uint8_t& returns) {
+  switch (static_cast<ReturnMode>(byte)) {
+    case ReturnMode::first:
+    case ReturnMode::second:
+    case ReturnMode::strongest:
+    case ReturnMode::last: returns = 1; return true;
+    case ReturnMode::last_strongest:
+    case ReturnMode::first_second:
+    case ReturnMode::first_last:
+    case ReturnMode::first_strongest:
+    case ReturnMode::strongest_second_strongest: returns = 2; return true;
+  }
+  return false;
+}
+
+bool all_zero(const std::uint8_t* p, std::size_t n) {
+  std::uint8_t acc = 0;
+  for (std::size_t i = 0; i < n; ++i) acc = static_cast<std::uint8_t>(acc | p[i]);
+  return acc == 0;
+}
+
+}  // namespace
+
+Error Decoder::validate_qt128(ByteView p, PacketInfo& info) noexcept {
+  using namespace qt128;
+  // identify() has checked magic, version, laser and block numbers and the flags-implied length.
+  info.blocks = kBlocks;
+  info.flags = p[kFlags];
+  if (info.flags & kFlagImu) return Error::unsupported_section;         // layout not in the manual
+  if (info.flags & kFlagChannelCustom) return Error::unsupported_section;  // needs a channel table
+  const Layout layout = Layout::from_flags(info.flags);
+  info.dis_unit_mm = p[kDisUnit];
+  const std::uint8_t return_num = p[kReturnNum];
+  if (info.dis_unit_mm == 0 || (return_num != 1 && return_num != 2)) return Error::bad_header;
+
+  // CRC1: the body (both blocks); CRC2: functional safety after its version byte; CRC3: the tail.
+  if (crc32_mpeg2(p.sub(kBody, kBodyBytes)) != load_le32(p.data + kCrc1)) return Error::crc_body;
+  if (layout.fs != 0 &&
+      crc32_mpeg2(p.sub(layout.fs + kFsCrcFrom, kFsCrc2 - kFsCrcFrom)) != load_le32(p.data + layout.fs + kFsCrc2))
+    return Error::crc_functional_safety;
+  if (crc32_mpeg2(p.sub(layout.tail, layout.crc3 - layout.tail)) != load_le32(p.data + layout.crc3))
+    return Error::crc_tail;
+
+  // Signature: HMAC-SHA256 of everything before it. All-zero bytes mean signing was not started.
+  const bool signed_packet = layout.signature != 0 && !all_zero(p.data + layout.signature, kSignatureBytes);
+  if (has_key_) {
+    if (!signed_packet) {
+      if (!allow_unsigned_) return Error::signature_missing;
+      info.signature = SignatureStatus::accepted_unsigned;
+    } else {
+      std::uint8_t mac[32];
+      HmacSha256 h(key_);
+      h.update(p.sub(0, layout.signature));
+      h.finish(mac);
+      const bool ok = constant_time_equal(mac, p.data + layout.signature, kSignatureBytes);
+      secure_wipe(mac, sizeof mac);
+      if (!ok) return Error::signature_invalid;
+      info.signature = SignatureStatus::valid;
+    }
+  } else {
+    info.signature = signed_packet ? SignatureStatus::unverified : SignatureStatus::not_signed;
+  }
+
+  // Fields.
+  if (layout.fs != 0) {
+    const std::uint8_t* fs = p.data + layout.fs;
+    FunctionalSafety& s = info.safety;
+    s.present = true;
+    s.version = fs[kFsVersion];
+    s.lidar_state = static_cast<std::uint8_t>(fs[kFsLidarState] >> 5);
+    s.fault_code_type = static_cast<std::uint8_t>((fs[kFsLidarState] >> 3) & 3);
+    s.rolling_counter = static_cast<std::uint8_t>(fs[kFsLidarState] & 7);
+    s.total_fault_codes = static_cast<std::uint8_t>(fs[kFsFaultNum] >> 4);
+    s.fault_code_id = static_cast<std::uint8_t>(fs[kFsFaultNum] & 15);
+    s.fault_code = load_le16(fs + kFsFaultCode);
+  }
+  const std::uint8_t* tail = p.data + layout.tail;
+  info.mode_flag = tail[kTailModeFlag];
+  info.return_mode = tail[kTailReturnMode];
+  info.motor_rpm = load_le16(tail + kTailMotorSpeed);
+  info.timestamp_us = load_le32(tail + kTailTimestamp);
+  info.factory_info = tail[kTailFactoryInfo];
+  if (info.flags & kFlagSequence) {
+    info.has_sequence = true;
+    info.sequence = load_le32(tail + kTailSequence);
+  }
+  if (!qt128_return_mode(info.return_mode, info.returns) || info.returns != return_num) return Error::bad_return_mode;
+
+  for (std::size_t b = 0; b < kBlocks; ++b) {
+    info.block_azimuth[b] = load_le16(p.data + kBody + b * kBlockBytes);
+    if (info.block_azimuth[b] >= 36000) return Error::bad_azimuth;
+  }
+  if (info.returns == 2 && info.block_azimuth[0] != info.block_azimuth[1]) return Error::dual_block_mismatch;
+
+  // Date & Time: year - 1900 (>= 70); Timestamp: us, 0..1000000 (the manual's range).
+  const std::uint8_t* dt = tail + kTailDateTime;
+  info.date_time = DateTime{1900 + dt[0], dt[1], dt[2], dt[3], dt[4], dt[5]};
+  if (!is_valid(info.date_time)) return Error::bad_date_time;
+  if (info.timestamp_us > 1000000) return Error::bad_timestamp;
+  info.time_ns = unix_seconds(info.date_time) * 1000000000LL + static_cast<std::int64_t>(info.timestamp_us) * 1000;
+  return Error::ok;
+}
+
+}  // namespace hesai
