@@ -1,0 +1,126 @@
+// Test-only builders of synthetic packets, field by field from the manuals' layouts.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "hesai/bytes.h"
+#include "hesai/crc32.h"
+#include "hesai/hmac.h"
+
+namespace hesai_test {
+
+struct Stamp {
+  int year = 2024, month = 5, day = 17, hour = 8, minute = 30, second = 15;
+  std::uint32_t us = 250000;
+};
+
+/// Pandar64 packet (section 3.1.2): all distances 0 unless set with set_point().
+inline std::vector<std::uint8_t> pandar64_packet(std::uint8_t return_mode, const Stamp& s, std::uint16_t rpm = 600,
+                                                 bool with_sequence = false, std::uint32_t seq = 0) {
+  std::vector<std::uint8_t> p(with_sequence ? 1198 : 1194, 0);
+  p[0] = 0xEE; p[1] = 0xFF; p[2] = 0x40; p[3] = 0x06; p[5] = 0x04;
+  for (int b = 0; b < 6; ++b) hesai::store_le16(&p[8 + 194 * b], 10000);  // 100.00 degrees
+  const std::size_t t = 1172;
+  hesai::store_le16(&p[t + 8], rpm);
+  hesai::store_le32(&p[t + 10], s.us);
+  p[t + 14] = return_mode;
+  p[t + 15] = 0x42;
+  const int dt[6] = {s.year - 2000, s.month, s.day, s.hour, s.minute, s.second};
+  for (int i = 0; i < 6; ++i) p[t + 16 + i] = static_cast<std::uint8_t>(dt[i]);
+  if (with_sequence) hesai::store_le32(&p[1194], seq);
+  return p;
+}
+inline void pandar64_point(std::vector<std::uint8_t>& p, int block, int channel, std::uint16_t raw, std::uint8_t refl) {
+  const std::size_t at = 8 + 194 * static_cast<std::size_t>(block - 1) + 2 + 3 * static_cast<std::size_t>(channel - 1);
+  hesai::store_le16(&p[at], raw);
+  p[at + 2] = refl;
+}
+inline void pandar64_azimuth(std::vector<std::uint8_t>& p, int block, std::uint16_t cdeg) {
+  hesai::store_le16(&p[8 + 194 * static_cast<std::size_t>(block - 1)], cdeg);
+}
+
+/// Pandar40 (1256) or Pandar40P (1262/1266) packet (Pandar40 manual 3.1.2).
+inline std::vector<std::uint8_t> pandar40_packet(bool plus, std::uint8_t return_mode, const Stamp& s,
+                                                 std::uint32_t timestamp_us, std::uint16_t rpm = 600) {
+  std::vector<std::uint8_t> p(plus ? 1262 : 1256, 0);
+  for (int b = 0; b < 10; ++b) {
+    p[124 * static_cast<std::size_t>(b)] = 0xFF;
+    p[124 * static_cast<std::size_t>(b) + 1] = 0xEE;
+    hesai::store_le16(&p[124 * static_cast<std::size_t>(b) + 2], 20000);  // 200.00 degrees
+  }
+  hesai::store_le16(&p[1248], rpm);
+  hesai::store_le32(&p[1250], timestamp_us);
+  p[1254] = return_mode;
+  p[1255] = 0x42;
+  if (plus) {
+    const int dt[6] = {s.year - 2000, s.month, s.day, s.hour, s.minute, s.second};
+    for (int i = 0; i < 6; ++i) p[1256 + static_cast<std::size_t>(i)] = static_cast<std::uint8_t>(dt[i]);
+  }
+  return p;
+}
+inline void pandar40_point(std::vector<std::uint8_t>& p, int block, int channel, std::uint16_t raw, std::uint8_t refl) {
+  const std::size_t at = 124 * static_cast<std::size_t>(block - 1) + 4 + 3 * static_cast<std::size_t>(channel - 1);
+  hesai::store_le16(&p[at], raw);
+  p[at + 2] = refl;
+}
+
+/// QT128C2X protocol 3.2 packet (manual 3.1.2) with the given flags; CRCs filled by qt128_seal().
+inline std::vector<std::uint8_t> qt128_packet(std::uint8_t flags, std::uint8_t return_mode, std::uint8_t mode_flag,
+                                              const Stamp& s, std::uint16_t rpm = 600, std::uint32_t seq = 0) {
+  std::size_t len = 12 + 1028 + 4;
+  const std::size_t fs = (flags & 4) ? len : 0;
+  len += (flags & 4) ? 17 : 0;
+  const std::size_t tail = len;
+  len += 26 + ((flags & 1) ? 4 : 0) + 4 + ((flags & 8) ? 32 : 0);
+  std::vector<std::uint8_t> p(len, 0);
+  p[0] = 0xEE; p[1] = 0xFF; p[2] = 3; p[3] = 2;
+  p[6] = 0x80; p[7] = 0x02; p[9] = 0x04;
+  const bool dual = return_mode == 0x39 || return_mode == 0x3A || return_mode == 0x3B || return_mode == 0x3C || return_mode == 0x3E;
+  p[10] = dual ? 2 : 1;
+  p[11] = flags;
+  hesai::store_le16(&p[12], 30000);        // 300.00 degrees
+  hesai::store_le16(&p[12 + 514], 30000);
+  if (fs) p[fs] = 1;
+  p[tail + 5] = mode_flag;
+  p[tail + 12] = return_mode;
+  hesai::store_le16(&p[tail + 13], rpm);
+  const int dt[6] = {s.year - 1900, s.month, s.day, s.hour, s.minute, s.second};
+  for (int i = 0; i < 6; ++i) p[tail + 15 + static_cast<std::size_t>(i)] = static_cast<std::uint8_t>(dt[i]);
+  hesai::store_le32(&p[tail + 21], s.us);
+  p[tail + 25] = 0x42;
+  if (flags & 1) hesai::store_le32(&p[tail + 26], seq);
+  return p;
+}
+inline void qt128_point(std::vector<std::uint8_t>& p, int block, int channel, std::uint16_t raw, std::uint8_t refl,
+                        std::uint8_t confidence = 0) {
+  const std::size_t at = 12 + 514 * static_cast<std::size_t>(block - 1) + 2 + 4 * static_cast<std::size_t>(channel - 1);
+  hesai::store_le16(&p[at], raw);
+  p[at + 2] = refl;
+  p[at + 3] = confidence;
+}
+/// Offsets of a QT128 packet's sections from its flags (protocol notes table).
+struct QtOffsets {
+  std::size_t fs, tail, crc3, sig;
+};
+inline QtOffsets qt128_offsets(std::uint8_t flags) {
+  QtOffsets o{};
+  std::size_t at = 1044;
+  o.fs = (flags & 4) ? at : 0;
+  at += (flags & 4) ? 17 : 0;
+  o.tail = at;
+  o.crc3 = at + 26 + ((flags & 1) ? 4 : 0);
+  o.sig = (flags & 8) ? o.crc3 + 4 : 0;
+  return o;
+}
+/// Fills CRC1, CRC2 and CRC3 and, with a key, the signature.
+inline void qt128_seal(std::vector<std::uint8_t>& p, const std::uint8_t* key = nullptr) {
+  const std::uint8_t flags = p[11];
+  const QtOffsets o = qt128_offsets(flags);
+  hesai::store_le32(&p[1040], hesai::crc32_mpeg2(hesai::ByteView{&p[12], 1028}));
+  if (o.fs) hesai::store_le32(&p[o.fs + 13], hesai::crc32_mpeg2(hesai::ByteView{&p[o.fs + 1], 12}));
+  hesai::store_le32(&p[o.crc3], hesai::crc32_mpeg2(hesai::ByteView{&p[o.tail], o.crc3 - o.tail}));
+  if (o.sig && key) hesai::hmac_sha256(hesai::ByteView{key, 32}, hesai::ByteView{p.data(), o.sig}, &p[o.sig]);
+}
+
+}  // namespace hesai_test

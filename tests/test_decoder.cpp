@@ -1,0 +1,410 @@
+// Decoder behaviour on synthetic packets: the manuals' worked examples, identification, every
+// rejection path, signatures, and the 1 mm accuracy bound at 200 m.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <vector>
+
+#include "hesai/decoder.h"
+#include "hesai/hkdf.h"
+#include "packet_builder.h"
+#include "test_support.h"
+
+using namespace hesai;
+using namespace hesai_test;
+
+namespace {
+
+const Point* find_point(const PacketPoints& pts, int block, int channel) {
+  for (const Point& p : pts)
+    if (p.block == block - 1 && p.channel == channel) return &p;
+  return nullptr;
+}
+
+std::int64_t ns_of(const Stamp& s) {
+  return timegm_utc(s.year, s.month, s.day, s.hour, s.minute, s.second) * 1000000000LL + s.us * 1000LL;
+}
+
+// ---- Hand-worked examples from the manuals ----
+
+// Pandar64 manual 3.1.4 and App. B: Channel 5 in Block 3, single return. Design angles of
+// Channel 5 (App. A): elevation 3.04, azimuth offset -1.042; firing offset -17.964 us (B.4).
+// T(3) = t0 - 42.58 - 55.56 x (6 - 3) = t0 - 209.26 us; t(3,5) = T(3) - 17.964 = t0 - 227.224 us.
+// At 600 rpm the spin is 0.0036 deg/us: firing correction -17.964 x 0.0036 = -0.0646704 deg.
+TEST(ManualExample, Pandar64Channel5Block3) {
+  const Stamp s;
+  auto p = pandar64_packet(0x37, s, 600);
+  pandar64_azimuth(p, 3, 10000);        // 100.00 degrees
+  pandar64_point(p, 3, 5, 2500, 77);    // 2500 x 4 mm = 10 m
+  Decoder dec(Model::pandar64);
+  PacketInfo info;
+  PacketPoints pts;
+  ASSERT_EQ(dec.decode(view(p), info, pts), Error::ok);
+  ASSERT_EQ(pts.count, 1u);
+  const Point& q = pts.points[0];
+  EXPECT_EQ(q.time_ns, ns_of(s) - 227224);
+  EXPECT_NEAR(q.azimuth_deg, 100.0 - 1.042 - 0.0646704, 1e-4);
+  EXPECT_NEAR(q.elevation_deg, 3.04, 1e-6);
+  EXPECT_NEAR(q.distance_m, 10.0, 1e-6);
+  EXPECT_EQ(q.intensity, 77);
+  // x = r cos(e) sin(a), y = r cos(e) cos(a), z = r sin(e) with a = 98.8933296, e = 3.04:
+  // cos(3.04 deg) = 0.99859275, sin(3.04 deg) = 0.05303312, sin(98.8933296 deg) = 0.98797787,
+  // cos(98.8933296 deg) = -0.15459537 (evaluated separately with a calculator).
+  EXPECT_NEAR(q.x, 10 * 0.99859275 * 0.98797787, 1e-4);
+  EXPECT_NEAR(q.y, 10 * 0.99859275 * -0.15459537, 1e-4);
+  EXPECT_NEAR(q.z, 10 * 0.05303312, 1e-4);
+
+  // Firing-time correction off: the azimuth is block + offset only.
+  dec.set_firetime_correction(false);
+  ASSERT_EQ(dec.decode(view(p), info, pts), Error::ok);
+  EXPECT_NEAR(pts.points[0].azimuth_deg, 100.0 - 1.042, 1e-4);
+  EXPECT_EQ(pts.points[0].time_ns, ns_of(s) - 227224);  // time does not depend on the switch
+}
+
+// Pandar64 App. B.3, dual return: blocks 5 and 6 end at t0 - 42.58 us, blocks 1 and 2 at
+// t0 - 42.58 - 55.56 x 2 = t0 - 153.70 us. Channel 5 fires 17.964 us before its block ends.
+TEST(ManualExample, Pandar64DualReturnBlockPairs) {
+  const Stamp s;
+  auto p = pandar64_packet(0x39, s);
+  for (int b = 1; b <= 6; ++b) pandar64_point(p, b, 5, 1000, static_cast<std::uint8_t>(b));
+  Decoder dec(Model::pandar64);
+  PacketInfo info;
+  PacketPoints pts;
+  ASSERT_EQ(dec.decode(view(p), info, pts), Error::ok);
+  ASSERT_EQ(pts.count, 6u);
+  const std::int64_t t0 = ns_of(s);
+  EXPECT_EQ(find_point(pts, 6, 5)->time_ns, t0 - 42580 - 17964);
+  EXPECT_EQ(find_point(pts, 5, 5)->time_ns, t0 - 42580 - 17964);
+  EXPECT_EQ(find_point(pts, 4, 5)->time_ns, t0 - 98140 - 17964);
+  EXPECT_EQ(find_point(pts, 1, 5)->time_ns, t0 - 153700 - 17964);
+  EXPECT_EQ(find_point(pts, 1, 5)->return_index, 0);  // odd block: last return
+  EXPECT_EQ(find_point(pts, 2, 5)->return_index, 1);  // even block: strongest return
+}
+
+// Pandar40 manual App. II, dual return: Block 6 ends at t0 - 28.58 - 55.56 x 2 = t0 - 139.70 us,
+// and "Laser ID 4's firing time: (t6 - 3.62) us", so t = t0 - 143.32 us.
+TEST(ManualExample, Pandar40PBlock6Laser4Dual) {
+  const Stamp s;
+  auto p = pandar40_packet(true, 0x39, s, s.us);
+  pandar40_point(p, 6, 4, 500, 9);
+  Decoder dec(Model::pandar40p);
+  PacketInfo info;
+  PacketPoints pts;
+  ASSERT_EQ(dec.decode(view(p), info, pts), Error::ok);
+  ASSERT_EQ(pts.count, 1u);
+  EXPECT_EQ(pts.points[0].time_ns, ns_of(s) - 143320);
+  EXPECT_EQ(pts.points[0].return_index, 1);  // block 6 is even: strongest
+}
+
+// Pandar40 (no date in the tail): the timestamp counts us from the top of the hour; the date
+// and hour come from the last GPS packet. Single return: Block 10 ends at t0 - 28.58 us.
+TEST(ManualExample, Pandar40TimeFromGpsAndHourRollover) {
+  const Stamp s;
+  Decoder dec(Model::pandar40);
+  PacketInfo info;
+  PacketPoints pts;
+  // 30 minutes 15.25 seconds into the hour.
+  auto p = pandar40_packet(false, 0x37, s, (30 * 60 + 15) * 1000000u + 250000u);
+  pandar40_point(p, 10, 4, 500, 9);
+  ASSERT_EQ(dec.decode(view(p), info, pts), Error::ok);
+  EXPECT_EQ(info.time_reference, TimeReference::hour_relative);  // no GPS packet yet
+  EXPECT_EQ(info.time_ns, (30 * 60 + 15) * 1000000000LL + 250000000LL);
+
+  GpsPacket gps;
+  gps.time = DateTime{2024, 5, 17, 8, 30, 15};
+  dec.update_gps(gps);
+  ASSERT_EQ(dec.decode(view(p), info, pts), Error::ok);
+  EXPECT_EQ(info.time_reference, TimeReference::utc);
+  EXPECT_EQ(info.time_ns, ns_of(s));  // 2024-05-17 08:30:15.25
+  EXPECT_EQ(pts.points[0].time_ns, ns_of(s) - 28580 - 3620);
+
+  // GPS at 08:59:59; a packet 0.5 s after the top of the hour, before the next GPS packet.
+  gps.time = DateTime{2024, 5, 17, 8, 59, 59};
+  dec.update_gps(gps);
+  auto late = pandar40_packet(false, 0x37, s, 500000u);
+  ASSERT_EQ(dec.decode(view(late), info, pts), Error::ok);
+  EXPECT_EQ(info.time_ns, timegm_utc(2024, 5, 17, 9, 0, 0) * 1000000000LL + 500000000LL);
+}
+
+// QT128 manual App. II: block 1 starts at t0 + 9 us, block 2 at t0 + 9 + 111.11 us (single
+// return). The firetime table's first rows: "99, 0.6, 65, 0.6" and "65, 1.456, 99, 1.456":
+// channel 99 fires at 0.6 us in sequence 1 and at 1.456 us in sequence 2.
+TEST(ManualExample, Qt128BlockStartAndFiringSequences) {
+  const Stamp s;
+  auto p = qt128_packet(0x05, 0x37, /*mode_flag=*/1, s);  // sequence + functional safety
+  qt128_point(p, 1, 99, 1000, 10, 0x5A);
+  qt128_point(p, 2, 99, 1000, 20);
+  qt128_point(p, 2, 65, 1000, 30);
+  qt128_seal(p);
+  Decoder dec(Model::qt128c2x);
+  PacketInfo info;
+  PacketPoints pts;
+  ASSERT_EQ(dec.decode(view(p), info, pts), Error::ok);
+  ASSERT_EQ(pts.count, 3u);
+  const std::int64_t t0 = ns_of(s);
+  // Mode flag 1: block 1 uses sequence 1, block 2 sequence 2.
+  EXPECT_EQ(find_point(pts, 1, 99)->time_ns, t0 + 9000 + 600);
+  EXPECT_EQ(find_point(pts, 2, 99)->time_ns, t0 + 9000 + 111110 + 1456);
+  EXPECT_EQ(find_point(pts, 2, 65)->time_ns, t0 + 9000 + 111110 + 600);
+  EXPECT_EQ(find_point(pts, 1, 99)->confidence, 0x5A);
+
+  // Mode flag 0: block 1 uses sequence 2.
+  auto q = qt128_packet(0x05, 0x37, 0, s);
+  qt128_point(q, 1, 99, 1000, 10);
+  qt128_seal(q);
+  ASSERT_EQ(dec.decode(view(q), info, pts), Error::ok);
+  EXPECT_EQ(pts.points[0].time_ns, t0 + 9000 + 1456);
+
+  // Dual return: both blocks hold one firing at t0 + 9 us.
+  auto d = qt128_packet(0x05, 0x3B, 1, s);
+  qt128_point(d, 1, 99, 1000, 10);
+  qt128_point(d, 2, 99, 1100, 10);
+  qt128_seal(d);
+  ASSERT_EQ(dec.decode(view(d), info, pts), Error::ok);
+  ASSERT_EQ(pts.count, 2u);
+  EXPECT_EQ(pts.points[0].time_ns, t0 + 9000 + 600);
+  EXPECT_EQ(pts.points[1].time_ns, t0 + 9000 + 600);
+  EXPECT_EQ(pts.points[1].return_index, 1);
+}
+
+// ---- Accuracy: every channel at 200 m within 1 mm of a double evaluation ----
+
+TEST(Accuracy, AllChannelsAt200mWithin1mm) {
+  const Stamp s;
+  for (int azimuth = 0; azimuth < 36000; azimuth += 1237) {
+    auto p = pandar64_packet(0x37, s, 1200);
+    for (int b = 1; b <= 6; ++b) {
+      pandar64_azimuth(p, b, static_cast<std::uint16_t>((azimuth + 7 * b) % 36000));
+      for (int c = 1; c <= 64; ++c) pandar64_point(p, b, c, 50000, 1);  // 200 m
+    }
+    Decoder dec(Model::pandar64);
+    PacketInfo info;
+    PacketPoints pts;
+    ASSERT_EQ(dec.decode(view(p), info, pts), Error::ok);
+    ASSERT_EQ(pts.count, 384u);
+    for (const Point& q : pts) {
+      // Recompute from the point's own angles in double: the same formulas.
+      const double a = static_cast<double>(q.azimuth_deg) * M_PI / 180;
+      const double e = static_cast<double>(q.elevation_deg) * M_PI / 180;
+      EXPECT_NEAR(q.x, 200 * std::cos(e) * std::sin(a), 1e-3);
+      EXPECT_NEAR(q.y, 200 * std::cos(e) * std::cos(a), 1e-3);
+      EXPECT_NEAR(q.z, 200 * std::sin(e), 1e-3);
+    }
+  }
+}
+
+// ---- Identification ----
+
+TEST(Identify, ByLengthMagicAndHeader) {
+  const Stamp s;
+  Model m;
+  PacketKind k;
+  EXPECT_EQ(identify(view(pandar64_packet(0x37, s)), m, k), Error::ok);
+  EXPECT_EQ(m, Model::pandar64);
+  EXPECT_EQ(identify(view(pandar64_packet(0x37, s, 600, true)), m, k), Error::ok);
+  EXPECT_EQ(m, Model::pandar64);
+  EXPECT_EQ(identify(view(pandar40_packet(false, 0x37, s, 0)), m, k), Error::ok);
+  EXPECT_EQ(m, Model::pandar40);
+  EXPECT_EQ(identify(view(pandar40_packet(true, 0x37, s, 0)), m, k), Error::ok);
+  EXPECT_EQ(m, Model::pandar40p);
+  auto q = qt128_packet(0x1D, 0x39, 0, s);
+  EXPECT_EQ(identify(view(q), m, k), Error::ok);
+  EXPECT_EQ(m, Model::qt128c2x);
+  std::vector<std::uint8_t> gps(512, 0);
+  gps[0] = 0xFF; gps[1] = 0xEE;
+  EXPECT_EQ(identify(view(gps), m, k), Error::ok);
+  EXPECT_EQ(k, PacketKind::gps);
+
+  // Another protocol version (QT128 3.1, or a 4.x sensor) is unsupported, never guessed.
+  q[3] = 0x01;
+  EXPECT_EQ(identify(view(q), m, k), Error::unsupported_version);
+  q[3] = 0x02;
+  q[6] = 0x40;  // 64 lasers in a 3.2 header: another model
+  EXPECT_EQ(identify(view(q), m, k), Error::unsupported_model);
+  q[6] = 0x80;
+  q[11] = 0x1C;  // flags without the UDP sequence: 4 bytes too many
+  EXPECT_EQ(identify(view(q), m, k), Error::flags_length_mismatch);
+  // A Pandar64 header on a 1200-byte payload.
+  auto p = pandar64_packet(0x37, s);
+  p.resize(1200);
+  EXPECT_EQ(identify(view(p), m, k), Error::bad_length);
+  p[0] = 0x12;
+  EXPECT_EQ(identify(view(p), m, k), Error::bad_magic);
+  EXPECT_EQ(identify(ByteView{}, m, k), Error::bad_length);
+}
+
+TEST(Identify, ModelMismatchAndImu) {
+  const Stamp s;
+  Decoder dec(Model::qt128c2x);
+  PacketInfo info;
+  EXPECT_EQ(dec.validate(view(pandar64_packet(0x37, s)), info), Error::model_mismatch);
+  auto q = qt128_packet(0x1D | 0x02, 0x39, 0, s);  // IMU flag: its layout is not in the manual
+  qt128_seal(q);
+  EXPECT_EQ(dec.validate(view(q), info), Error::unsupported_section);
+}
+
+// ---- Rejections of real packets: every truncation and the field corruptions ----
+
+TEST(Reject, EveryTruncationOfRealPackets) {
+  for (const char* name : {"pandar40p_dual.pcap", "pandar64_dual.pcap", "qt128c2x_dual.pcap"}) {
+    const auto packets = pcap_payloads(name);
+    const auto& full = packets.at(0);
+    Model m;
+    PacketKind k;
+    ASSERT_EQ(identify(view(full), m, k), Error::ok);
+    Decoder dec(m);
+    PacketInfo info;
+    PacketPoints pts;
+    for (std::size_t n = 0; n < full.size(); ++n) {
+      std::vector<std::uint8_t> cut(full.begin(), full.begin() + static_cast<long>(n));
+      const Error e = dec.decode(view(cut), info, pts);
+      EXPECT_NE(e, Error::ok) << name << " length " << n;
+      EXPECT_EQ(pts.count, 0u);
+      // The expected code: a length no layout has, or a known length of another packet kind.
+      if (m == Model::qt128c2x && n >= 12) {
+        EXPECT_EQ(e, Error::flags_length_mismatch) << n;
+      } else if (m == Model::pandar40p && (n == 512 || n == 1256)) {
+        EXPECT_EQ(e, Error::model_mismatch) << n;  // a GPS or Pandar40 length
+      } else {
+        EXPECT_EQ(e, Error::bad_length) << name << " " << n;
+      }
+    }
+  }
+}
+
+TEST(Reject, Qt128EveryByteOfCrcFieldsAndTail) {
+  const auto packets = pcap_payloads("qt128c2x_dual.pcap");
+  const auto& good = packets.at(0);
+  Decoder dec(Model::qt128c2x);
+  PacketInfo info;
+  PacketPoints pts;
+  auto flip = [&](std::size_t at) {
+    auto p = good;
+    p[at] ^= 0x01;
+    return dec.decode(view(p), info, pts);
+  };
+  for (std::size_t i = 12; i < 1044; ++i) ASSERT_EQ(flip(i), Error::crc_body) << i;                // body + CRC1
+  for (std::size_t i = 1045; i < 1061; ++i) ASSERT_EQ(flip(i), Error::crc_functional_safety) << i; // FS + CRC2
+  for (std::size_t i = 1061; i < 1095; ++i) ASSERT_EQ(flip(i), Error::crc_tail) << i;               // tail + CRC3
+  // Header: the magic, version, laser and block numbers, and the flags.
+  EXPECT_EQ(flip(0), Error::bad_magic);
+  EXPECT_EQ(flip(3), Error::unsupported_version);
+  EXPECT_EQ(flip(6), Error::unsupported_model);
+  EXPECT_EQ(flip(11), Error::flags_length_mismatch);  // 0x1C: the sequence flag cleared
+  auto p = good;
+  p[9] = 0;  // distance unit 0
+  EXPECT_EQ(dec.decode(view(p), info, pts), Error::bad_header);
+  p = good;
+  p[10] = 1;  // one return announced, dual-return mode in the tail
+  EXPECT_EQ(dec.decode(view(p), info, pts), Error::bad_return_mode);
+}
+
+TEST(Reject, Pandar64TailFields) {
+  const auto packets = pcap_payloads("pandar64_dual.pcap");
+  const auto& good = packets.at(0);
+  Decoder dec(Model::pandar64);
+  PacketInfo info;
+  PacketPoints pts;
+  auto with = [&](std::size_t at, std::uint8_t v) {
+    auto p = good;
+    p[at] = v;
+    return dec.decode(view(p), info, pts);
+  };
+  EXPECT_EQ(with(0, 0xEF), Error::bad_magic);
+  EXPECT_EQ(with(2, 0x41), Error::unsupported_version); // EE FF with another laser count: another model or protocol
+  EXPECT_EQ(with(5, 0), Error::bad_header);              // distance unit 0
+  EXPECT_EQ(with(1186, 0x36), Error::bad_return_mode);
+  EXPECT_EQ(with(1189, 13), Error::bad_date_time);       // month 13
+  EXPECT_EQ(with(1190, 31), Error::bad_date_time);       // June 31st
+  EXPECT_EQ(with(1191, 24), Error::bad_date_time);       // hour 24
+  EXPECT_EQ(with(1193, 60), Error::bad_date_time);       // second 60
+  EXPECT_EQ(with(1185, 0x01), Error::bad_timestamp);     // >= 1 000 000 us
+  EXPECT_EQ(with(9, 0x8D), Error::bad_azimuth);          // block 1 azimuth >= 36000
+  EXPECT_EQ(with(8 + 194, 0x48), Error::dual_block_mismatch);  // block 2 azimuth differs from block 1
+  EXPECT_EQ(pts.count, 0u);
+}
+
+TEST(Reject, Pandar40PBlockPreamble) {
+  const auto packets = pcap_payloads("pandar40p_dual.pcap");
+  Decoder dec(Model::pandar40p);
+  PacketInfo info;
+  PacketPoints pts;
+  for (std::size_t b = 1; b < 10; ++b) {
+    auto p = packets.at(0);
+    p[124 * b + 1] = 0xEF;
+    EXPECT_EQ(dec.decode(view(p), info, pts), Error::bad_magic) << b;
+  }
+  auto p = packets.at(0);
+  p[1254] = 0x33;  // QT128-only return mode
+  EXPECT_EQ(dec.decode(view(p), info, pts), Error::bad_return_mode);
+}
+
+// ---- Signatures (QT128) ----
+
+class Signature : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    // Session key by HKDF as in the notes: secret, lidar random || client random, "finish session key".
+    const char secret[] = "correct horse battery";
+    std::uint8_t lidar[32], client[32];
+    for (int i = 0; i < 32; ++i) {
+      lidar[i] = static_cast<std::uint8_t>(i);
+      client[i] = static_cast<std::uint8_t>(0xA0 + i);
+    }
+    ASSERT_EQ(hesai_session_key(ByteView{reinterpret_cast<const std::uint8_t*>(secret), sizeof secret - 1}, lidar,
+                                client, key),
+              Error::ok);
+    packet = pcap_payloads("qt128c2x_dual.pcap").at(5);
+    qt128_seal(packet, key);  // sign the real packet (its CRCs are unchanged)
+  }
+  std::uint8_t key[32];
+  std::vector<std::uint8_t> packet;
+  PacketInfo info;
+  PacketPoints pts;
+};
+
+TEST_F(Signature, ValidInvalidMissingUnverified) {
+  Decoder dec(Model::qt128c2x);
+  ASSERT_EQ(dec.decode(view(packet), info, pts), Error::ok);
+  EXPECT_EQ(info.signature, SignatureStatus::unverified);  // no key: not checked, and said so
+
+  dec.set_session_key(key);
+  ASSERT_EQ(dec.decode(view(packet), info, pts), Error::ok);
+  EXPECT_EQ(info.signature, SignatureStatus::valid);
+  EXPECT_GT(pts.count, 0u);
+
+  for (std::size_t i = 1095; i < 1127; ++i) {
+    auto p = packet;
+    p[i] ^= 0x80;
+    EXPECT_EQ(dec.decode(view(p), info, pts), Error::signature_invalid) << i;
+    EXPECT_EQ(pts.count, 0u);
+  }
+  // A signed field changed and its CRC fixed: the signature catches what the CRC cannot.
+  auto p = packet;
+  p[1087] ^= 1;  // UDP sequence
+  qt128_seal(p);
+  EXPECT_EQ(dec.decode(view(p), info, pts), Error::signature_invalid);
+
+  // Downgrade: the all-zero signature of an unsigned packet, with a key set.
+  const auto unsigned_packet = pcap_payloads("qt128c2x_dual.pcap").at(5);
+  EXPECT_EQ(dec.decode(view(unsigned_packet), info, pts), Error::signature_missing);
+  dec.set_allow_unsigned(true);
+  EXPECT_EQ(dec.decode(view(unsigned_packet), info, pts), Error::ok);
+  EXPECT_EQ(info.signature, SignatureStatus::accepted_unsigned);
+
+  // A wrong key.
+  key[0] ^= 1;
+  dec.set_session_key(key);
+  EXPECT_EQ(dec.decode(view(packet), info, pts), Error::signature_invalid);
+}
+
+TEST_F(Signature, FlagClearedIsMissingWithKey) {
+  const Stamp s;
+  auto q = qt128_packet(0x05, 0x37, 1, s);  // no signature section at all
+  qt128_seal(q);
+  Decoder dec(Model::qt128c2x);
+  dec.set_session_key(key);
+  EXPECT_EQ(dec.decode(view(q), info, pts), Error::signature_missing);
+}
+
+}  // namespace

@@ -1,0 +1,86 @@
+// Test-only helpers: read the bundled captures and calibration files without the port's code,
+// so that golden tests do not depend on the code they check.
+#pragma once
+
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <ctime>
+#include <fstream>
+#include <iterator>
+#include <map>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "hesai/bytes.h"
+
+namespace hesai_test {
+
+inline std::string data_path(const std::string& name) { return std::string(HESAI_DATA_DIR) + "/" + name; }
+
+inline std::vector<std::uint8_t> read_file(const std::string& path) {
+  std::ifstream f(path, std::ios::binary);
+  return std::vector<std::uint8_t>(std::istreambuf_iterator<char>(f), std::istreambuf_iterator<char>());
+}
+
+/// UDP payloads of a classic little-endian pcap of Ethernet/IPv4/UDP frames (the bundled
+/// captures: 24-byte file header, 16-byte record headers, 42 bytes of frame headers).
+inline std::vector<std::vector<std::uint8_t>> pcap_payloads(const std::string& name) {
+  const std::vector<std::uint8_t> file = read_file(data_path(name));
+  std::vector<std::vector<std::uint8_t>> out;
+  std::size_t off = 24;
+  while (off + 16 <= file.size()) {
+    const std::uint32_t incl = hesai::load_le32(&file[off + 8]);
+    off += 16;
+    if (incl < 42 || off + incl > file.size()) break;
+    out.emplace_back(file.begin() + static_cast<long>(off + 42), file.begin() + static_cast<long>(off + incl));
+    off += incl;
+  }
+  return out;
+}
+
+inline hesai::ByteView view(const std::vector<std::uint8_t>& v) { return {v.data(), v.size()}; }
+
+/// Seconds since the epoch of a UTC date-time, from the C library (an independent reference).
+inline std::int64_t timegm_utc(int year, int month, int day, int hour, int minute, int second) {
+  std::tm t{};
+  t.tm_year = year - 1900;
+  t.tm_mon = month - 1;
+  t.tm_mday = day;
+  t.tm_hour = hour;
+  t.tm_min = minute;
+  t.tm_sec = second;
+  return static_cast<std::int64_t>(timegm(&t));
+}
+
+/// Rows of a simple CSV file: numbers after the first non-numeric (header) rows.
+struct CsvTable {
+  std::vector<std::vector<double>> rows;
+};
+inline CsvTable read_numeric_csv(const std::string& name) {
+  std::ifstream f(data_path(name));
+  CsvTable t;
+  std::string line;
+  while (std::getline(f, line)) {
+    std::vector<double> row;
+    std::stringstream ss(line);
+    std::string cell;
+    bool numeric = true;
+    while (std::getline(ss, cell, ',')) {
+      if (cell.empty() || cell == "\r") continue;
+      char* end = nullptr;
+      const double v = std::strtod(cell.c_str(), &end);
+      if (end == cell.c_str()) {
+        numeric = false;
+        break;
+      }
+      row.push_back(v);
+    }
+    if (numeric && !row.empty()) t.rows.push_back(row);
+  }
+  return t;
+}
+
+}  // namespace hesai_test
