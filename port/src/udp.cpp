@@ -1,0 +1,165 @@
+#include "hesai_port/udp.h"
+
+#include <arpa/inet.h>
+#include <cerrno>
+#include <cstring>
+#include <ctime>
+#include <netdb.h>
+#include <netinet/in.h>
+#include <poll.h>
+#include <sys/socket.h>
+#include <unistd.h>
+
+namespace hesai::port {
+
+std::int64_t realtime_ns() {
+  timespec ts{};
+  clock_gettime(CLOCK_REALTIME, &ts);
+  return static_cast<std::int64_t>(ts.tv_sec) * 1000000000 + ts.tv_nsec;
+}
+
+std::int64_t monotonic_ns() {
+  timespec ts{};
+  clock_gettime(CLOCK_MONOTONIC, &ts);
+  return static_cast<std::int64_t>(ts.tv_sec) * 1000000000 + ts.tv_nsec;
+}
+
+void sleep_until_ns(std::int64_t deadline_ns) {
+  timespec ts{};
+  ts.tv_sec = static_cast<time_t>(deadline_ns / 1000000000);
+  ts.tv_nsec = static_cast<long>(deadline_ns % 1000000000);
+  while (clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME, &ts, nullptr) == EINTR) {
+  }
+}
+
+UdpReceiver::UdpReceiver()
+    : buffers_(kBatch * kMaxDatagram), control_(kBatch * CMSG_SPACE(sizeof(timespec)) + kBatch * CMSG_SPACE(sizeof(std::uint32_t))) {}
+
+UdpReceiver::~UdpReceiver() {
+  if (fd_ >= 0) close(fd_);
+}
+
+bool UdpReceiver::open(const std::string& address, std::uint16_t port, std::string& error) {
+  sockaddr_in sa{};
+  sa.sin_family = AF_INET;
+  sa.sin_port = htons(port);
+  if (inet_pton(AF_INET, address.c_str(), &sa.sin_addr) != 1) {
+    error = "not an IPv4 address: " + address;
+    return false;
+  }
+  fd_ = socket(AF_INET, SOCK_DGRAM | SOCK_CLOEXEC, 0);
+  if (fd_ < 0) {
+    error = std::string("socket: ") + std::strerror(errno);
+    return false;
+  }
+  const int one = 1;
+  setsockopt(fd_, SOL_SOCKET, SO_REUSEADDR, &one, sizeof one);
+  setsockopt(fd_, SOL_SOCKET, SO_BROADCAST, &one, sizeof one);
+  setsockopt(fd_, SOL_SOCKET, SO_TIMESTAMPNS, &one, sizeof one);  // kernel receive time
+  setsockopt(fd_, SOL_SOCKET, SO_RXQ_OVFL, &one, sizeof one);     // kernel drop counter
+  const int rcvbuf = 16 * 1024 * 1024;  // about 7 s of a QT128 stream; capped by rmem_max
+  setsockopt(fd_, SOL_SOCKET, SO_RCVBUF, &rcvbuf, sizeof rcvbuf);
+  if (bind(fd_, reinterpret_cast<const sockaddr*>(&sa), sizeof sa) != 0) {
+    error = "bind " + address + ":" + std::to_string(port) + ": " + std::strerror(errno);
+    close(fd_);
+    fd_ = -1;
+    return false;
+  }
+  socklen_t len = sizeof sa;
+  getsockname(fd_, reinterpret_cast<sockaddr*>(&sa), &len);
+  port_ = ntohs(sa.sin_port);
+  return true;
+}
+
+int UdpReceiver::receive(std::vector<Datagram>& out, int timeout_ms) {
+  out.clear();
+  pollfd pfd{fd_, POLLIN, 0};
+  const int ready = poll(&pfd, 1, timeout_ms);
+  if (ready < 0) return errno == EINTR ? 0 : -1;
+  if (ready == 0) return 0;
+
+  mmsghdr msgs[kBatch];
+  iovec iovs[kBatch];
+  const std::size_t control_each = control_.size() / kBatch;
+  for (std::size_t i = 0; i < kBatch; ++i) {
+    iovs[i].iov_base = buffers_.data() + i * kMaxDatagram;
+    iovs[i].iov_len = kMaxDatagram;
+    std::memset(&msgs[i], 0, sizeof msgs[i]);
+    msgs[i].msg_hdr.msg_iov = &iovs[i];
+    msgs[i].msg_hdr.msg_iovlen = 1;
+    msgs[i].msg_hdr.msg_control = control_.data() + i * control_each;
+    msgs[i].msg_hdr.msg_controllen = control_each;
+  }
+  const int n = recvmmsg(fd_, msgs, kBatch, MSG_DONTWAIT, nullptr);
+  if (n < 0) return (errno == EAGAIN || errno == EINTR) ? 0 : -1;
+  const std::int64_t fallback = realtime_ns();
+  for (int i = 0; i < n; ++i) {
+    Datagram d;
+    d.data = buffers_.data() + static_cast<std::size_t>(i) * kMaxDatagram;
+    d.size = msgs[i].msg_len;
+    d.truncated = (msgs[i].msg_hdr.msg_flags & MSG_TRUNC) != 0;
+    d.time_ns = fallback;
+    for (cmsghdr* c = CMSG_FIRSTHDR(&msgs[i].msg_hdr); c != nullptr; c = CMSG_NXTHDR(&msgs[i].msg_hdr, c)) {
+      if (c->cmsg_level != SOL_SOCKET) continue;
+      if (c->cmsg_type == SCM_TIMESTAMPNS) {
+        timespec ts;
+        std::memcpy(&ts, CMSG_DATA(c), sizeof ts);
+        d.time_ns = static_cast<std::int64_t>(ts.tv_sec) * 1000000000 + ts.tv_nsec;
+      } else if (c->cmsg_type == SO_RXQ_OVFL) {
+        std::uint32_t drops;
+        std::memcpy(&drops, CMSG_DATA(c), sizeof drops);
+        kernel_drops_ = drops;
+      }
+    }
+    out.push_back(d);
+  }
+  return n;
+}
+
+UdpSender::~UdpSender() {
+  if (fd_ >= 0) close(fd_);
+}
+
+bool UdpSender::open(const std::string& host_port, std::string& error) {
+  const std::size_t colon = host_port.rfind(':');
+  if (colon == std::string::npos || colon == 0 || colon + 1 == host_port.size()) {
+    error = "expected HOST:PORT, got '" + host_port + "'";
+    return false;
+  }
+  const std::string host = host_port.substr(0, colon);
+  const std::string port = host_port.substr(colon + 1);
+  addrinfo hints{};
+  hints.ai_family = AF_INET;
+  hints.ai_socktype = SOCK_DGRAM;
+  addrinfo* res = nullptr;
+  if (const int rc = getaddrinfo(host.c_str(), port.c_str(), &hints, &res); rc != 0) {
+    error = "cannot resolve " + host_port + ": " + gai_strerror(rc);
+    return false;
+  }
+  fd_ = socket(res->ai_family, SOCK_DGRAM | SOCK_CLOEXEC, 0);
+  const int one = 1;
+  if (fd_ >= 0) setsockopt(fd_, SOL_SOCKET, SO_BROADCAST, &one, sizeof one);
+  const int sndbuf = 4 * 1024 * 1024;
+  if (fd_ >= 0) setsockopt(fd_, SOL_SOCKET, SO_SNDBUF, &sndbuf, sizeof sndbuf);
+  const bool ok = fd_ >= 0 && connect(fd_, res->ai_addr, res->ai_addrlen) == 0;
+  freeaddrinfo(res);
+  if (!ok) {
+    error = "cannot open " + host_port + ": " + std::strerror(errno);
+    return false;
+  }
+  return true;
+}
+
+bool UdpSender::send(const std::uint8_t* data, std::size_t size) {
+  for (int attempt = 0; attempt < 1000; ++attempt) {
+    const ssize_t n = ::send(fd_, data, size, 0);
+    if (n == static_cast<ssize_t>(size)) return true;
+    if (n < 0 && errno != ENOBUFS && errno != EAGAIN && errno != EINTR) return false;
+    // The send buffer is full: give the receiver a moment.
+    const std::int64_t t = monotonic_ns() + 20000;
+    sleep_until_ns(t);
+  }
+  return false;
+}
+
+}  // namespace hesai::port
