@@ -154,6 +154,7 @@ bool UdpSender::send(const std::uint8_t* data, std::size_t size) {
   for (int attempt = 0; attempt < 1000; ++attempt) {
     const ssize_t n = ::send(fd_, data, size, 0);
     if (n == static_cast<ssize_t>(size)) return true;
+    if (n < 0 && errno == ECONNREFUSED) return true;  // nobody listens yet: the datagram is gone, as on a wire
     if (n < 0 && errno != ENOBUFS && errno != EAGAIN && errno != EINTR) return false;
     // The send buffer is full: give the receiver a moment.
     const std::int64_t t = monotonic_ns() + 20000;
