@@ -185,7 +185,7 @@ TEST(FrameAssembler, GapOfMoreThanHalfATurnClosesOnlyWithReportedLoss) {
     Feeder f;
     f.packet(0, 0, {30000, 30040});
     f.packet(101, 100, {13000, 13040});
-    EXPECT_EQ(f.closed.size(), 1u);
+    ASSERT_EQ(f.closed.size(), 1u);
     EXPECT_EQ(f.closed[0].ends_at_cut, true);
     EXPECT_EQ(f.fa.current().lost_packets, 100u);
   }

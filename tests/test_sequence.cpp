@@ -166,6 +166,14 @@ TEST(SequenceTracker, NumbersBeforeTheFirstAreReorderedNotLost) {
   EXPECT_EQ(t.counts().reordered, 1u);
   t.observe(999);
   EXPECT_EQ(t.counts().duplicates, 1u);
+  // 1000 1002 (1001 lost: lost 1), then 998 from before the start: lost stays 1.
+  SequenceTracker u;
+  run(u, {1000, 1002, 998});
+  EXPECT_EQ(u.counts().lost, 1u);
+  EXPECT_EQ(u.counts().reordered, 1u);
+  u.observe(1001);  // this one was counted lost
+  EXPECT_EQ(u.counts().lost, 0u);
+  EXPECT_EQ(u.counts().reordered, 2u);
 }
 
 TEST(SequenceTracker, RestartToZero) {
@@ -238,6 +246,19 @@ TEST(SequenceTracker, TwoConsecutiveFarLatePacketsReadAsARestart) {
   EXPECT_EQ(t.counts().resyncs, 2u);
   EXPECT_EQ(t.counts().reordered, 0u);
   EXPECT_EQ(t.counts().lost, 0u);
+}
+
+TEST(SequenceTracker, FollowerExactlyAWindowBehindTheNewestConfirmsARestart) {
+  // 0..5000, 100 (far behind: held), then 904 = 5000 - 4096: outside the main window by one,
+  // and 804 ahead of 100: the series restarted at 100 (resync 1); 101..903 lost (803).
+  SequenceTracker t;
+  run_range(t, 0, 5000);
+  run(t, {100});
+  EXPECT_EQ(t.observe(904), 803u);
+  EXPECT_EQ(t.last_event(), SequenceEvent::resync);
+  EXPECT_EQ(t.counts().resyncs, 1u);
+  EXPECT_EQ(t.counts().lost, 803u);
+  EXPECT_EQ(t.counts().stale, 0u);
 }
 
 TEST(SequenceTracker, HalfTheNumberSpaceIsFar) {
