@@ -1,0 +1,44 @@
+// Integrity counters of a decoding run: a plain aggregate the caller fills and prints.
+#pragma once
+
+#include <array>
+#include <cstdint>
+
+#include "hesai/error.h"
+#include "hesai/model.h"
+
+namespace hesai {
+
+/// Counters of a run. Each rejected packet counts under the first check it failed (count_error).
+struct Stats {
+  std::uint64_t packets = 0;               ///< UDP payloads examined
+  std::uint64_t points = 0;                ///< points decoded
+  std::uint64_t frames = 0;                ///< frames (rotations) closed
+  std::uint64_t crc_errors = 0;            ///< QT128 CRC1, CRC2 or CRC3 mismatch
+  std::uint64_t signature_valid = 0;       ///< HMAC-SHA256 verified
+  std::uint64_t signature_invalid = 0;     ///< HMAC-SHA256 mismatch
+  std::uint64_t signature_missing = 0;     ///< a key is configured, the packet is unsigned
+  std::uint64_t signature_unverified = 0;  ///< signed, but no key configured
+  std::uint64_t malformed = 0;             ///< every other rejection (length, magic, fields...)
+  std::uint64_t unsupported = 0;           ///< a version, model or section we do not implement
+  std::uint64_t lost = 0;                  ///< UDP sequence numbers never seen (SequenceTracker)
+  std::uint64_t duplicates = 0;            ///< sequence numbers seen again
+  std::uint64_t reordered = 0;             ///< sequence numbers that arrived after a later one
+  std::uint64_t gps_packets = 0;           ///< GPS packets (512 bytes)
+  std::int64_t first_time_ns = 0;          ///< packet time of the first packet, ns (0: none yet)
+  std::int64_t last_time_ns = 0;           ///< packet time of the last packet, ns (0: none yet)
+  std::array<std::uint64_t, kModelCount> models{};  ///< point-cloud packets per hesai::Model
+  std::uint16_t spin_rpm_last = 0;         ///< motor speed of the last packet, rpm
+  std::uint8_t return_mode_last = 0;       ///< return-mode byte of the last packet
+};
+
+/// Adds one to the counter of a rejection: crc_body, crc_functional_safety, crc_tail ->
+/// crc_errors; signature_invalid -> signature_invalid; signature_missing -> signature_missing;
+/// unsupported_version, unsupported_model, unsupported_section -> unsupported; any other code
+/// -> malformed. Error::ok counts nothing. Touches no other counter (not `packets`).
+void count_error(Stats& stats, Error error) noexcept;
+
+/// Adds one to models[model]; a value outside hesai::Model counts as Model::unknown.
+void count_model(Stats& stats, Model model) noexcept;
+
+}  // namespace hesai

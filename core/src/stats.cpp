@@ -1,0 +1,39 @@
+#include "hesai/stats.h"
+
+#include <cstddef>
+
+namespace hesai {
+
+void count_error(Stats& stats, Error error) noexcept {
+  switch (error) {
+    case Error::ok:
+      return;
+    case Error::crc_body:
+    case Error::crc_functional_safety:
+    case Error::crc_tail:
+      ++stats.crc_errors;
+      return;
+    case Error::signature_invalid:
+      ++stats.signature_invalid;
+      return;
+    case Error::signature_missing:
+      ++stats.signature_missing;
+      return;
+    case Error::unsupported_version:
+    case Error::unsupported_model:
+    case Error::unsupported_section:
+      ++stats.unsupported;
+      return;
+    default:  // every other code, including codes added later
+      ++stats.malformed;
+      return;
+  }
+}
+
+void count_model(Stats& stats, Model model) noexcept {
+  std::size_t i = static_cast<std::size_t>(model);
+  if (i >= stats.models.size()) i = static_cast<std::size_t>(Model::unknown);
+  ++stats.models[i];
+}
+
+}  // namespace hesai
