@@ -915,6 +915,8 @@ TEST(Frame, LinkLayersVlanIpAndUdp) {
       {"raw v6 hop-by-hop, routing, destination", 101, ipv6(0, ext8(43, routing8(60, ext16(17, u)))), FrameKind::udp, 6},
       {"raw v6 AH", 229, ipv6(51, cat(Bytes{17, 1, 0, 0, 0, 0, 0, 1, 0, 0, 0, 1}, u)), FrameKind::udp, 6},
       {"IPv4 options", 228, ipv4(u, with_options), FrameKind::udp, 4},
+      {"UDP shorter than the IPv4 payload", 228, ipv4(cat(u, Bytes{0xAA, 0xBB, 0xCC})), FrameKind::udp, 4},
+      {"UDP shorter than the IPv6 payload", 229, ipv6(17, cat(u, Bytes{0xAA})), FrameKind::udp, 6},
       {"IPv4 DF only", 228, ipv4(u), FrameKind::udp, 4},
       {"IPv4 first fragment", 228, ipv4(u, mf), FrameKind::fragment, 0},
       {"IPv4 later fragment", 228, ipv4(u, later_fragment), FrameKind::fragment, 0},
