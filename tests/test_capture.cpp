@@ -586,7 +586,7 @@ TEST(Pcap, AbsurdRecordLengthsGiveTheRecordOffset) {
     SCOPED_TRACE(c.what);
     o.b = good.bytes;
     o.put32_at(second + c.field, c.value);
-    if (c.field == 8 && c.value == 4000) o.put32_at(second + 12, 4000);
+    if (c.field == 8) o.put32_at(second + 12, c.value);  // orig_len = incl_len: only incl_len is wrong
     const Parsed p = parse_all(view(o.b));
     ASSERT_EQ(p.open, Error::ok);
     EXPECT_EQ(p.datagrams.size(), 1u);
@@ -759,6 +759,14 @@ TEST_P(PcapngOrder, BadBlocksGiveTheBlockOffset) {
     w.epb(0, 6, eth_udp(1, 2, payload_bytes(8, 1)));
     w.o.put32_at(at + 4, 13);  // not a multiple of 4
     run("length 13", w, Error::capture_bad_record, at);
+  }
+  {
+    Pcapng w = base();
+    const std::size_t at = w.o.b.size();
+    w.block(0x00000BADu, Bytes(12, 0));
+    w.o.put32_at(at + 4, 17);   // not a multiple of 4,
+    w.o.put32_at(at + 13, 17);  // although the "trailing" length matches
+    run("length 17", w, Error::capture_bad_record, at);
   }
   {
     Pcapng w = base();
