@@ -367,6 +367,8 @@ struct Bundled {
   std::uint8_t first_bytes[2];  // FF EE block preamble (Pandar40P), EE FF pre-header (Pandar64, QT128)
 };
 
+void PrintTo(const Bundled& b, std::ostream* os) { *os << b.file; }
+
 class BundledCapture : public testing::TestWithParam<Bundled> {};
 
 TEST_P(BundledCapture, MatchesAnIndependentRecordWalk) {
@@ -442,6 +444,10 @@ struct PcapVariant {
   bool ns;
   std::uint8_t magic[4];  // the file's first bytes, from the pcap specification
 };
+void PrintTo(const PcapVariant& v, std::ostream* os) {
+  *os << (v.big ? "big-endian" : "little-endian") << (v.ns ? " ns" : " us");
+}
+
 class PcapFormat : public testing::TestWithParam<PcapVariant> {};
 
 TEST_P(PcapFormat, ReadsRecordsInEitherOrderAndResolution) {

@@ -9,8 +9,7 @@
 #include <cerrno>
 #include <cstring>
 
-namespace hesai {
-namespace port {
+namespace hesai::port {
 namespace {
 
 // ---- File formats ---------------------------------------------------------------------------
@@ -591,5 +590,4 @@ std::string CaptureFile::message() const {
          describe(e);
 }
 
-}  // namespace port
-}  // namespace hesai
+}  // namespace hesai::port

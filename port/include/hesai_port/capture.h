@@ -22,8 +22,7 @@
 #include "hesai/bytes.h"
 #include "hesai/error.h"
 
-namespace hesai {
-namespace port {
+namespace hesai::port {
 
 /// One UDP datagram of a capture. `payload` points into the parser's input.
 struct UdpDatagram {
@@ -83,7 +82,11 @@ FrameKind parse_frame(std::uint32_t link_type, ByteView frame, UdpDatagram& out)
 enum class CaptureFormat : std::uint8_t { none, pcap, pcapng };
 
 /// Reads UDP datagrams from a capture file held in memory. No allocation, no I/O; the caller
-/// keeps the bytes alive while datagrams are in use. Safe on arbitrary input (fuzzable).
+/// keeps the bytes alive while datagrams are in use.
+/// Safe on arbitrary input, so a fuzzer can drive it directly: `open(bytes)`, then `next()` until
+/// it stops returning CaptureStatus::datagram. Invariants: every payload lies inside the input,
+/// file_offset < input size, stats().records == stats().datagrams + stats().skipped(), and each
+/// datagram consumes at least 12 input bytes (so the loop ends).
 class CaptureParser {
  public:
   /// Most interfaces one pcapng section may describe.
@@ -188,5 +191,4 @@ class CaptureFile {
   CaptureParser parser_;
 };
 
-}  // namespace port
-}  // namespace hesai
+}  // namespace hesai::port
