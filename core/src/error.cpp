@@ -37,6 +37,7 @@ const char* error_name(Error e) noexcept {
     case Error::capture_bad_record: return "capture_bad_record";
     case Error::capture_unsupported_link: return "capture_unsupported_link";
     case Error::capture_not_udp: return "capture_not_udp";
+    case Error::capture_io: return "capture_io";
   }
   return "unknown";
 }

@@ -57,6 +57,7 @@ enum class Error : std::uint8_t {
   capture_bad_record,     ///< a record or block length that cannot be (absurd, misaligned)
   capture_unsupported_link, ///< a link type we do not read
   capture_not_udp,        ///< the frame carries no UDP datagram (skipped, not fatal)
+  capture_io,             ///< the capture file cannot be opened, read or mapped (see errno)
 };
 
 /// Stable lower-case name of an error code, for logs and JSON ("crc_body").

@@ -1,0 +1,593 @@
+// Capture files: pcap and pcapng record walking, link-layer/IP/UDP unpacking, file mapping.
+#include "hesai_port/capture.h"
+
+#include <fcntl.h>
+#include <sys/mman.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstring>
+
+namespace hesai::port {
+namespace {
+
+// ---- File formats ---------------------------------------------------------------------------
+
+// Classic pcap: 24-byte global header (magic, major, minor, reserved1, reserved2, snaplen,
+// link type), then records of a 16-byte header (ts_sec, ts_frac, incl_len, orig_len) and data.
+constexpr std::uint32_t pcap_magic_us = 0xA1B2C3D4u;
+constexpr std::uint32_t pcap_magic_ns = 0xA1B23C4Du;
+constexpr std::size_t pcap_header_size = 24;
+constexpr std::size_t pcap_off_major = 4;
+constexpr std::size_t pcap_off_snaplen = 16;
+constexpr std::size_t pcap_off_link = 20;
+constexpr std::size_t pcap_record_header_size = 16;
+static_assert(pcap_off_link + 4 == pcap_header_size, "pcap global header is 24 bytes");
+
+// pcapng: blocks of type(4), total length(4), body, total length(4).
+constexpr std::uint32_t block_shb = 0x0A0D0D0Au;  // Section Header Block (palindromic)
+constexpr std::uint32_t block_idb = 1;            // Interface Description Block
+constexpr std::uint32_t block_pb = 2;             // Packet Block (obsolete)
+constexpr std::uint32_t block_spb = 3;            // Simple Packet Block
+constexpr std::uint32_t block_epb = 6;            // Enhanced Packet Block
+constexpr std::uint32_t byte_order_magic = 0x1A2B3C4Du;
+constexpr std::size_t block_overhead = 12;        // type, length, trailing length
+constexpr std::size_t shb_min_size = 28;          // + BOM(4), major(2), minor(2), section length(8)
+constexpr std::size_t idb_body_min = 8;           // link type(2), reserved(2), snaplen(4)
+constexpr std::size_t epb_body_min = 20;          // interface(4), ts high(4), ts low(4), caplen(4), len(4)
+constexpr std::size_t pb_body_min = 20;           // interface(2), drops(2), ts high, ts low, caplen, len
+constexpr std::size_t spb_body_min = 4;           // original length(4)
+static_assert(shb_min_size == block_overhead + 16, "SHB fixed part");
+
+constexpr std::uint16_t opt_endofopt = 0;
+constexpr std::uint16_t opt_if_tsresol = 9;
+constexpr std::uint16_t opt_if_tsoffset = 14;
+
+// ---- Link types (LINKTYPE_* values of the tcpdump.org registry) -------------------------------
+constexpr std::uint32_t link_null = 0;
+constexpr std::uint32_t link_ethernet = 1;
+constexpr std::uint32_t link_raw_dlt = 12;  // DLT_RAW as written on most platforms
+constexpr std::uint32_t link_raw = 101;
+constexpr std::uint32_t link_loop = 108;
+constexpr std::uint32_t link_linux_sll = 113;
+constexpr std::uint32_t link_ipv4 = 228;
+constexpr std::uint32_t link_ipv6 = 229;
+constexpr std::uint32_t link_linux_sll2 = 276;
+
+constexpr std::size_t ethernet_header_size = 14;  // destination, source, EtherType
+constexpr std::size_t sll_header_size = 16;       // protocol at 14
+constexpr std::size_t sll2_header_size = 20;      // protocol at 0
+constexpr std::size_t vlan_tag_size = 4;          // TCI(2), inner EtherType(2)
+constexpr std::uint16_t ethertype_ipv4 = 0x0800;
+constexpr std::uint16_t ethertype_ipv6 = 0x86DD;
+constexpr std::uint16_t ethertype_8021q = 0x8100;
+constexpr std::uint16_t ethertype_8021ad = 0x88A8;
+constexpr std::uint16_t ethertype_qinq_old = 0x9100;
+constexpr std::uint16_t ethertype_min = 0x0600;   // below: an IEEE 802.3 length field
+
+// BSD address families in null/loopback headers: AF_INET is 2 everywhere, AF_INET6 differs.
+constexpr std::uint32_t af_inet = 2;
+constexpr bool is_af_inet6(std::uint32_t f) { return f == 10 || f == 24 || f == 28 || f == 30; }
+
+// ---- IP and UDP (RFC 791, RFC 8200, RFC 768) ----------------------------------------------------
+constexpr std::size_t ipv4_min_header = 20;
+constexpr std::size_t ipv6_header_size = 40;
+constexpr std::size_t udp_header_size = 8;
+constexpr std::uint8_t proto_hop_by_hop = 0;
+constexpr std::uint8_t proto_udp = 17;
+constexpr std::uint8_t proto_routing = 43;
+constexpr std::uint8_t proto_fragment = 44;
+constexpr std::uint8_t proto_ah = 51;
+constexpr std::uint8_t proto_dest_options = 60;
+constexpr std::uint16_t ipv4_flag_mf = 0x2000;
+constexpr std::uint16_t ipv4_offset_mask = 0x1FFF;
+
+constexpr ByteView tail(ByteView v, std::size_t off) { return v.sub(off, v.size - off); }
+constexpr std::size_t min_size(std::size_t a, std::size_t b) { return a < b ? a : b; }
+
+// UDP header and payload. `seg` is the captured part of the IP payload, `declared` its length
+// according to the IP header.
+FrameKind parse_udp(ByteView seg, std::size_t declared, UdpDatagram& out) {
+  if (declared < udp_header_size) return FrameKind::malformed;
+  if (seg.size < udp_header_size) return FrameKind::truncated;
+  const std::size_t udp_len = load_be16(seg.data + 4);
+  if (udp_len < udp_header_size || udp_len > declared) return FrameKind::malformed;
+  if (udp_len > seg.size) return FrameKind::truncated;
+  out.src_port = load_be16(seg.data);
+  out.dst_port = load_be16(seg.data + 2);
+  out.payload = seg.sub(udp_header_size, udp_len - udp_header_size);
+  return FrameKind::udp;
+}
+
+FrameKind parse_ipv4(ByteView p, UdpDatagram& out) {
+  if (p.size < ipv4_min_header) return FrameKind::truncated;
+  if ((p[0] >> 4) != 4) return FrameKind::malformed;
+  const std::size_t ihl = static_cast<std::size_t>(p[0] & 0x0F) * 4;
+  if (ihl < ipv4_min_header) return FrameKind::malformed;
+  const std::size_t total = load_be16(p.data + 2);
+  if (total < ihl) return FrameKind::malformed;
+  if (ihl > p.size) return FrameKind::truncated;
+  const std::uint16_t frag = load_be16(p.data + 6);
+  if ((frag & ipv4_flag_mf) != 0 || (frag & ipv4_offset_mask) != 0) return FrameKind::fragment;
+  if (p[9] != proto_udp) return FrameKind::non_udp;
+  const std::size_t end = min_size(total, p.size);
+  const FrameKind k = parse_udp(p.sub(ihl, end - ihl), total - ihl, out);
+  if (k != FrameKind::udp) return k;
+  out.ip_version = 4;
+  out.src_addr = {};
+  out.dst_addr = {};
+  std::memcpy(out.src_addr.data(), p.data + 12, 4);
+  std::memcpy(out.dst_addr.data(), p.data + 16, 4);
+  return k;
+}
+
+FrameKind parse_ipv6(ByteView p, UdpDatagram& out) {
+  if (p.size < ipv6_header_size) return FrameKind::truncated;
+  if ((p[0] >> 4) != 6) return FrameKind::malformed;
+  const std::size_t payload_len = load_be16(p.data + 4);
+  if (payload_len == 0) return FrameKind::malformed;  // jumbogram or an offloaded send: no length
+  const std::size_t declared_end = ipv6_header_size + payload_len;
+  std::uint8_t next = p[6];
+  std::size_t off = ipv6_header_size;
+  // Each extension header is at least 8 bytes, so the walk ends within 8192 steps.
+  for (;;) {
+    if (next == proto_udp) break;
+    if (next == proto_fragment) return FrameKind::fragment;
+    if (next != proto_hop_by_hop && next != proto_routing && next != proto_dest_options &&
+        next != proto_ah) {
+      return FrameKind::non_udp;
+    }
+    if (2 > declared_end - off) return FrameKind::malformed;
+    if (off > p.size || 2 > p.size - off) return FrameKind::truncated;
+    const std::size_t len = next == proto_ah ? (static_cast<std::size_t>(p[off + 1]) + 2) * 4
+                                             : (static_cast<std::size_t>(p[off + 1]) + 1) * 8;
+    next = p[off];
+    if (len > declared_end - off) return FrameKind::malformed;
+    off += len;
+  }
+  if (off > p.size) return FrameKind::truncated;
+  const std::size_t end = min_size(declared_end, p.size);
+  const FrameKind k = parse_udp(p.sub(off, end - off), declared_end - off, out);
+  if (k != FrameKind::udp) return k;
+  out.ip_version = 6;
+  std::memcpy(out.src_addr.data(), p.data + 8, 16);
+  std::memcpy(out.dst_addr.data(), p.data + 24, 16);
+  return k;
+}
+
+// IP by its version nibble (raw IP link types).
+FrameKind parse_ip(ByteView p, UdpDatagram& out) {
+  if (p.size < 1) return FrameKind::truncated;
+  switch (p[0] >> 4) {
+    case 4: return parse_ipv4(p, out);
+    case 6: return parse_ipv6(p, out);
+    default: return FrameKind::malformed;
+  }
+}
+
+// What follows an EtherType, through any number of VLAN tags.
+FrameKind parse_ethertype(std::uint16_t type, ByteView rest, UdpDatagram& out) {
+  std::size_t off = 0;
+  while (type == ethertype_8021q || type == ethertype_8021ad || type == ethertype_qinq_old) {
+    if (vlan_tag_size > rest.size - off) return FrameKind::truncated;
+    type = load_be16(rest.data + off + 2);
+    off += vlan_tag_size;
+  }
+  if (type == ethertype_ipv4) return parse_ipv4(tail(rest, off), out);
+  if (type == ethertype_ipv6) return parse_ipv6(tail(rest, off), out);
+  return FrameKind::non_udp;
+}
+
+FrameKind parse_family(std::uint32_t family, ByteView rest, UdpDatagram& out) {
+  if (family == af_inet) return parse_ipv4(rest, out);
+  if (is_af_inet6(family)) return parse_ipv6(rest, out);
+  return FrameKind::non_udp;
+}
+
+// if_tsresol: bit 7 clear, units of 10^-n s; set, units of 2^-n s.
+constexpr bool tsresol_valid(std::uint8_t r) { return (r & 0x80) ? (r & 0x7F) <= 63 : r <= 19; }
+
+constexpr std::uint64_t power_of_10(unsigned n) {
+  std::uint64_t v = 1;
+  for (unsigned i = 0; i < n; ++i) v *= 10;
+  return v;
+}
+constexpr std::uint64_t ns_per_s = 1000000000u;
+
+// Timestamp in interface units to nanoseconds (truncating; wraps modulo 2^64 past year 2554).
+constexpr std::uint64_t units_to_ns(std::uint64_t ts, std::uint8_t resol) {
+  if ((resol & 0x80) == 0) {
+    return resol <= 9 ? ts * power_of_10(9u - resol) : ts / power_of_10(resol - 9u);
+  }
+  const unsigned n = resol & 0x7Fu;
+  if (n == 0) return ts * ns_per_s;
+  const std::uint64_t sec = ts >> n;
+  const std::uint64_t frac = ts & ((std::uint64_t{1} << n) - 1);
+  // frac < 2^34 keeps frac * 10^9 (< 2^30) below 2^64; finer units drop their lowest bits first.
+  const std::uint64_t frac_ns = n <= 34 ? (frac * ns_per_s) >> n : ((frac >> (n - 34)) * ns_per_s) >> 34;
+  return sec * ns_per_s + frac_ns;
+}
+static_assert(units_to_ns(1, 6) == 1000, "microseconds");
+static_assert(units_to_ns(1, 9) == 1, "nanoseconds");
+static_assert(units_to_ns(1234567, 12) == 1234, "picoseconds truncate");
+static_assert(units_to_ns((5u << 20) | (1u << 19), 0x94) == 5500000000u, "2^-20 s units");
+static_assert(units_to_ns(std::uint64_t{3} << 62, 0xBF) == 1500000000u, "2^-63 s units");
+
+}  // namespace
+
+bool link_type_supported(std::uint32_t link_type) {
+  switch (link_type) {
+    case link_null:
+    case link_ethernet:
+    case link_raw_dlt:
+    case link_raw:
+    case link_loop:
+    case link_linux_sll:
+    case link_ipv4:
+    case link_ipv6:
+    case link_linux_sll2:
+      return true;
+    default:
+      return false;
+  }
+}
+
+FrameKind parse_frame(std::uint32_t link_type, ByteView frame, UdpDatagram& out) {
+  switch (link_type) {
+    case link_ethernet: {
+      if (frame.size < ethernet_header_size) return FrameKind::truncated;
+      const std::uint16_t type = load_be16(frame.data + 12);
+      if (type < ethertype_min) return FrameKind::non_udp;  // 802.3 length: LLC frames
+      return parse_ethertype(type, tail(frame, ethernet_header_size), out);
+    }
+    case link_linux_sll:
+      if (frame.size < sll_header_size) return FrameKind::truncated;
+      return parse_ethertype(load_be16(frame.data + 14), tail(frame, sll_header_size), out);
+    case link_linux_sll2:
+      if (frame.size < sll2_header_size) return FrameKind::truncated;
+      return parse_ethertype(load_be16(frame.data), tail(frame, sll2_header_size), out);
+    case link_raw_dlt:
+    case link_raw:
+      return parse_ip(frame, out);
+    case link_ipv4:
+      return parse_ipv4(frame, out);
+    case link_ipv6:
+      return parse_ipv6(frame, out);
+    case link_null: {
+      // The family is in the writing host's byte order: a value above 0xFFFF is the other order.
+      if (frame.size < 4) return FrameKind::truncated;
+      std::uint32_t family = load_le32(frame.data);
+      if (family > 0xFFFFu) family = load_be32(frame.data);
+      return parse_family(family, tail(frame, 4), out);
+    }
+    case link_loop:
+      if (frame.size < 4) return FrameKind::truncated;
+      return parse_family(load_be32(frame.data), tail(frame, 4), out);
+    default:
+      return FrameKind::unsupported_link;
+  }
+}
+
+// ---- CaptureParser ------------------------------------------------------------------------------
+
+Error CaptureParser::open(ByteView file) {
+  file_ = file;
+  pos_ = 0;
+  format_ = CaptureFormat::none;
+  big_endian_ = false;
+  nanosecond_ = false;
+  pcap_link_ = 0;
+  pcap_snaplen_ = 0;
+  interface_count_ = 0;
+  record_index_ = 0;
+  stats_ = CaptureStats{};
+  error_ = Error::ok;
+  error_offset_ = 0;
+
+  auto failed = [this](Error e, std::uint64_t at) {
+    fail(e, at);
+    return e;
+  };
+  if (file.size < 4) {
+    // Too short to tell: a prefix of a known magic is a cut file, anything else is not a capture.
+    static constexpr std::uint32_t magics[] = {pcap_magic_us, pcap_magic_ns, block_shb};
+    for (std::uint32_t m : magics) {
+      std::uint8_t le[4];
+      std::uint8_t be[4];
+      store_le32(le, m);
+      store_be32(be, m);
+      if (file.size == 0 || std::memcmp(le, file.data, file.size) == 0 ||
+          std::memcmp(be, file.data, file.size) == 0) {
+        return failed(Error::capture_truncated, 0);
+      }
+    }
+    return failed(Error::capture_bad_magic, 0);
+  }
+
+  if (load_le32(file.data) == block_shb) {
+    format_ = CaptureFormat::pcapng;
+    std::size_t length = 0;
+    const Error e = read_section_header(0, length);
+    if (e != Error::ok) return failed(e, 0);
+    pos_ = length;
+    return Error::ok;
+  }
+
+  const std::uint32_t le = load_le32(file.data);
+  const std::uint32_t be = load_be32(file.data);
+  if (le == pcap_magic_us || le == pcap_magic_ns) {
+    big_endian_ = false;
+    nanosecond_ = le == pcap_magic_ns;
+  } else if (be == pcap_magic_us || be == pcap_magic_ns) {
+    big_endian_ = true;
+    nanosecond_ = be == pcap_magic_ns;
+  } else {
+    return failed(Error::capture_bad_magic, 0);
+  }
+  format_ = CaptureFormat::pcap;
+  if (file.size < pcap_header_size) return failed(Error::capture_truncated, 0);
+  if (u16(file.data + pcap_off_major) != 2) return failed(Error::capture_bad_magic, pcap_off_major);
+  pcap_snaplen_ = u32(file.data + pcap_off_snaplen);
+  // Bits 16..31 of the link-type field carry FCS information, not the link type.
+  pcap_link_ = u32(file.data + pcap_off_link) & 0xFFFFu;
+  if (!link_type_supported(pcap_link_)) return failed(Error::capture_unsupported_link, pcap_off_link);
+  pos_ = pcap_header_size;
+  return Error::ok;
+}
+
+CaptureParser::Step CaptureParser::fail(Error e, std::uint64_t offset) {
+  error_ = e;
+  error_offset_ = offset;
+  return Step::error;
+}
+
+CaptureStatus CaptureParser::next(UdpDatagram& out) {
+  if (error_ != Error::ok) return CaptureStatus::error;
+  if (format_ == CaptureFormat::none) {
+    fail(Error::invalid_argument, 0);  // next() before a successful open()
+    return CaptureStatus::error;
+  }
+  for (;;) {
+    Record rec;
+    const Step step = format_ == CaptureFormat::pcap ? next_pcap_record(rec) : next_pcapng_record(rec);
+    if (step == Step::end) return CaptureStatus::end;
+    if (step == Step::error) return CaptureStatus::error;
+    ++stats_.records;
+    const std::uint32_t index = record_index_++;
+    UdpDatagram d;
+    switch (parse_frame(rec.link_type, rec.frame, d)) {
+      case FrameKind::udp:
+        d.time_ns = rec.time_ns;
+        d.file_offset = rec.offset;
+        d.record_index = index;
+        d.interface_id = rec.interface_id;
+        out = d;
+        ++stats_.datagrams;
+        return CaptureStatus::datagram;
+      case FrameKind::non_udp: ++stats_.non_udp; break;
+      case FrameKind::fragment: ++stats_.fragments; break;
+      case FrameKind::truncated: ++stats_.truncated; break;
+      case FrameKind::malformed: ++stats_.malformed; break;
+      case FrameKind::unsupported_link: ++stats_.other_link; break;
+    }
+  }
+}
+
+CaptureParser::Step CaptureParser::next_pcap_record(Record& rec) {
+  if (pos_ == file_.size) return Step::end;
+  const std::size_t at = pos_;
+  if (file_.size - at < pcap_record_header_size) return fail(Error::capture_truncated, at);
+  const std::uint8_t* h = file_.data + at;
+  const std::uint32_t ts_sec = u32(h);
+  const std::uint32_t ts_frac = u32(h + 4);
+  const std::uint32_t incl_len = u32(h + 8);
+  const std::uint32_t orig_len = u32(h + 12);
+  if (incl_len > max_record_bytes || (pcap_snaplen_ != 0 && incl_len > pcap_snaplen_) ||
+      orig_len < incl_len) {
+    return fail(Error::capture_bad_record, at);
+  }
+  if (incl_len > file_.size - at - pcap_record_header_size) return fail(Error::capture_truncated, at);
+  rec.frame = file_.sub(at + pcap_record_header_size, incl_len);
+  rec.time_ns = std::uint64_t{ts_sec} * ns_per_s + (nanosecond_ ? ts_frac : std::uint64_t{ts_frac} * 1000u);
+  rec.offset = at;
+  rec.link_type = pcap_link_;
+  rec.interface_id = 0;
+  pos_ = at + pcap_record_header_size + incl_len;
+  return Step::record;
+}
+
+Error CaptureParser::read_section_header(std::size_t at, std::size_t& length) {
+  if (file_.size - at < block_overhead) return Error::capture_truncated;
+  const std::uint8_t* b = file_.data + at;
+  if (load_le32(b + 8) == byte_order_magic) {
+    big_endian_ = false;
+  } else if (load_be32(b + 8) == byte_order_magic) {
+    big_endian_ = true;
+  } else {
+    return Error::capture_bad_magic;
+  }
+  const std::uint32_t len = u32(b + 4);
+  if (len < shb_min_size || len % 4 != 0) return Error::capture_bad_record;
+  if (len > file_.size - at) return Error::capture_truncated;
+  if (u32(b + len - 4) != len) return Error::capture_bad_record;
+  if (u16(b + 12) != 1) return Error::capture_bad_magic;  // major version 1 is the only one
+  interface_count_ = 0;
+  length = len;
+  return Error::ok;
+}
+
+Error CaptureParser::read_interface(ByteView body) {
+  if (body.size < idb_body_min) return Error::capture_bad_record;
+  if (interface_count_ == max_interfaces) return Error::capture_bad_record;
+  Interface ifc;
+  ifc.link_type = u16(body.data);
+  ifc.snaplen = u32(body.data + 4);
+  // Options: code(2), length(2), value padded to 4. The body is a multiple of 4 long.
+  std::size_t off = idb_body_min;
+  while (body.size - off >= 4) {
+    const std::uint16_t code = u16(body.data + off);
+    const std::size_t len = u16(body.data + off + 2);
+    off += 4;
+    if (code == opt_endofopt) break;
+    if (len > body.size - off) return Error::capture_bad_record;
+    if (code == opt_if_tsresol) {
+      if (len != 1 || !tsresol_valid(body[off])) return Error::capture_bad_record;
+      ifc.tsresol = body[off];
+    } else if (code == opt_if_tsoffset) {
+      if (len != 8) return Error::capture_bad_record;
+      const std::uint64_t v = big_endian_ ? load_be64(body.data + off) : load_le64(body.data + off);
+      ifc.tsoffset = static_cast<std::int64_t>(v);
+    }
+    off += min_size((len + 3) & ~std::size_t{3}, body.size - off);
+  }
+  interfaces_[interface_count_++] = ifc;
+  return Error::ok;
+}
+
+CaptureParser::Step CaptureParser::next_pcapng_record(Record& rec) {
+  for (;;) {
+    if (pos_ == file_.size) return Step::end;
+    const std::size_t at = pos_;
+    if (file_.size - at < block_overhead) return fail(Error::capture_truncated, at);
+    const std::uint8_t* b = file_.data + at;
+    const std::uint32_t type = u32(b);
+    if (type == block_shb) {
+      std::size_t length = 0;
+      const Error e = read_section_header(at, length);
+      if (e != Error::ok) return fail(e, at);
+      pos_ = at + length;
+      continue;
+    }
+    const std::uint32_t len = u32(b + 4);
+    if (len < block_overhead || len % 4 != 0) return fail(Error::capture_bad_record, at);
+    if (len > file_.size - at) return fail(Error::capture_truncated, at);
+    if (u32(b + len - 4) != len) return fail(Error::capture_bad_record, at);
+    const ByteView body = file_.sub(at + 8, len - block_overhead);
+    pos_ = at + len;
+
+    std::uint32_t if_id = 0;
+    std::uint64_t ts = 0;
+    std::uint32_t cap = 0;
+    std::uint32_t orig = 0;
+    std::size_t data_off = 0;
+    bool has_time = true;
+    if (type == block_epb || type == block_pb) {
+      if (body.size < epb_body_min) return fail(Error::capture_bad_record, at);
+      static_assert(epb_body_min == pb_body_min, "same fixed part after the interface field");
+      if_id = type == block_epb ? u32(body.data) : u16(body.data);
+      ts = (std::uint64_t{u32(body.data + 4)} << 32) | u32(body.data + 8);
+      cap = u32(body.data + 12);
+      orig = u32(body.data + 16);
+      data_off = epb_body_min;
+      if (cap > body.size - data_off) return fail(Error::capture_bad_record, at);
+    } else if (type == block_spb) {
+      if (body.size < spb_body_min) return fail(Error::capture_bad_record, at);
+      orig = u32(body.data);
+      data_off = spb_body_min;
+      // The captured length is not stored: the original length cut to the snap length and the block.
+      cap = static_cast<std::uint32_t>(min_size(orig, body.size - data_off));
+      if (interface_count_ > 0 && interfaces_[0].snaplen != 0 && cap > interfaces_[0].snaplen) {
+        cap = interfaces_[0].snaplen;
+      }
+      has_time = false;
+    } else if (type == block_idb) {
+      const Error e = read_interface(body);
+      if (e != Error::ok) return fail(e, at);
+      continue;
+    } else {
+      ++stats_.other_blocks;
+      continue;
+    }
+
+    if (if_id >= interface_count_) return fail(Error::capture_bad_record, at);
+    const Interface& ifc = interfaces_[if_id];
+    if (cap > max_record_bytes || (ifc.snaplen != 0 && cap > ifc.snaplen) || orig < cap) {
+      return fail(Error::capture_bad_record, at);
+    }
+    rec.frame = body.sub(data_off, cap);
+    rec.time_ns = has_time ? units_to_ns(ts, ifc.tsresol) +
+                                 static_cast<std::uint64_t>(ifc.tsoffset) * ns_per_s
+                           : 0;
+    rec.offset = at;
+    rec.link_type = ifc.link_type;
+    rec.interface_id = if_id;
+    return Step::record;
+  }
+}
+
+// ---- CaptureFile --------------------------------------------------------------------------------
+
+namespace {
+
+const char* describe(Error e) {
+  switch (e) {
+    case Error::capture_bad_magic: return "not a pcap or pcapng file (or an unsupported version)";
+    case Error::capture_truncated: return "the file ends inside a header, record or block";
+    case Error::capture_bad_record: return "a record or block length that cannot be";
+    case Error::capture_unsupported_link: return "a link type this reader does not unpack";
+    case Error::invalid_argument: return "no capture open";
+    default: return error_name(e);
+  }
+}
+
+}  // namespace
+
+CaptureFile::~CaptureFile() { close(); }
+
+void CaptureFile::close() {
+  if (map_ != nullptr) munmap(map_, size_);
+  map_ = nullptr;
+  size_ = 0;
+  parser_ = CaptureParser{};
+}
+
+Error CaptureFile::open(const std::string& path) {
+  close();
+  path_ = path;
+  os_error_ = 0;
+  os_what_.clear();
+  auto os_fail = [this](const char* what, int err) {
+    os_error_ = err;
+    os_what_ = what;
+    return Error::capture_io;
+  };
+
+  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+  if (fd < 0) return os_fail("open", errno);
+  struct stat st {};
+  if (fstat(fd, &st) != 0) {
+    const int err = errno;
+    ::close(fd);
+    return os_fail("stat", err);
+  }
+  if (!S_ISREG(st.st_mode)) {
+    ::close(fd);
+    return os_fail("open", S_ISDIR(st.st_mode) ? EISDIR : EINVAL);
+  }
+  const std::size_t size = static_cast<std::size_t>(st.st_size);
+  if (size > 0) {
+    void* m = mmap(nullptr, size, PROT_READ, MAP_PRIVATE, fd, 0);
+    if (m == MAP_FAILED) {
+      const int err = errno;
+      ::close(fd);
+      return os_fail("mmap", err);
+    }
+    (void)madvise(m, size, MADV_SEQUENTIAL);
+    map_ = m;
+    size_ = size;
+  }
+  ::close(fd);
+  return parser_.open(bytes());
+}
+
+std::string CaptureFile::message() const {
+  if (os_error_ != 0) return path_ + ": " + os_what_ + " failed: " + std::strerror(os_error_);
+  const Error e = parser_.error();
+  if (e == Error::ok) return std::string();
+  if (e == Error::capture_truncated && size_ == 0 && !path_.empty()) return path_ + ": empty file";
+  return path_ + ": " + error_name(e) + " at byte " + std::to_string(parser_.error_offset()) + ": " +
+         describe(e);
+}
+
+}  // namespace hesai::port
