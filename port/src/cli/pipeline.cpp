@@ -1,0 +1,184 @@
+#include "pipeline.h"
+
+#include <cerrno>
+#include <cstring>
+#include <fstream>
+#include <sstream>
+
+#include "hesai/calibration.h"
+#include "hesai/gps.h"
+
+namespace hesai::cli {
+
+bool read_text_file(const std::string& path, std::string& out, std::string& error) {
+  std::ifstream f(path, std::ios::binary);
+  if (!f) {
+    error = path + ": " + std::strerror(errno);
+    return false;
+  }
+  std::ostringstream ss;
+  ss << f.rdbuf();
+  out = ss.str();
+  return true;
+}
+
+Pipeline::Pipeline(const DecodeOptions& options, Sink* sink) : options_(options), sink_(sink) {}
+
+bool Pipeline::load_files(std::string& error) {
+  if (!options_.calibration_path.empty() && !read_text_file(options_.calibration_path, angles_text_, error)) return false;
+  if (!options_.firetimes_path.empty() && !read_text_file(options_.firetimes_path, firetimes_text_, error)) return false;
+  if (!options_.channel_config_path.empty()) {
+    if (!read_text_file(options_.channel_config_path, channel_config_text_, error)) return false;
+    ChannelConfig config;
+    const ParseResult r = parse_channel_config_csv(
+        ByteView{reinterpret_cast<const std::uint8_t*>(channel_config_text_.data()), channel_config_text_.size()}, config);
+    if (r.error != Error::ok) {
+      error = options_.channel_config_path + ": line " + std::to_string(r.line) + ": " + error_name(r.error);
+      return false;
+    }
+  }
+  return true;
+}
+
+namespace {
+ByteView text_view(const std::string& s) { return {reinterpret_cast<const std::uint8_t*>(s.data()), s.size()}; }
+}  // namespace
+
+Pipeline::Source* Pipeline::source_for(std::uint64_t key, Model model) {
+  auto it = sources_.find(key);
+  if (it != sources_.end()) {
+    if (it->second.decoder->model() == model) return &it->second;
+    sources_.erase(it);  // another sensor now sends from this address: start over
+  }
+  Source s;
+  s.decoder = std::make_unique<Decoder>(model);
+  Decoder& d = *s.decoder;
+  const std::size_t channels = channel_count(model);
+  if (!angles_text_.empty()) {
+    AngleCorrection a;
+    const ParseResult r = parse_angle_csv(text_view(angles_text_), channels, a);
+    if (r.error != Error::ok) {
+      error_ = options_.calibration_path + ": " + (r.line ? "line " + std::to_string(r.line) + ": " : "") +
+               error_name(r.error) + " (the capture holds " + model_name(model) + " packets, " +
+               std::to_string(channels) + " channels)";
+      return nullptr;
+    }
+    d.set_angles(a);
+  }
+  if (!firetimes_text_.empty()) {
+    FiretimeCorrection f;
+    const ParseResult r = parse_firetime_csv(text_view(firetimes_text_), channels, f);
+    if (r.error != Error::ok || d.set_firetimes(f) != Error::ok) {
+      error_ = options_.firetimes_path + ": " + (r.line ? "line " + std::to_string(r.line) + ": " : "") +
+               error_name(r.error != Error::ok ? r.error : Error::calib_channel_count) + " (the capture holds " +
+               model_name(model) + " packets)";
+      return nullptr;
+    }
+  }
+  d.set_firetime_correction(options_.firetime_azimuth);
+  if (options_.has_key) d.set_session_key(options_.session_key.data());
+  d.set_allow_unsigned(options_.allow_unsigned);
+  if (have_gps_) d.update_gps(last_gps_[0]);
+  if (options_.cut_deg != 0) s.frames.set_cut_deg(options_.cut_deg);
+  if (options_.has_fov) s.frames.set_fov_deg(options_.fov_start, options_.fov_end);
+  return &sources_.emplace(key, std::move(s)).first->second;
+}
+
+void Pipeline::close_frame(const FrameInfo& f) {
+  ++stats_.frames;
+  if (sink_) sink_->frame_closed(f);
+}
+
+bool Pipeline::feed(ByteView payload, std::uint64_t source_key, std::int64_t /*receive_ns*/) {
+  ++stats_.packets;
+  Model model = Model::unknown;
+  PacketKind kind = PacketKind::point_cloud;
+  Error e = identify(payload, model, kind);
+  if (e == Error::ok && kind == PacketKind::gps) {
+    GpsPacket gps;
+    e = parse_gps_packet(payload, gps);
+    if (e != Error::ok) {
+      count_error(stats_, e);
+      ++rejections_[e];
+      return true;
+    }
+    ++stats_.gps_packets;
+    last_gps_[0] = gps;
+    have_gps_ = true;
+    for (auto& [key, s] : sources_) s.decoder->update_gps(gps);
+    return true;
+  }
+  if (e != Error::ok) {
+    count_error(stats_, e);
+    ++rejections_[e];
+    return true;
+  }
+  Source* src = source_for(source_key, model);
+  if (src == nullptr) return false;
+
+  PacketInfo info;
+  e = src->decoder->decode(payload, info, points_);
+  if (e != Error::ok) {
+    count_error(stats_, e);
+    ++rejections_[e];
+    return true;
+  }
+  const std::uint64_t index = point_packet_index_++;
+  count_model(stats_, model);
+  switch (info.signature) {
+    case SignatureStatus::valid: ++stats_.signature_valid; break;
+    case SignatureStatus::unverified: ++stats_.signature_unverified; break;
+    case SignatureStatus::accepted_unsigned: ++stats_.signature_missing; break;
+    case SignatureStatus::not_signed: break;
+  }
+  if (stats_.first_time_ns == 0) stats_.first_time_ns = info.time_ns;
+  stats_.last_time_ns = info.time_ns;
+  stats_.spin_rpm_last = info.motor_rpm;
+  stats_.return_mode_last = info.return_mode;
+
+  std::uint32_t lost_before = 0;
+  if (info.has_sequence) {
+    lost_before = src->sequence.observe(info.sequence);
+    stats_.lost = stats_.duplicates = stats_.reordered = 0;
+    for (const auto& [key, s] : sources_) {
+      stats_.lost += s.sequence.counts().lost;
+      stats_.duplicates += s.sequence.counts().duplicates;
+      stats_.reordered += s.sequence.counts().reordered;
+    }
+  }
+
+  // Frames close at block boundaries; the points of a block belong to the frame it opens.
+  const bool keep = index >= options_.first_packet && index < options_.end_packet;
+  src->frames.begin_packet(index, lost_before);
+  std::size_t next = 0;
+  for (std::size_t b = 0; b < info.blocks; ++b) {
+    if (src->frames.block(info.block_azimuth[b])) close_frame(src->frames.last_closed());
+    const std::uint64_t frame_id = src->frames.current().id;
+    std::uint32_t in_block = 0;
+    for (; next < points_.count && points_.points[next].block == b; ++next) {
+      const Point& p = points_.points[next];
+      ++stats_.points;
+      if (!keep || p.distance_m < options_.min_range || p.distance_m > options_.max_range) continue;
+      if (options_.has_fov && !src->frames.in_fov(p.azimuth_deg)) continue;
+      ++in_block;
+      if (sink_) sink_->point(OutPoint{p, frame_id, index});
+    }
+    src->frames.add_points(in_block);
+  }
+  return true;
+}
+
+void Pipeline::finish() {
+  for (auto& [key, s] : sources_) {
+    FrameInfo f;
+    if (s.frames.finish(f)) close_frame(f);
+  }
+}
+
+std::uint64_t Pipeline::resyncs() const {
+  std::uint64_t n = 0;
+  for (const auto& [key, s] : sources_) n += s.sequence.counts().resyncs;
+  return n;
+}
+
+}  // namespace hesai::cli

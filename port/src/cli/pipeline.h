@@ -1,0 +1,103 @@
+// The hesai program's processing pipeline: datagrams in (from a capture or a socket), decoded
+// and accounted, points and frames out to a sink.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <functional>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "hesai/decoder.h"
+#include "hesai/frame.h"
+#include "hesai/sequence.h"
+#include "hesai/stats.h"
+
+namespace hesai::cli {
+
+/// Options shared by decode, stats and listen.
+struct DecodeOptions {
+  std::string calibration_path;     ///< --calibration: angle-correction CSV
+  std::string firetimes_path;       ///< --firetimes
+  std::string channel_config_path;  ///< --channel-config (QT128)
+  bool firetime_azimuth = true;     ///< off with --no-firetime-azimuth
+  std::uint64_t first_packet = 0;   ///< --packets FIRST:END, point-cloud packet indices
+  std::uint64_t end_packet = UINT64_MAX;
+  float cut_deg = 0;                ///< --cut-angle
+  bool has_fov = false;             ///< --fov START:END
+  float fov_start = 0, fov_end = 360;
+  float min_range = 0;              ///< --min-range, metres
+  float max_range = 1e9f;           ///< --max-range, metres
+  bool has_key = false;             ///< --session-key, or --secret with the two randoms
+  std::array<std::uint8_t, 32> session_key{};
+  bool allow_unsigned = false;      ///< --allow-unsigned
+};
+
+/// A point with the context the outputs need.
+struct OutPoint {
+  Point point;
+  std::uint64_t frame = 0;   ///< frame id (1-based) of the point's source
+  std::uint64_t packet = 0;  ///< 0-based index of the point-cloud packet in the input
+};
+
+/// Receives what the pipeline produces. Frames close in order; every point of a frame is given
+/// to point() before its frame_closed().
+class Sink {
+ public:
+  virtual ~Sink() = default;
+  virtual void point(const OutPoint& p) = 0;
+  virtual void frame_closed(const FrameInfo& frame) = 0;
+};
+
+/// Decodes datagrams. One decoder, sequence tracker and frame assembler per source (the
+/// sensor's address and port), created on its first packet.
+class Pipeline {
+ public:
+  Pipeline(const DecodeOptions& options, Sink* sink);
+
+  /// Loads the calibration files (parsed when the first packet of a model shows their channel
+  /// count). Returns false with a message for a missing or unreadable file.
+  bool load_files(std::string& error);
+
+  /// One UDP payload; `source` identifies the sender (address and port), `receive_ns` is its
+  /// capture or receive time. Returns false on a fatal configuration error (message in error()).
+  bool feed(ByteView payload, std::uint64_t source, std::int64_t receive_ns);
+  /// Closes the open frames at the end of the input.
+  void finish();
+
+  const Stats& stats() const { return stats_; }
+  const std::string& error() const { return error_; }
+  /// Packets per Error code that rejected them (for the text summary).
+  const std::map<Error, std::uint64_t>& rejections() const { return rejections_; }
+  /// Resyncs of the sequence trackers (sensor restarts), beside `lost`.
+  std::uint64_t resyncs() const;
+
+ private:
+  struct Source {
+    std::unique_ptr<Decoder> decoder;
+    SequenceTracker sequence;
+    FrameAssembler frames;
+    std::uint64_t last_frame_id = 0;
+  };
+  Source* source_for(std::uint64_t key, Model model);
+  void close_frame(const FrameInfo& f);
+
+  DecodeOptions options_;
+  Sink* sink_;
+  std::string angles_text_, firetimes_text_, channel_config_text_;
+  std::map<std::uint64_t, Source> sources_;
+  std::array<GpsPacket, 1> last_gps_{};
+  bool have_gps_ = false;
+  Stats stats_{};
+  std::map<Error, std::uint64_t> rejections_;
+  std::uint64_t point_packet_index_ = 0;
+  std::string error_;
+  PacketPoints points_;  // one packet's points (reused)
+};
+
+/// Reads a whole file into a string. False with a message when it cannot be read.
+bool read_text_file(const std::string& path, std::string& out, std::string& error);
+
+}  // namespace hesai::cli
