@@ -15,6 +15,7 @@
 #include <fstream>
 #include <iterator>
 #include <limits>
+#include <ostream>
 #include <random>
 #include <sstream>
 #include <string>
@@ -306,6 +307,8 @@ const AngleFile kAngleFiles[] = {
       {100, 99, 20.92594329, -6.32298504},
       {129, 128, 52.62676282, -10.10830596}}},
 };
+
+void PrintTo(const AngleFile& f, std::ostream* os) { *os << f.name; }
 
 class AngleFileTest : public testing::TestWithParam<AngleFile> {};
 
@@ -735,6 +738,8 @@ const ShippedFile kShipped[] = {
     {"qt128c2x_firetimes.csv", Kind::firetimes, 128, 99},
     {"qt128c2x_channel_config.csv", Kind::channel_config, 128, 83},
 };
+
+void PrintTo(const ShippedFile& f, std::ostream* os) { *os << f.name; }
 
 // The parsed values of a file as one list of numbers, to compare two parses.
 struct Parsed {

@@ -30,7 +30,9 @@ struct AngleCorrection {
 struct FiretimeCorrection {
   std::uint16_t channels = 0;  ///< channels of the model; 0 until a parse succeeds
   std::uint8_t loops = 1;      ///< 1 for Pandar40P/64 files, LoopNum (2) for QT128 files
-  /// Firing time offset of each channel in each loop, microseconds (0 where it does not fire).
+  /// Firing time offset of each channel in each loop, microseconds, as the file gives it (0 where
+  /// it does not fire). Pandar40P/64 files give negative offsets (before the block's end time),
+  /// QT128 files positive ones (after the block's start time).
   std::array<std::array<double, kMaxChannels>, 2> firetime_us{};
   /// Whether the channel fires in the loop (QT128 sequence 1 rests channels 1..32, sequence 2 33..64).
   std::array<std::array<bool, kMaxChannels>, 2> fires{};
