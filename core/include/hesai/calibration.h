@@ -85,7 +85,8 @@ ParseResult parse_firetime_csv(ByteView text, std::size_t expected_channels, Fir
 /// (1..kMaxChannels) per loop, no channel twice in a loop, then an optional hash line of one field
 /// (up to 64 characters).
 /// Errors: calib_bad_header, calib_bad_row, calib_bad_number, calib_bad_channel, calib_channel_count
-/// (fewer than N rows, or rows after the hash). On error `out.laser_num` is 0.
+/// (fewer than N channel rows, or any row after them but a single hash line). A hash line of more
+/// than 64 characters is calib_bad_row. On error `out.laser_num` is 0.
 ParseResult parse_channel_config_csv(ByteView text, ChannelConfig& out) noexcept;
 
 /// Parses the whole of [begin, end) as a decimal number: optional sign, digits with an optional
