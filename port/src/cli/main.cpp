@@ -1,0 +1,364 @@
+// hesai: decode Hesai lidar captures and live streams.
+//   hesai decode CAPTURE ...   points to CSV, PCD, PLY or PNG
+//   hesai stats CAPTURE ...    integrity, loss and content counters
+//   hesai listen ...           live UDP statistics (and frames with --out)
+//   hesai replay CAPTURE ...   send a capture's payloads to HOST:PORT
+#include <unistd.h>
+
+#include <atomic>
+#include <csignal>
+#include <cstdio>
+#include <cstring>
+#include <string>
+#include <vector>
+
+#include "hesai_port/capture.h"
+#include "hesai_port/udp.h"
+#include "options.h"
+#include "pipeline.h"
+#include "report.h"
+#include "sinks.h"
+
+namespace hesai::cli {
+namespace {
+
+constexpr const char* kUsage =
+    "usage: hesai <command> [options]\n"
+    "\n"
+    "commands:\n"
+    "  decode CAPTURE   decode a pcap/pcapng capture into points (CSV, PCD, PLY or PNG)\n"
+    "  stats CAPTURE    count packets, points, frames, integrity failures and losses\n"
+    "  listen           receive packets live over UDP and report statistics\n"
+    "  replay CAPTURE   send a capture's UDP payloads to HOST:PORT\n"
+    "\n"
+    "Run 'hesai <command> --help' for the options of a command.\n";
+
+std::atomic<bool> g_stop{false};
+void on_signal(int) { g_stop = true; }
+
+int usage_error(const std::string& command, const std::string& message) {
+  std::fprintf(stderr, "hesai %s: %s\nRun 'hesai %s --help' for usage.\n", command.c_str(), message.c_str(), command.c_str());
+  return kExitUsage;
+}
+
+std::uint64_t source_key(const port::UdpDatagram& d) {
+  std::uint64_t h = 1469598103934665603ull;  // FNV-1a over the address, then the port
+  for (std::uint8_t b : d.src_addr) h = (h ^ b) * 1099511628211ull;
+  return h ^ d.src_port;
+}
+
+// Feeds every datagram of a capture to the pipeline. Returns an exit status.
+int run_capture(const std::string& path, Pipeline& pipeline, bool quiet) {
+  port::CaptureFile file;
+  if (file.open(path) != Error::ok) {
+    std::fprintf(stderr, "hesai: %s\n", file.message().c_str());
+    return kExitInput;
+  }
+  const bool progress = !quiet && isatty(STDERR_FILENO);
+  const std::size_t total = file.bytes().size;
+  port::UdpDatagram d;
+  std::uint64_t n = 0;
+  for (;;) {
+    const port::CaptureStatus st = file.parser().next(d);
+    if (st == port::CaptureStatus::end) break;
+    if (st == port::CaptureStatus::error) {
+      std::fprintf(stderr, "hesai: %s\n", file.message().c_str());
+      pipeline.finish();
+      return kExitInput;
+    }
+    if (!pipeline.feed(d.payload, source_key(d), static_cast<std::int64_t>(d.time_ns))) {
+      std::fprintf(stderr, "hesai: %s\n", pipeline.error().c_str());
+      return kExitUsage;
+    }
+    if (progress && (++n & 0x3FFF) == 0)
+      std::fprintf(stderr, "\r%5.1f%% %llu packets", 100.0 * static_cast<double>(d.file_offset) / static_cast<double>(total),
+                   static_cast<unsigned long long>(n));
+  }
+  if (progress && n >= 0x4000) std::fprintf(stderr, "\r%60s\r", "");
+  pipeline.finish();
+  return kExitOk;
+}
+
+// ---- decode ----
+
+int cmd_decode(Args& args) {
+  DecodeOptions o;
+  OutputOptions out;
+  std::string capture, error;
+  bool quiet = false;
+  while (!args.empty()) {
+    const std::string a = args.peek();
+    if (a == "--help" || a == "-h") {
+      std::printf("usage: hesai decode CAPTURE [options]\n\nDecodes every point of a capture.\n\n%s%s%s"
+                  "  --quiet                 no progress line\n\n"
+                  "CSV columns: frame,packet,block,channel,return,azimuth_deg,elevation_deg,distance_m,x,y,z,intensity,time_ns\n",
+                  kDecodeOptionsHelp, kOutputOptionsHelp, kKeyOptionsHelp);
+      return kExitOk;
+    }
+    if (parse_decode_option(args, o, error) || parse_output_option(args, out, error)) {
+      if (!error.empty()) return usage_error("decode", error);
+      continue;
+    }
+    args.take();
+    if (a == "--quiet") quiet = true;
+    else if (a.rfind("--", 0) == 0) return usage_error("decode", "unknown option " + a);
+    else if (capture.empty()) capture = a;
+    else return usage_error("decode", "one capture at a time ('" + a + "')");
+  }
+  if (capture.empty()) return usage_error("decode", "missing CAPTURE");
+  if (!finish_key_options(o, error)) return usage_error("decode", error);
+
+  OutputSink sink(out);
+  Pipeline pipeline(o, &sink);
+  if (!pipeline.load_files(error)) {
+    std::fprintf(stderr, "hesai decode: %s\n", error.c_str());
+    return kExitInput;
+  }
+  if (!sink.open(error)) return usage_error("decode", error);
+  const int rc = run_capture(capture, pipeline, quiet);
+  if (!sink.close(error)) {
+    std::fprintf(stderr, "hesai decode: %s\n", error.c_str());
+    return kExitInput;
+  }
+  if (!quiet && !(out.format == "csv" && (out.out.empty() || out.out == "-"))) {
+    const Stats& s = pipeline.stats();
+    std::fprintf(stderr, "%llu packets, %llu frames, %llu points written",
+                 static_cast<unsigned long long>(s.packets), static_cast<unsigned long long>(s.frames),
+                 static_cast<unsigned long long>(sink.points_written()));
+    if (sink.files().size() == 1) std::fprintf(stderr, " to %s\n", sink.files()[0].c_str());
+    else std::fprintf(stderr, " to %zu files in %s\n", sink.files().size(), out.out.c_str());
+  }
+  return rc;
+}
+
+// ---- stats ----
+
+int cmd_stats(Args& args) {
+  DecodeOptions o;
+  std::string capture, error;
+  bool json = false, quiet = false;
+  while (!args.empty()) {
+    const std::string a = args.peek();
+    if (a == "--help" || a == "-h") {
+      std::printf("usage: hesai stats CAPTURE [--json] [options]\n\n"
+                  "Counts packets per model, points, frames, integrity failures and sequence losses.\n\n"
+                  "  --json                  one JSON object: packets, models, points, frames, crc_errors,\n"
+                  "                          signature_valid, signature_invalid, signature_missing,\n"
+                  "                          signature_unverified, malformed, unsupported, lost, duplicates,\n"
+                  "                          reordered, gps_packets, first_time_ns, last_time_ns\n"
+                  "  --quiet                 no progress line\n%s%s",
+                  kDecodeOptionsHelp, kKeyOptionsHelp);
+      return kExitOk;
+    }
+    if (parse_decode_option(args, o, error)) {
+      if (!error.empty()) return usage_error("stats", error);
+      continue;
+    }
+    args.take();
+    if (a == "--json") json = true;
+    else if (a == "--quiet") quiet = true;
+    else if (a.rfind("--", 0) == 0) return usage_error("stats", "unknown option " + a);
+    else if (capture.empty()) capture = a;
+    else return usage_error("stats", "one capture at a time ('" + a + "')");
+  }
+  if (capture.empty()) return usage_error("stats", "missing CAPTURE");
+  if (!finish_key_options(o, error)) return usage_error("stats", error);
+  Pipeline pipeline(o, nullptr);
+  if (!pipeline.load_files(error)) {
+    std::fprintf(stderr, "hesai stats: %s\n", error.c_str());
+    return kExitInput;
+  }
+  const int rc = run_capture(capture, pipeline, quiet);
+  if (rc == kExitUsage) return rc;
+  if (json) std::printf("%s\n", stats_json(pipeline.stats()).c_str());
+  else std::printf("%s\n%s", capture.c_str(), stats_text(pipeline).c_str());
+  return rc;
+}
+
+// ---- listen ----
+
+int cmd_listen(Args& args) {
+  DecodeOptions o;
+  OutputOptions out;
+  out.format = "pcd";
+  std::string bind_addr = "0.0.0.0", error;
+  std::uint64_t port = 2368, gps_port = 10110, count = 0;
+  float seconds = 0;
+  bool json = false, quiet = false;
+  while (!args.empty()) {
+    const std::string a = args.peek();
+    if (a == "--help" || a == "-h") {
+      std::printf("usage: hesai listen [options]\n\nReceives sensor packets over UDP, prints statistics once a second\n"
+                  "(on stderr) and a summary at the end (Ctrl-C, --count or --seconds).\n\n"
+                  "  --bind ADDR             local IPv4 address (default 0.0.0.0)\n"
+                  "  --port N                point-cloud port (default 2368)\n"
+                  "  --gps-port N            GPS port (default 10110; 0: none)\n"
+                  "  --count N               stop after N packets\n"
+                  "  --seconds S             stop after S seconds\n"
+                  "  --json                  the summary as one JSON object (keys as in 'hesai stats --json')\n"
+                  "  --quiet                 no statistics once a second\n%s%s%s",
+                  kDecodeOptionsHelp, kOutputOptionsHelp, kKeyOptionsHelp);
+      return kExitOk;
+    }
+    if (parse_decode_option(args, o, error) || parse_output_option(args, out, error)) {
+      if (!error.empty()) return usage_error("listen", error);
+      continue;
+    }
+    args.take();
+    std::string v;
+    if (a == "--json") json = true;
+    else if (a == "--quiet") quiet = true;
+    else if (a == "--bind") { if (!args.value(a, bind_addr)) return usage_error("listen", "--bind needs an address"); }
+    else if (a == "--port" || a == "--gps-port" || a == "--count") {
+      std::uint64_t n = 0;
+      if (!args.value(a, v) || !parse_u64(v, n) || (a != "--count" && n > 65535))
+        return usage_error("listen", a + " needs a number");
+      (a == "--port" ? port : a == "--gps-port" ? gps_port : count) = n;
+    } else if (a == "--seconds") {
+      if (!args.value(a, v) || !parse_float(v, seconds) || seconds <= 0) return usage_error("listen", "--seconds needs a positive number");
+    } else return usage_error("listen", "unknown option " + a);
+  }
+  if (!finish_key_options(o, error)) return usage_error("listen", error);
+
+  std::unique_ptr<OutputSink> sink;
+  if (!out.out.empty()) {
+    sink = std::make_unique<OutputSink>(out);
+    if (!sink->open(error)) return usage_error("listen", error);
+  }
+  Pipeline pipeline(o, sink.get());
+  if (!pipeline.load_files(error)) {
+    std::fprintf(stderr, "hesai listen: %s\n", error.c_str());
+    return kExitInput;
+  }
+  port::UdpReceiver points_rx, gps_rx;
+  if (!points_rx.open(bind_addr, static_cast<std::uint16_t>(port), error) ||
+      (gps_port != 0 && gps_port != port && !gps_rx.open(bind_addr, static_cast<std::uint16_t>(gps_port), error))) {
+    std::fprintf(stderr, "hesai listen: %s\n", error.c_str());
+    return kExitInput;
+  }
+  if (!quiet) std::fprintf(stderr, "listening on %s:%u (GPS %u)\n", bind_addr.c_str(), points_rx.port(), static_cast<unsigned>(gps_port));
+  std::signal(SIGINT, on_signal);
+  std::signal(SIGTERM, on_signal);
+  const std::int64_t start = port::monotonic_ns();
+  const std::int64_t deadline = seconds > 0 ? start + static_cast<std::int64_t>(seconds * 1e9) : INT64_MAX;
+  std::int64_t next_report = start + 1000000000;
+  std::vector<port::Datagram> batch;
+  std::uint64_t received = 0;
+  bool fatal = false;
+  while (!g_stop && !fatal && (count == 0 || received < count) && port::monotonic_ns() < deadline) {
+    for (port::UdpReceiver* rx : {&points_rx, &gps_rx}) {
+      if (rx->fd() < 0) continue;
+      if (rx->receive(batch, rx == &points_rx ? 50 : 0) < 0) fatal = true;
+      for (const port::Datagram& d : batch) {
+        if (count != 0 && received >= count) break;
+        ++received;
+        if (!pipeline.feed(ByteView{d.data, d.size}, rx == &gps_rx ? 1 : 0, d.time_ns)) {
+          std::fprintf(stderr, "hesai listen: %s\n", pipeline.error().c_str());
+          return kExitUsage;
+        }
+      }
+    }
+    const std::int64_t now = port::monotonic_ns();
+    if (!quiet && now >= next_report) {
+      const Stats& s = pipeline.stats();
+      std::fprintf(stderr, "%6.1f s  packets %llu  points %llu  frames %llu  lost %llu  crc %llu  kernel drops %llu\n",
+                   static_cast<double>(now - start) / 1e9, static_cast<unsigned long long>(s.packets),
+                   static_cast<unsigned long long>(s.points), static_cast<unsigned long long>(s.frames),
+                   static_cast<unsigned long long>(s.lost), static_cast<unsigned long long>(s.crc_errors),
+                   static_cast<unsigned long long>(points_rx.kernel_drops()));
+      next_report += 1000000000;
+    }
+  }
+  pipeline.finish();
+  if (sink && !sink->close(error)) std::fprintf(stderr, "hesai listen: %s\n", error.c_str());
+  if (json) std::printf("%s\n", stats_json(pipeline.stats()).c_str());
+  else std::printf("%s  kernel_drops          %llu\n", stats_text(pipeline).c_str(), static_cast<unsigned long long>(points_rx.kernel_drops()));
+  return fatal ? kExitInput : kExitOk;
+}
+
+// ---- replay ----
+
+int cmd_replay(Args& args) {
+  std::string capture, to, error, rate_text = "1";
+  std::uint64_t loops = 1;
+  bool quiet = false;
+  while (!args.empty()) {
+    const std::string a = args.take();
+    std::string v;
+    if (a == "--help" || a == "-h") {
+      std::printf("usage: hesai replay CAPTURE --to HOST:PORT [--rate 1|N|max] [--loop N]\n\n"
+                  "Sends the UDP payloads of a capture to HOST:PORT.\n\n"
+                  "  --to HOST:PORT          destination\n"
+                  "  --rate 1|N|max          the recorded pace (1), N times faster, or as fast as possible\n"
+                  "  --loop N                play the capture N times (default 1)\n"
+                  "  --quiet                 no summary\n");
+      return kExitOk;
+    }
+    if (a == "--to") { if (!args.value(a, to)) return usage_error("replay", "--to needs HOST:PORT"); }
+    else if (a == "--rate") { if (!args.value(a, rate_text)) return usage_error("replay", "--rate needs 1, N or max"); }
+    else if (a == "--loop") { if (!args.value(a, v) || !parse_u64(v, loops) || loops == 0) return usage_error("replay", "--loop needs N >= 1"); }
+    else if (a == "--quiet") quiet = true;
+    else if (a.rfind("--", 0) == 0) return usage_error("replay", "unknown option " + a);
+    else if (capture.empty()) capture = a;
+    else return usage_error("replay", "one capture at a time ('" + a + "')");
+  }
+  if (capture.empty()) return usage_error("replay", "missing CAPTURE");
+  if (to.empty()) return usage_error("replay", "missing --to HOST:PORT");
+  float rate = 0;  // 0: as fast as possible
+  if (rate_text != "max" && (!parse_float(rate_text, rate) || rate <= 0))
+    return usage_error("replay", "--rate takes 1, a factor N > 0, or max");
+
+  port::UdpSender sender;
+  if (!sender.open(to, error)) return usage_error("replay", error);
+  port::CaptureFile file;
+  if (file.open(capture) != Error::ok) {
+    std::fprintf(stderr, "hesai: %s\n", file.message().c_str());
+    return kExitInput;
+  }
+  std::signal(SIGINT, on_signal);
+  std::uint64_t sent = 0, failed = 0;
+  const std::int64_t start = port::monotonic_ns();
+  for (std::uint64_t loop = 0; loop < loops && !g_stop; ++loop) {
+    if (loop > 0 && file.open(capture) != Error::ok) return kExitInput;
+    port::UdpDatagram d;
+    std::int64_t first_record = -1, loop_start = port::monotonic_ns();
+    for (;;) {
+      const port::CaptureStatus st = file.parser().next(d);
+      if (st == port::CaptureStatus::end || g_stop) break;
+      if (st == port::CaptureStatus::error) {
+        std::fprintf(stderr, "hesai: %s\n", file.message().c_str());
+        return kExitInput;
+      }
+      if (rate > 0) {
+        const std::int64_t t = static_cast<std::int64_t>(d.time_ns);
+        if (first_record < 0) first_record = t;
+        port::sleep_until_ns(loop_start + static_cast<std::int64_t>(static_cast<double>(t - first_record) / rate));
+      }
+      if (sender.send(d.payload.data, d.payload.size)) ++sent;
+      else ++failed;
+    }
+  }
+  if (!quiet)
+    std::fprintf(stderr, "sent %llu datagrams to %s in %.2f s (%llu failed)\n", static_cast<unsigned long long>(sent),
+                 to.c_str(), static_cast<double>(port::monotonic_ns() - start) / 1e9, static_cast<unsigned long long>(failed));
+  return failed ? kExitInput : kExitOk;
+}
+
+}  // namespace
+}  // namespace hesai::cli
+
+int main(int argc, char** argv) {
+  using namespace hesai::cli;
+  if (argc < 2 || std::strcmp(argv[1], "--help") == 0 || std::strcmp(argv[1], "-h") == 0) {
+    std::fputs(kUsage, argc < 2 ? stderr : stdout);
+    return argc < 2 ? kExitUsage : kExitOk;
+  }
+  const std::string command = argv[1];
+  Args args(argc, argv, 2);
+  if (command == "decode") return cmd_decode(args);
+  if (command == "stats") return cmd_stats(args);
+  if (command == "listen") return cmd_listen(args);
+  if (command == "replay") return cmd_replay(args);
+  std::fprintf(stderr, "hesai: unknown command '%s'\n\n%s", command.c_str(), kUsage);
+  return kExitUsage;
+}

@@ -1,0 +1,88 @@
+#include "report.h"
+
+#include <ctime>
+
+#include "hesai/decoder.h"
+
+namespace hesai::cli {
+
+namespace {
+void add(std::string& out, const char* key, std::uint64_t v, bool comma = true) {
+  out += "\"";
+  out += key;
+  out += "\":" + std::to_string(v) + (comma ? "," : "");
+}
+}  // namespace
+
+std::string stats_json(const Stats& s) {
+  std::string out = "{";
+  add(out, "packets", s.packets);
+  out += "\"models\":{";
+  bool first = true;
+  for (std::size_t m = 1; m < kModelCount; ++m) {
+    if (s.models[m] == 0) continue;
+    if (!first) out += ",";
+    first = false;
+    out += "\"" + std::string(model_name(static_cast<Model>(m))) + "\":" + std::to_string(s.models[m]);
+  }
+  out += "},";
+  add(out, "points", s.points);
+  add(out, "frames", s.frames);
+  add(out, "crc_errors", s.crc_errors);
+  add(out, "signature_valid", s.signature_valid);
+  add(out, "signature_invalid", s.signature_invalid);
+  add(out, "signature_missing", s.signature_missing);
+  add(out, "signature_unverified", s.signature_unverified);
+  add(out, "malformed", s.malformed);
+  add(out, "unsupported", s.unsupported);
+  add(out, "lost", s.lost);
+  add(out, "duplicates", s.duplicates);
+  add(out, "reordered", s.reordered);
+  add(out, "gps_packets", s.gps_packets);
+  out += "\"first_time_ns\":" + std::to_string(s.first_time_ns) + ",";
+  out += "\"last_time_ns\":" + std::to_string(s.last_time_ns) + "}";
+  return out;
+}
+
+std::string utc_string(std::int64_t ns) {
+  const std::time_t secs = static_cast<std::time_t>(ns / 1000000000);
+  std::tm t{};
+  gmtime_r(&secs, &t);
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%04d-%02d-%02dT%02d:%02d:%02d.%09lldZ", t.tm_year + 1900, t.tm_mon + 1, t.tm_mday,
+                t.tm_hour, t.tm_min, t.tm_sec, static_cast<long long>(ns % 1000000000));
+  return buf;
+}
+
+std::string stats_text(const Pipeline& p) {
+  const Stats& s = p.stats();
+  std::string out;
+  auto line = [&](const std::string& k, const std::string& v) { out += "  " + k + std::string(22 - k.size(), ' ') + v + "\n"; };
+  line("packets", std::to_string(s.packets));
+  for (std::size_t m = 1; m < kModelCount; ++m)
+    if (s.models[m]) line(std::string("  ") + model_name(static_cast<Model>(m)), std::to_string(s.models[m]));
+  line("gps_packets", std::to_string(s.gps_packets));
+  line("points", std::to_string(s.points));
+  line("frames", std::to_string(s.frames));
+  if (s.first_time_ns) {
+    line("first_time", utc_string(s.first_time_ns));
+    line("last_time", utc_string(s.last_time_ns));
+  }
+  line("spin_rate", std::to_string(s.spin_rpm_last) + " rpm");
+  line("return_mode", std::string(return_mode_name(s.return_mode_last)));
+  line("crc_errors", std::to_string(s.crc_errors));
+  line("signature_valid", std::to_string(s.signature_valid));
+  line("signature_invalid", std::to_string(s.signature_invalid));
+  line("signature_missing", std::to_string(s.signature_missing));
+  line("signature_unverified", std::to_string(s.signature_unverified));
+  line("malformed", std::to_string(s.malformed));
+  line("unsupported", std::to_string(s.unsupported));
+  line("lost", std::to_string(s.lost));
+  line("duplicates", std::to_string(s.duplicates));
+  line("reordered", std::to_string(s.reordered));
+  if (p.resyncs()) line("sequence_resyncs", std::to_string(p.resyncs()));
+  for (const auto& [e, n] : p.rejections()) line(std::string("  rejected ") + error_name(e), std::to_string(n));
+  return out;
+}
+
+}  // namespace hesai::cli

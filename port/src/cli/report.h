@@ -1,0 +1,20 @@
+// Printing the counters of a run: one JSON object with the contract's keys, or a text summary.
+#pragma once
+
+#include <cstdio>
+#include <string>
+
+#include "pipeline.h"
+
+namespace hesai::cli {
+
+/// One JSON object with exactly the keys packets, models, points, frames, crc_errors,
+/// signature_valid, signature_invalid, signature_missing, signature_unverified, malformed,
+/// unsupported, lost, duplicates, reordered, gps_packets, first_time_ns, last_time_ns.
+std::string stats_json(const Stats& s);
+/// A readable summary: the same counters, times as UTC, spin rate, return mode, rejections.
+std::string stats_text(const Pipeline& p);
+/// "2024-05-17T08:30:15.250000000Z".
+std::string utc_string(std::int64_t ns);
+
+}  // namespace hesai::cli

@@ -1,0 +1,102 @@
+#include "sinks.h"
+
+#include <cerrno>
+#include <cstring>
+#include <sys/stat.h>
+
+namespace hesai::cli {
+
+bool OutputSink::open(std::string& error) {
+  if (options_.per_frame) {
+    if (options_.out.empty() || options_.out == "-") {
+      error = "--per-frame needs --out DIRECTORY";
+      return false;
+    }
+    if (mkdir(options_.out.c_str(), 0777) != 0 && errno != EEXIST) {
+      error = "cannot create directory '" + options_.out + "': " + std::strerror(errno);
+      return false;
+    }
+    return true;
+  }
+  if (options_.format == "csv") {
+    const port::WriteResult r = (options_.out.empty() || options_.out == "-") ? csv_.open(stdout, "stdout") : csv_.open(options_.out);
+    if (!r) {
+      error = r.message();
+      return false;
+    }
+    csv_open_ = true;
+    if (!options_.out.empty() && options_.out != "-") files_.push_back(options_.out);
+    return true;
+  }
+  if (options_.out.empty() || options_.out == "-") {
+    error = "--format " + options_.format + " needs --out FILE";
+    return false;
+  }
+  return true;
+}
+
+std::string OutputSink::frame_path(std::uint64_t id) const {
+  char name[64];
+  std::snprintf(name, sizeof name, "/frame_%06llu.%s", static_cast<unsigned long long>(id), options_.format.c_str());
+  return options_.out + name;
+}
+
+void OutputSink::point(const OutPoint& p) {
+  ++points_written_;
+  if (csv_open_ && !options_.per_frame) {
+    const port::WriteResult r = csv_.write(p.point, static_cast<std::uint32_t>(p.frame), p.packet);
+    if (!r && deferred_error_.empty()) deferred_error_ = r.message();
+    return;
+  }
+  cloud_.push_back(p.point);
+  if (options_.format == "csv") packets_.push_back(p.packet);
+}
+
+void OutputSink::frame_closed(const FrameInfo& frame) {
+  if (!options_.per_frame) return;
+  std::string error;
+  if (options_.format == "csv") {
+    // Rows of one frame into its own CSV file.
+    port::CsvWriter w;
+    const std::string path = frame_path(frame.id);
+    port::WriteResult r = w.open(path);
+    for (std::size_t i = 0; r && i < cloud_.size(); ++i)
+      r = w.write(cloud_[i], static_cast<std::uint32_t>(frame.id), packets_[i]);
+    if (r) r = w.close();
+    if (!r && deferred_error_.empty()) deferred_error_ = r.message();
+    if (r) files_.push_back(path);
+  } else if (!write_cloud(frame_path(frame.id), error) && deferred_error_.empty()) {
+    deferred_error_ = error;
+  }
+  cloud_.clear();
+  packets_.clear();
+}
+
+bool OutputSink::write_cloud(const std::string& path, std::string& error) {
+  port::WriteResult r;
+  if (options_.format == "pcd") r = port::write_pcd(path, cloud_);
+  if (options_.format == "ply") r = port::write_ply(path, cloud_);
+  if (options_.format == "png") r = port::write_png(path, cloud_);
+  if (!r) {
+    error = r.message();
+    return false;
+  }
+  files_.push_back(path);
+  return true;
+}
+
+bool OutputSink::close(std::string& error) {
+  if (csv_open_) {
+    const port::WriteResult r = csv_.close();
+    if (!r && deferred_error_.empty()) deferred_error_ = r.message();
+  } else if (!options_.per_frame && !write_cloud(options_.out, error)) {
+    return false;
+  }
+  if (!deferred_error_.empty()) {
+    error = deferred_error_;
+    return false;
+  }
+  return true;
+}
+
+}  // namespace hesai::cli

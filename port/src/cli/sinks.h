@@ -1,0 +1,44 @@
+// Where decoded points go: CSV rows, or point clouds written as PCD, PLY or PNG per frame or
+// once at the end.
+#pragma once
+
+#include <cstdio>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "hesai_port/writers.h"
+#include "options.h"
+#include "pipeline.h"
+
+namespace hesai::cli {
+
+/// Writes the points in the chosen format. open() checks the destination before any decoding.
+class OutputSink : public Sink {
+ public:
+  explicit OutputSink(const OutputOptions& o) : options_(o) {}
+  /// Prepares the destination (creates the --per-frame directory, opens the CSV file).
+  bool open(std::string& error);
+  void point(const OutPoint& p) override;
+  void frame_closed(const FrameInfo& frame) override;
+  /// Writes what is still held (the single cloud). Returns false with a message.
+  bool close(std::string& error);
+  /// Files written so far.
+  const std::vector<std::string>& files() const { return files_; }
+  std::uint64_t points_written() const { return points_written_; }
+
+ private:
+  bool write_cloud(const std::string& path, std::string& error);
+  std::string frame_path(std::uint64_t id) const;
+
+  OutputOptions options_;
+  port::CsvWriter csv_;
+  bool csv_open_ = false;
+  std::vector<Point> cloud_;    // the current frame (--per-frame) or every point
+  std::vector<std::uint64_t> packets_;  // packet index of each point in cloud_ (per-frame CSV)
+  std::vector<std::string> files_;
+  std::uint64_t points_written_ = 0;
+  std::string deferred_error_;
+};
+
+}  // namespace hesai::cli
