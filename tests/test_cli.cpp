@@ -1,0 +1,332 @@
+// End-to-end tests of the hesai program on the bundled captures and on captures built here
+// with known drops, duplicates, late packets, corrupted CRCs and signatures.
+#include <gtest/gtest.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <cstdio>
+#include <fstream>
+#include <map>
+#include <regex>
+#include <string>
+#include <vector>
+
+#include "hesai/decoder.h"
+#include "hesai/frame.h"
+#include "hesai/hkdf.h"
+#include "packet_builder.h"
+#include "test_support.h"
+
+using namespace hesai;
+using namespace hesai_test;
+
+namespace {
+
+struct Run {
+  int status = -1;
+  std::string out;
+};
+
+Run run(const std::string& args) {
+  Run r;
+  const std::string cmd = std::string(HESAI_CLI_PATH) + " " + args + " 2>/dev/null";
+  FILE* p = popen(cmd.c_str(), "r");
+  if (!p) return r;
+  char buf[65536];
+  std::size_t n;
+  while ((n = std::fread(buf, 1, sizeof buf, p)) > 0) r.out.append(buf, n);
+  const int st = pclose(p);
+  r.status = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
+  return r;
+}
+
+// The integer value of "key": in a flat JSON object (models is read separately).
+std::map<std::string, long long> json_numbers(const std::string& json) {
+  std::map<std::string, long long> m;
+  std::regex re("\"([a-zA-Z0-9_]+)\":(-?[0-9]+)");
+  for (auto it = std::sregex_iterator(json.begin(), json.end(), re); it != std::sregex_iterator(); ++it)
+    m[(*it)[1]] = std::stoll((*it)[2]);
+  return m;
+}
+
+std::string temp_dir() {
+  char tmpl[] = "/tmp/hesai_cli_XXXXXX";
+  return mkdtemp(tmpl);
+}
+
+// A classic pcap of Ethernet/IPv4/UDP frames around the payloads (sensor 192.168.1.201:10000).
+void write_pcap(const std::string& path, const std::vector<std::vector<std::uint8_t>>& payloads) {
+  std::vector<std::uint8_t> f(24, 0);
+  store_le32(&f[0], 0xA1B2C3D4);
+  store_le16(&f[4], 2);
+  store_le16(&f[6], 4);
+  store_le32(&f[16], 65535);
+  store_le32(&f[20], 1);
+  std::uint32_t t = 1700000000;
+  for (const auto& p : payloads) {
+    std::vector<std::uint8_t> frame(42, 0);
+    for (int i = 0; i < 6; ++i) frame[static_cast<std::size_t>(i)] = 0xFF;
+    frame[12] = 0x08;
+    frame[14] = 0x45;
+    hesai::store_le16(&frame[16], 0);
+    frame[16] = static_cast<std::uint8_t>((p.size() + 28) >> 8);
+    frame[17] = static_cast<std::uint8_t>(p.size() + 28);
+    frame[22] = 64;
+    frame[23] = 17;
+    const std::uint8_t src[4] = {192, 168, 1, 201};
+    for (int i = 0; i < 4; ++i) frame[26 + static_cast<std::size_t>(i)] = src[i];
+    for (int i = 0; i < 4; ++i) frame[30 + static_cast<std::size_t>(i)] = 255;
+    frame[34] = 10000 >> 8; frame[35] = 10000 & 0xFF;
+    frame[36] = 2368 >> 8; frame[37] = 2368 & 0xFF;
+    frame[38] = static_cast<std::uint8_t>((p.size() + 8) >> 8);
+    frame[39] = static_cast<std::uint8_t>(p.size() + 8);
+    frame.insert(frame.end(), p.begin(), p.end());
+    std::uint8_t rec[16];
+    store_le32(rec, t);
+    store_le32(rec + 4, 0);
+    store_le32(rec + 8, static_cast<std::uint32_t>(frame.size()));
+    store_le32(rec + 12, static_cast<std::uint32_t>(frame.size()));
+    f.insert(f.end(), rec, rec + 16);
+    f.insert(f.end(), frame.begin(), frame.end());
+    ++t;
+  }
+  std::ofstream(path, std::ios::binary).write(reinterpret_cast<const char*>(f.data()), static_cast<long>(f.size()));
+}
+
+// ---- Usage and errors ----
+
+TEST(Cli, HelpAndExitStatuses) {
+  EXPECT_EQ(run("--help").status, 0);
+  for (const char* cmd : {"decode", "stats", "listen", "replay"}) {
+    const Run r = run(std::string(cmd) + " --help");
+    EXPECT_EQ(r.status, 0) << cmd;
+    EXPECT_NE(r.out.find("usage: hesai"), std::string::npos) << cmd;
+  }
+  EXPECT_EQ(run("").status, 1);
+  EXPECT_EQ(run("frobnicate").status, 1);
+  EXPECT_EQ(run("decode").status, 1);
+  EXPECT_EQ(run("stats x.pcap --bogus").status, 1);
+  EXPECT_EQ(run("decode x.pcap --format tiff").status, 1);
+  EXPECT_EQ(run("stats /nonexistent/file.pcap").status, 2);
+  EXPECT_EQ(run("stats " + data_path("calibration/pandar64_unit_a_angles.csv")).status, 2);  // not a capture
+  EXPECT_EQ(run("stats " + data_path("pandar64_dual.pcap") + " --calibration /nonexistent.csv").status, 2);
+  // A QT128 calibration for a Pandar64 capture: a configuration error, named.
+  EXPECT_EQ(run("stats " + data_path("pandar64_dual.pcap") + " --calibration " +
+                data_path("calibration/qt128c2x_unit_a_angles.csv")).status, 1);
+}
+
+// ---- The bundled captures ----
+
+struct CaptureCase {
+  const char* file;
+  Model model;
+  long long packets;
+  long long points;
+};
+
+class CliCapture : public ::testing::TestWithParam<CaptureCase> {};
+
+TEST_P(CliCapture, StatsJsonOnRealCapture) {
+  const CaptureCase& c = GetParam();
+  const Run r = run("stats " + data_path(c.file) + " --json");
+  ASSERT_EQ(r.status, 0) << r.out;
+  auto j = json_numbers(r.out);
+  for (const char* key : {"packets", "points", "frames", "crc_errors", "signature_valid", "signature_invalid",
+                          "signature_missing", "signature_unverified", "malformed", "unsupported", "lost",
+                          "duplicates", "reordered", "gps_packets", "first_time_ns", "last_time_ns"})
+    EXPECT_TRUE(j.count(key)) << key;
+  EXPECT_NE(r.out.find("\"models\":{\"" + std::string(model_name(c.model)) + "\":" + std::to_string(c.packets) + "}"),
+            std::string::npos) << r.out;
+  EXPECT_EQ(j["packets"], c.packets);
+  EXPECT_EQ(j["points"], c.points);
+  EXPECT_EQ(j["crc_errors"], 0);
+  EXPECT_EQ(j["malformed"], 0);
+  EXPECT_EQ(j["lost"], 0);
+  EXPECT_EQ(j["duplicates"], 0);
+  EXPECT_EQ(j["reordered"], 0);
+  EXPECT_GE(j["frames"], 2);
+}
+
+// The frames of `decode --per-frame` hold exactly the points the decoder API gives per frame.
+TEST_P(CliCapture, PerFrameCsvEqualsDecoderApi) {
+  const CaptureCase& c = GetParam();
+  // Reference: the library directly.
+  const auto packets = pcap_payloads(c.file);
+  Decoder dec(c.model);
+  FrameAssembler frames;
+  PacketPoints pts;
+  PacketInfo info;
+  std::map<std::uint64_t, std::uint64_t> expected;  // frame id -> points
+  std::uint64_t index = 0;
+  for (const auto& p : packets) {
+    ASSERT_EQ(dec.decode(view(p), info, pts), Error::ok);
+    frames.begin_packet(index++, 0);
+    for (std::size_t b = 0; b < info.blocks; ++b) {
+      frames.block(info.block_azimuth[b]);
+      for (const Point& q : pts)
+        if (q.block == b) ++expected[frames.current().id];
+    }
+  }
+  const std::string dir = temp_dir();
+  const Run r = run("decode " + data_path(c.file) + " --per-frame --format csv --quiet --out " + dir);
+  ASSERT_EQ(r.status, 0);
+  for (const auto& [id, n] : expected) {
+    char name[64];
+    std::snprintf(name, sizeof name, "/frame_%06llu.csv", static_cast<unsigned long long>(id));
+    std::ifstream f(dir + name);
+    ASSERT_TRUE(f) << name;
+    std::string line;
+    std::getline(f, line);
+    EXPECT_EQ(line, "frame,packet,block,channel,return,azimuth_deg,elevation_deg,distance_m,x,y,z,intensity,time_ns");
+    std::uint64_t rows = 0;
+    while (std::getline(f, line)) {
+      ++rows;
+      if (rows == 1) EXPECT_EQ(line.substr(0, line.find(',')), std::to_string(id));
+    }
+    EXPECT_EQ(rows, n) << "frame " << id;
+  }
+  const Run s = run("stats " + data_path(c.file) + " --json");
+  EXPECT_EQ(json_numbers(s.out)["frames"], static_cast<long long>(expected.size()));
+}
+
+INSTANTIATE_TEST_SUITE_P(Bundled, CliCapture,
+                         ::testing::Values(CaptureCase{"pandar40p_dual.pcap", Model::pandar40p, 1439, 434934},
+                                           CaptureCase{"pandar64_dual.pcap", Model::pandar64, 2400, 716622},
+                                           CaptureCase{"qt128c2x_dual.pcap", Model::qt128c2x, 1800, 337108}),
+                         [](const auto& i) { return std::string(model_name(i.param.model)); });
+
+TEST(Cli, PacketRangeAndRangeFilter) {
+  const std::string dir = temp_dir();
+  const Run r = run("decode " + data_path("pandar64_dual.pcap") + " --packets 10:12 --out -");
+  ASSERT_EQ(r.status, 0);
+  // Every row belongs to packet 10 or 11; the count equals the non-zero distances of those two.
+  const auto packets = pcap_payloads("pandar64_dual.pcap");
+  std::size_t expected = 0;
+  for (std::size_t k : {10u, 11u})
+    for (std::size_t b = 0; b < 6; ++b)
+      for (std::size_t ch = 0; ch < 64; ++ch) expected += load_le16(&packets[k][8 + b * 194 + 2 + ch * 3]) != 0;
+  std::size_t rows = 0;
+  std::size_t pos = r.out.find('\n') + 1;
+  while (pos < r.out.size()) {
+    const std::size_t end = r.out.find('\n', pos);
+    const std::string row = r.out.substr(pos, end - pos);
+    const std::string packet = row.substr(row.find(',') + 1, row.find(',', row.find(',') + 1) - row.find(',') - 1);
+    EXPECT_TRUE(packet == "10" || packet == "11") << row;
+    ++rows;
+    pos = end + 1;
+  }
+  EXPECT_EQ(rows, expected);
+  const Run near = run("decode " + data_path("pandar64_dual.pcap") + " --packets 10:12 --max-range 5 --out -");
+  EXPECT_LT(near.out.size(), r.out.size());
+}
+
+// ---- Built captures with known faults ----
+
+TEST(Cli, StatsCountsDropsDuplicatesLateAndCrcErrors) {
+  const auto real = pcap_payloads("qt128c2x_dual.pcap");
+  const std::uint32_t base = load_le32(&real[0][1087]);
+  // Sequence numbers 0..19 sent as: 0 1 2 4 5 3 6 6 7 [8 9 10 lost] 11 .. 19, with packet 15's body corrupted.
+  std::vector<std::vector<std::uint8_t>> out;
+  auto packet_with_seq = [&](std::uint32_t k) {
+    auto p = real[k];
+    store_le32(&p[1087], base + k);
+    qt128_seal(p);  // CRC3 covers the sequence number
+    return p;
+  };
+  for (std::uint32_t k : {0u, 1u, 2u, 4u, 5u, 3u, 6u, 6u, 7u, 11u, 12u, 13u, 14u, 15u, 16u, 17u, 18u, 19u}) {
+    auto p = packet_with_seq(k);
+    if (k == 15) p[100] ^= 0x40;  // CRC1 fails
+    out.push_back(p);
+  }
+  std::vector<std::uint8_t> junk(300, 0xAB);  // not a Hesai packet
+  out.push_back(junk);
+  const std::string dir = temp_dir();
+  write_pcap(dir + "/faults.pcap", out);
+  const Run r = run("stats " + dir + "/faults.pcap --json");
+  ASSERT_EQ(r.status, 0);
+  auto j = json_numbers(r.out);
+  EXPECT_EQ(j["packets"], 19);
+  EXPECT_EQ(j["crc_errors"], 1);   // packet 15
+  EXPECT_EQ(j["malformed"], 1);    // the junk
+  EXPECT_EQ(j["lost"], 3);         // 8, 9, 10 (3 arrived late: not lost)
+  EXPECT_EQ(j["reordered"], 1);    // 3
+  EXPECT_EQ(j["duplicates"], 1);   // the second 6
+  EXPECT_EQ(j["signature_unverified"], 0);
+  EXPECT_NE(r.out.find("\"QT128C2X\":17"), std::string::npos) << r.out;
+}
+
+TEST(Cli, StatsCountsSignatures) {
+  const auto real = pcap_payloads("qt128c2x_dual.pcap");
+  std::uint8_t lidar[32], client[32], key[32];
+  for (int i = 0; i < 32; ++i) {
+    lidar[i] = static_cast<std::uint8_t>(0x10 + i);
+    client[i] = static_cast<std::uint8_t>(0x80 + i);
+  }
+  const std::string secret = "hesai-secret-01";
+  ASSERT_EQ(hesai_session_key(ByteView{reinterpret_cast<const std::uint8_t*>(secret.data()), secret.size()}, lidar, client, key),
+            Error::ok);
+  // 6 signed, 2 with a flipped signature bit, 3 unsigned (all-zero signature).
+  std::vector<std::vector<std::uint8_t>> out;
+  for (std::size_t k = 0; k < 11; ++k) {
+    auto p = real[k];
+    if (k < 8) qt128_seal(p, key);
+    if (k == 6 || k == 7) p[1100] ^= 0x04;
+    out.push_back(p);
+  }
+  const std::string dir = temp_dir();
+  write_pcap(dir + "/signed.pcap", out);
+  auto hex = [](const std::uint8_t* b) {
+    std::string s;
+    char h[3];
+    for (int i = 0; i < 32; ++i) {
+      std::snprintf(h, sizeof h, "%02x", b[i]);
+      s += h;
+    }
+    return s;
+  };
+  const std::string by_secret = " --secret " + secret + " --lidar-random " + hex(lidar) + " --client-random " + hex(client);
+  auto j = json_numbers(run("stats " + dir + "/signed.pcap --json" + by_secret).out);
+  EXPECT_EQ(j["signature_valid"], 6);
+  EXPECT_EQ(j["signature_invalid"], 2);
+  EXPECT_EQ(j["signature_missing"], 3);
+  EXPECT_EQ(j["signature_unverified"], 0);
+  const long long points_checked = j["points"];
+
+  j = json_numbers(run("stats " + dir + "/signed.pcap --json --session-key " + hex(key) + " --allow-unsigned").out);
+  EXPECT_EQ(j["signature_valid"], 6);
+  EXPECT_EQ(j["signature_invalid"], 2);
+  EXPECT_EQ(j["signature_missing"], 3);  // accepted, and still counted as unsigned
+  EXPECT_GT(j["points"], points_checked);  // the 3 unsigned packets now contribute points
+
+  j = json_numbers(run("stats " + dir + "/signed.pcap --json").out);  // no key
+  EXPECT_EQ(j["signature_unverified"], 8);
+  EXPECT_EQ(j["signature_valid"], 0);
+  EXPECT_EQ(j["signature_invalid"], 0);
+}
+
+// ---- Live: replay into listen on 127.0.0.1 ----
+
+TEST(Cli, ListenReceivesEveryReplayedPacket) {
+  const int port = 20000 + static_cast<int>(getpid() % 20000);
+  const std::string listen = std::string(HESAI_CLI_PATH) + " listen --bind 127.0.0.1 --port " + std::to_string(port) +
+                             " --gps-port 0 --count 1800 --seconds 30 --json --quiet 2>/dev/null";
+  FILE* l = popen(listen.c_str(), "r");
+  ASSERT_NE(l, nullptr);
+  usleep(300000);  // let it bind
+  const Run sent = run("replay " + data_path("qt128c2x_dual.pcap") + " --to 127.0.0.1:" + std::to_string(port) + " --rate 4 --quiet");
+  EXPECT_EQ(sent.status, 0);
+  std::string out;
+  char buf[4096];
+  std::size_t n;
+  while ((n = std::fread(buf, 1, sizeof buf, l)) > 0) out.append(buf, n);
+  EXPECT_EQ(WEXITSTATUS(pclose(l)), 0);
+  auto live = json_numbers(out);
+  auto file = json_numbers(run("stats " + data_path("qt128c2x_dual.pcap") + " --json").out);
+  EXPECT_EQ(live["packets"], 1800) << out;
+  EXPECT_EQ(live["points"], file["points"]);
+  EXPECT_EQ(live["frames"], file["frames"]);
+  EXPECT_EQ(live["lost"], 0);
+  EXPECT_EQ(live["crc_errors"], 0);
+}
+
+}  // namespace
