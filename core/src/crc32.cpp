@@ -1,0 +1,113 @@
+// CRC-32/MPEG-2: the table and slicing paths, the dispatcher, and compile-time proofs of every
+// path against the bitwise definition.
+#include "hesai/crc32.h"
+
+#include "crc32_fold.h"
+#include "hesai/bytes.h"
+
+namespace hesai {
+namespace {
+
+constexpr std::array<std::uint32_t, 256> kTable = crc32_mpeg2_make_table();
+constexpr std::array<std::array<std::uint32_t, 256>, kCrc32Mpeg2Slices> kSlicing =
+    crc32_mpeg2_make_slicing_tables();
+
+constexpr std::uint32_t table_update(std::uint32_t crc, const std::uint8_t* p, std::size_t n) noexcept {
+  for (std::size_t i = 0; i < n; ++i) crc = (crc << 8) ^ kTable[(crc >> 24) ^ p[i]];
+  return crc;
+}
+
+// Eight bytes per step. The register is xored into the first four bytes (read big-endian, with
+// shifts: no aligned or host-order loads), then byte j of the eight, followed by 7 - j more
+// bytes, contributes slicing table 7 - j.
+constexpr std::uint32_t slicing_update(std::uint32_t crc, const std::uint8_t* p, std::size_t n) noexcept {
+  static_assert(kCrc32Mpeg2Slices == 8, "the step below is written out for slicing-by-8");
+  for (; n >= 8; p += 8, n -= 8) {
+    const std::uint32_t a = crc ^ load_be32(p);
+    crc = kSlicing[7][a >> 24] ^ kSlicing[6][(a >> 16) & 0xFFu] ^ kSlicing[5][(a >> 8) & 0xFFu] ^
+          kSlicing[4][a & 0xFFu] ^ kSlicing[3][p[4]] ^ kSlicing[2][p[5]] ^ kSlicing[1][p[6]] ^
+          kSlicing[0][p[7]];
+  }
+  return table_update(crc, p, n);
+}
+
+// ---- Compile-time proofs ----
+
+constexpr std::uint8_t kCheck[9] = {'1', '2', '3', '4', '5', '6', '7', '8', '9'};
+static_assert(crc32_mpeg2_bitwise(kCrc32Mpeg2Init, kCheck, 9) == 0x0376E6E7u, "check value, definition");
+static_assert(table_update(kCrc32Mpeg2Init, kCheck, 9) == 0x0376E6E7u, "check value, table");
+static_assert(slicing_update(kCrc32Mpeg2Init, kCheck, 9) == 0x0376E6E7u, "check value, slicing");
+
+// A pseudo-random message long enough for the four-way fold loop, its tail and the slicing tail.
+struct Sample {
+  std::uint8_t bytes[300] = {};
+  constexpr Sample() {
+    std::uint32_t s = 0x12345678u;
+    for (std::uint8_t& b : bytes) {
+      s = s * 1664525u + 1013904223u;  // LCG (Numerical Recipes)
+      b = static_cast<std::uint8_t>(s >> 24);
+    }
+  }
+};
+constexpr Sample kSample{};
+constexpr std::size_t kSampleSize = sizeof kSample.bytes;
+constexpr std::uint32_t kSampleCrc = crc32_mpeg2_bitwise(kCrc32Mpeg2Init, kSample.bytes, kSampleSize);
+static_assert(slicing_update(kCrc32Mpeg2Init, kSample.bytes, kSampleSize) == kSampleCrc, "slicing");
+
+// The folding scheme and its constants, proven on the software model of the kernels.
+constexpr std::uint32_t model_update(std::uint32_t crc, const std::uint8_t* p, std::size_t n) {
+  const std::size_t folded = n & ~std::size_t{15};
+  return slicing_update(crc32_fold::model_fold_blocks(crc, p, n), p + folded, n - folded);
+}
+static_assert(model_update(kCrc32Mpeg2Init, kSample.bytes, kSampleSize) == kSampleCrc, "folding, 300 B");
+static_assert(model_update(kCrc32Mpeg2Init, kSample.bytes, 64) ==
+                  crc32_mpeg2_bitwise(kCrc32Mpeg2Init, kSample.bytes, 64),
+              "folding, 64 B");
+static_assert(model_update(kCrc32Mpeg2Init, kSample.bytes, 143) ==
+                  crc32_mpeg2_bitwise(kCrc32Mpeg2Init, kSample.bytes, 143),
+              "folding, 143 B");
+static_assert(model_update(0x89ABCDEFu, kSample.bytes + 3, 200) ==
+                  crc32_mpeg2_bitwise(0x89ABCDEFu, kSample.bytes + 3, 200),
+              "folding from any register");
+
+std::uint32_t hardware_update(std::uint32_t crc, const std::uint8_t* p, std::size_t n) noexcept {
+#if defined(HESAI_CRC32_FOLD_X86) || defined(HESAI_CRC32_FOLD_ARM)
+  if (n >= crc32_fold::kMinBytes && crc32_fold::fold_available()) {
+    const std::size_t folded = n & ~std::size_t{15};
+    crc = crc32_fold::fold_blocks(crc, p, n);
+    p += folded;
+    n -= folded;
+  }
+#endif
+  return slicing_update(crc, p, n);
+}
+
+}  // namespace
+
+bool crc32_hardware_available() noexcept {
+#if defined(HESAI_CRC32_FOLD_X86) || defined(HESAI_CRC32_FOLD_ARM)
+  return crc32_fold::fold_available();
+#else
+  return false;
+#endif
+}
+
+std::uint32_t crc32_mpeg2_update(CrcPath path, std::uint32_t crc, ByteView data) noexcept {
+  if (data.size == 0) return crc;  // data.data may be null
+  switch (path) {
+    case CrcPath::bitwise: return crc32_mpeg2_bitwise(crc, data.data, data.size);
+    case CrcPath::table: return table_update(crc, data.data, data.size);
+    case CrcPath::slicing: return slicing_update(crc, data.data, data.size);
+    case CrcPath::hardware: return hardware_update(crc, data.data, data.size);
+  }
+  return hardware_update(crc, data.data, data.size);
+}
+
+std::uint32_t crc32_mpeg2_update(std::uint32_t crc, ByteView data) noexcept {
+  if (data.size == 0) return crc;
+  return hardware_update(crc, data.data, data.size);
+}
+
+std::uint32_t crc32_mpeg2(ByteView data) noexcept { return crc32_mpeg2_update(kCrc32Mpeg2Init, data); }
+
+}  // namespace hesai

@@ -1,0 +1,97 @@
+// CRC-32/MPEG-2 folding with PCLMULQDQ on x86-64 (see crc32_fold.h for the mathematics).
+// Compiled with a function-level target attribute so that the library itself needs no -m flags;
+// the path is chosen at run time from CPUID. Empty on other targets.
+#include "crc32_fold.h"
+
+#if defined(HESAI_CRC32_FOLD_X86)
+
+#include <cpuid.h>
+#include <immintrin.h>
+
+#include <atomic>
+
+#define HESAI_CLMUL_TARGET __attribute__((target("pclmul,sse4.1,ssse3")))
+
+namespace hesai::crc32_fold {
+namespace {
+
+// 0: not asked yet, 1: absent, 2: present. Relaxed: every thread computes the same answer.
+std::atomic<std::uint8_t> g_clmul{0};
+
+bool cpu_has_clmul() noexcept {
+  unsigned eax = 0, ebx = 0, ecx = 0, edx = 0;
+  if (__get_cpuid(1, &eax, &ebx, &ecx, &edx) == 0) return false;
+  constexpr unsigned kPclmulqdq = 1u << 1;  // CPUID.01H:ECX bits (Intel SDM vol. 2A, table 3-10)
+  constexpr unsigned kSsse3 = 1u << 9;
+  constexpr unsigned kSse41 = 1u << 19;
+  constexpr unsigned kNeed = kPclmulqdq | kSsse3 | kSse41;
+  return (ecx & kNeed) == kNeed;
+}
+
+constexpr long long as_ll(std::uint64_t v) noexcept { return static_cast<long long>(v); }
+
+// 16 bytes as a 128-bit big-endian number: byte 0's top bit becomes bit 127.
+HESAI_CLMUL_TARGET inline __m128i load_be128(const std::uint8_t* p, __m128i reverse) noexcept {
+  __m128i v;
+  __builtin_memcpy(&v, p, sizeof v);  // unaligned load; a builtin even under -ffreestanding
+  return _mm_shuffle_epi8(v, reverse);
+}
+
+// a * x^T mod P, up to 95 bits: k holds x^T mod P (low qword) and x^(T+64) mod P (high qword).
+HESAI_CLMUL_TARGET inline __m128i fold(__m128i a, __m128i k) noexcept {
+  return _mm_xor_si128(_mm_clmulepi64_si128(a, k, 0x00), _mm_clmulepi64_si128(a, k, 0x11));
+}
+
+// r * x^32 mod P.
+HESAI_CLMUL_TARGET inline std::uint32_t reduce(__m128i r) noexcept {
+  const __m128i k = _mm_set_epi64x(as_ll(kReduce64), as_ll(kReduce96));
+  __m128i t = _mm_clmulepi64_si128(r, k, 0x01);                        // high qword * x^96
+  t = _mm_xor_si128(t, _mm_slli_si128(_mm_move_epi64(r), 4));          // + low qword * x^32
+  __m128i u = _mm_clmulepi64_si128(t, k, 0x11);                        // bits 64..95 * x^64
+  u = _mm_xor_si128(u, _mm_move_epi64(t));                             // < 64 bits
+  const __m128i b = _mm_set_epi64x(as_ll(kPoly33), as_ll(kBarrettMu));
+  __m128i q = _mm_clmulepi64_si128(_mm_srli_epi64(u, 32), b, 0x00);    // (u >> 32) * mu
+  q = _mm_srli_epi64(q, 32);                                           // floor(u / P)
+  const __m128i r32 = _mm_xor_si128(u, _mm_clmulepi64_si128(q, b, 0x10));  // u - q * P
+  return static_cast<std::uint32_t>(_mm_cvtsi128_si32(r32));
+}
+
+}  // namespace
+
+bool fold_available() noexcept {
+  std::uint8_t state = g_clmul.load(std::memory_order_relaxed);
+  if (state == 0) {
+    state = cpu_has_clmul() ? 2 : 1;
+    g_clmul.store(state, std::memory_order_relaxed);
+  }
+  return state == 2;
+}
+
+HESAI_CLMUL_TARGET std::uint32_t fold_blocks(std::uint32_t crc, const std::uint8_t* p, std::size_t n) noexcept {
+  const __m128i reverse = _mm_set_epi8(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15);
+  const __m128i k512 = _mm_set_epi64x(as_ll(kFold576), as_ll(kFold512));
+  const __m128i k128 = _mm_set_epi64x(as_ll(kFold192), as_ll(kFold128));
+
+  __m128i x0 = load_be128(p, reverse);
+  __m128i x1 = load_be128(p + 16, reverse);
+  __m128i x2 = load_be128(p + 32, reverse);
+  __m128i x3 = load_be128(p + 48, reverse);
+  x0 = _mm_xor_si128(x0, _mm_set_epi32(static_cast<int>(crc), 0, 0, 0));  // register -> first 4 bytes
+  p += 64;
+  n -= 64;
+  for (; n >= 64; p += 64, n -= 64) {
+    x0 = _mm_xor_si128(fold(x0, k512), load_be128(p, reverse));
+    x1 = _mm_xor_si128(fold(x1, k512), load_be128(p + 16, reverse));
+    x2 = _mm_xor_si128(fold(x2, k512), load_be128(p + 32, reverse));
+    x3 = _mm_xor_si128(fold(x3, k512), load_be128(p + 48, reverse));
+  }
+  x1 = _mm_xor_si128(fold(x0, k128), x1);
+  x2 = _mm_xor_si128(fold(x1, k128), x2);
+  x3 = _mm_xor_si128(fold(x2, k128), x3);
+  for (; n >= 16; p += 16, n -= 16) x3 = _mm_xor_si128(fold(x3, k128), load_be128(p, reverse));
+  return reduce(x3);
+}
+
+}  // namespace hesai::crc32_fold
+
+#endif  // HESAI_CRC32_FOLD_X86
