@@ -374,6 +374,16 @@ TEST(PlyWriter, HeaderAndBinaryRecordsReadBack) {
   EXPECT_EQ(lef64(file.data() + data + record + 15), 2147483648.0);
   EXPECT_EQ(lef64(file.data() + data + 2 * record + 15), -1.5);
   std::remove(path.c_str());
+
+  // A present-day time: the double nearest to the exact decimal seconds (the literal below,
+  // which the compiler rounds correctly), not an approximation through a double of nanoseconds.
+  Point now;
+  now.time_ns = 1700683915271066246;  // double(time_ns) / 1e9 would round to the next double
+  ASSERT_TRUE(port::write_ply(path, &now, 1).ok());
+  const std::vector<std::uint8_t> one = read_bytes(path);
+  ASSERT_EQ(one.size(), data + record);  // same header length: "element vertex 1" for "... 3"
+  EXPECT_EQ(lef64(one.data() + one.size() - 8), 1700683915.271066246);
+  std::remove(path.c_str());
 }
 
 // ---------------------------------------------------------------- PNG: an independent decoder
@@ -513,6 +523,7 @@ struct DecodedPng {
   int idat_chunks = 0;
   int stored_blocks = 0;
   int fixed_blocks = 0;
+  std::array<int, 5> filter_rows{};  // rows per filter type
 
   std::array<int, 3> px(std::uint32_t x, std::uint32_t y) const {
     const std::uint8_t* p = rgb.data() + (static_cast<std::size_t>(y) * width + x) * 3;
@@ -589,6 +600,7 @@ bool decode_png(const std::vector<std::uint8_t>& f, DecodedPng& out) {
   out.rgb.assign(stride * out.height, 0);
   for (std::size_t y = 0; y < out.height; ++y) {
     const std::uint8_t ft = raw[y * (stride + 1)];
+    if (ft < 5) ++out.filter_rows[ft];
     const std::uint8_t* in = raw.data() + y * (stride + 1) + 1;
     std::uint8_t* row = out.rgb.data() + y * stride;
     for (std::size_t i = 0; i < stride; ++i) {
@@ -689,8 +701,8 @@ std::vector<Point> small_scene() {
   std::vector<Point> v;
   v.push_back(make_point(5.0f, 5.0f, 0, 255));     // (160, 40): red end of the ramp
   v.push_back(make_point(-5.0f, -2.5f, 0, 0));     // (80, 100): blue end
-  v.push_back(make_point(0.0f, 8.0f, 0, 0));       // (120, 16) with intensity 0 ...
-  v.push_back(make_point(0.06f, 7.99f, 0, 255));   // ... and (floor(120.48), floor(16.08)): the larger wins
+  v.push_back(make_point(0.06f, 7.99f, 0, 255));   // (floor(120.48), floor(16.08)) with intensity 255 ...
+  v.push_back(make_point(0.0f, 8.0f, 0, 0));       // ... and (120, 16) with 0 after it: the larger wins
   v.push_back(make_point(20.0f, 0.0f, 0, 255));    // outside: skipped
   v.push_back(make_point(std::nanf(""), 1.0f, 0, 255));  // not finite: skipped
   return v;
@@ -747,6 +759,40 @@ TEST(Png, FixedHuffmanDecodesToTheSameImage) {
   EXPECT_EQ(b.fixed_blocks, 1);
   EXPECT_EQ(a.rgb, b.rgb);
   EXPECT_LT(fixed.size() * 20, stored.size());
+}
+
+// Every filter type must round-trip. Rows are built so that each filter is the best for some:
+// y % 8 = 0 noise; 1 pixels alternating 0/2 under noise (None); 2, 3 a horizontal ramp (Sub,
+// then Up); 4, 5 v = 60 + x - y (Average is exact on 5); 6, 7 v = x + y (Paeth is exact on 7).
+TEST(Png, AllFilterTypesRoundTrip) {
+  port::RgbImage img(97, 61);
+  std::uint32_t seed = 12345;
+  for (std::uint32_t y = 0; y < img.height; ++y) {
+    for (std::uint32_t x = 0; x < img.width; ++x) {
+      std::uint8_t* p = img.at(x, y);
+      seed = seed * 1103515245u + 12345u;
+      for (std::uint32_t c = 0; c < 3; ++c) {
+        std::uint32_t v = 0;
+        switch (y % 8) {
+          case 0: v = seed >> (8 + 8 * c); break;
+          case 1: v = (x % 2) * 2; break;
+          case 2: case 3: v = x * 2 + c * 10; break;
+          case 4: case 5: v = 60 + x - y + c * 10; break;
+          default: v = x + y + c * 10; break;
+        }
+        p[c] = static_cast<std::uint8_t>(v);
+      }
+    }
+  }
+  for (port::PngDeflate mode : {port::PngDeflate::stored, port::PngDeflate::fixed_huffman}) {
+    const std::vector<std::uint8_t> png = port::encode_png(img, mode);
+    DecodedPng d;
+    ASSERT_TRUE(decode_png(png, d));
+    EXPECT_EQ(d.width, 97u);
+    EXPECT_EQ(d.height, 61u);
+    EXPECT_EQ(d.rgb, img.rgb);
+    for (std::size_t f = 0; f < 5; ++f) EXPECT_GT(d.filter_rows[f], 0) << "filter type " << f << " never used";
+  }
 }
 
 TEST(Png, ColourRangeHeightModeAndPointRadius) {
