@@ -433,8 +433,8 @@ class Inflater {
         bitpos_ = (bitpos_ + 7) / 8 * 8;
         if (bitpos_ / 8 + 4 > n_) return false;
         const std::uint8_t* p = d_ + bitpos_ / 8;
-        const unsigned len = p[0] | p[1] << 8;
-        const unsigned nlen = p[2] | p[3] << 8;
+        const unsigned len = p[0] | static_cast<unsigned>(p[1]) << 8;
+        const unsigned nlen = p[2] | static_cast<unsigned>(p[3]) << 8;
         if ((len ^ 0xFFFFu) != nlen) return false;
         if (bitpos_ / 8 + 4 + len > n_) return false;
         out.insert(out.end(), p + 4, p + 4 + len);
@@ -480,7 +480,8 @@ class Inflater {
         bad_ = true;
         return 0;
       }
-      v |= static_cast<std::uint32_t>((d_[bitpos_ / 8] >> (bitpos_ % 8)) & 1u) << i;
+      const unsigned byte = d_[bitpos_ / 8];
+      v |= ((byte >> (bitpos_ % 8)) & 1u) << i;
     }
     return v;
   }

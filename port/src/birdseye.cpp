@@ -70,7 +70,8 @@ class Canvas {
       if (g == nullptr) continue;
       for (int row = 0; row < kGlyphH; ++row) {
         for (int col = 0; col < kGlyphW; ++col) {
-          if ((g->rows[static_cast<std::size_t>(row)] >> (kGlyphW - 1 - col)) & 1u) {
+          const unsigned bits = g->rows[static_cast<std::size_t>(row)];
+          if (((bits >> (kGlyphW - 1 - col)) & 1u) != 0) {
             rect(x + col * scale, y + row * scale, scale, scale, c);
           }
         }
