@@ -1,0 +1,357 @@
+// CSV, PCD and PLY writers. Layouts and column contracts: hesai_port/writers.h.
+#include "hesai_port/writers.h"
+
+#include <cerrno>
+#include <charconv>
+#include <cstring>
+#include <system_error>
+
+#include "hesai/bytes.h"
+
+namespace hesai {
+namespace port {
+namespace {
+
+constexpr std::size_t kBlockBytes = 1u << 20;
+
+std::string os_message(const char* what, const std::string& name, int err) {
+  return std::string(what) + " '" + name + "': " + std::strerror(err);
+}
+
+// ---- number formatting for CSV ----
+
+char* put_uint(char* p, char* end, std::uint64_t v) { return std::to_chars(p, end, v).ptr; }
+char* put_int(char* p, char* end, std::int64_t v) { return std::to_chars(p, end, v).ptr; }
+
+// Fixed-point with `decimals` decimals; a value that rounds to zero loses its minus sign.
+char* put_fixed(char* p, char* end, float v, int decimals) {
+  const std::to_chars_result r = std::to_chars(p, end, v, std::chars_format::fixed, decimals);
+  if (r.ec != std::errc()) return p;  // cannot happen: kCsvMaxRow leaves room for FLT_MAX
+  if (*p == '-') {
+    bool zero = true;
+    for (const char* q = p + 1; q < r.ptr; ++q) {
+      if (*q != '0' && *q != '.') {
+        zero = false;
+        break;
+      }
+    }
+    if (zero) {
+      std::memmove(p, p + 1, static_cast<std::size_t>(r.ptr - p - 1));
+      return r.ptr - 1;
+    }
+  }
+  return r.ptr;
+}
+
+// ---- little-endian record fields ----
+
+void put_f32(std::uint8_t*& p, float v) {
+  std::uint32_t u = 0;
+  static_assert(sizeof u == sizeof v, "IEEE-754 binary32 float");
+  std::memcpy(&u, &v, sizeof u);
+  store_le32(p, u);
+  p += 4;
+}
+void put_f64(std::uint8_t*& p, double v) {
+  std::uint64_t u = 0;
+  static_assert(sizeof u == sizeof v, "IEEE-754 binary64 double");
+  std::memcpy(&u, &v, sizeof u);
+  store_le32(p, static_cast<std::uint32_t>(u));
+  store_le32(p + 4, static_cast<std::uint32_t>(u >> 32));
+  p += 8;
+}
+
+// Seconds since the epoch as a double, rounded once (time_ns itself does not fit a double).
+double seconds(std::int64_t time_ns) {
+  std::int64_t s = time_ns / 1000000000;
+  std::int64_t ns = time_ns % 1000000000;
+  if (ns < 0) {
+    ns += 1000000000;
+    --s;
+  }
+  return static_cast<double>(s) + static_cast<double>(ns) * 1e-9;
+}
+
+// A file written in large blocks; reports the first failure.
+class FileSink {
+ public:
+  ~FileSink() {
+    if (f_ != nullptr) std::fclose(f_);
+  }
+  WriteResult open(const std::string& path) {
+    name_ = path;
+    f_ = std::fopen(path.c_str(), "wb");
+    if (f_ == nullptr) {
+      const int err = errno;
+      return WriteResult::failure(os_message("cannot open", path, err), err);
+    }
+    buffer_.resize(kBlockBytes);
+    return {};
+  }
+  // Space for n bytes at the end of the buffer (n <= kBlockBytes).
+  std::uint8_t* reserve(std::size_t n) {
+    if (buffer_.size() - used_ < n) drain();
+    return buffer_.data() + used_;
+  }
+  void commit(std::size_t n) { used_ += n; }
+  void append(const void* data, std::size_t n) {
+    const auto* b = static_cast<const std::uint8_t*>(data);
+    while (n > 0) {
+      if (used_ == buffer_.size()) drain();
+      const std::size_t k = n < buffer_.size() - used_ ? n : buffer_.size() - used_;
+      std::memcpy(buffer_.data() + used_, b, k);
+      used_ += k;
+      b += k;
+      n -= k;
+    }
+  }
+  WriteResult close() {
+    drain();
+    const int rc = std::fclose(f_);
+    f_ = nullptr;
+    if (rc != 0 && result_.ok()) {
+      const int err = errno;
+      result_ = WriteResult::failure(os_message("cannot close", name_, err), err);
+    }
+    return result_;
+  }
+
+ private:
+  void drain() {
+    if (used_ != 0 && result_.ok() && std::fwrite(buffer_.data(), 1, used_, f_) != used_) {
+      const int err = errno;
+      result_ = WriteResult::failure(os_message("cannot write", name_, err), err);
+    }
+    used_ = 0;
+  }
+
+  std::FILE* f_ = nullptr;
+  std::string name_;
+  std::vector<std::uint8_t> buffer_;
+  std::size_t used_ = 0;
+  WriteResult result_;
+};
+
+}  // namespace
+
+// ---- CSV ----
+
+std::size_t format_csv_row(char* out, const Point& p, std::uint32_t frame, std::uint64_t packet) {
+  char* const end = out + kCsvMaxRow;
+  char* q = out;
+  q = put_uint(q, end, frame);
+  *q++ = ',';
+  q = put_uint(q, end, packet);
+  *q++ = ',';
+  q = put_uint(q, end, p.block);
+  *q++ = ',';
+  q = put_uint(q, end, p.channel);
+  *q++ = ',';
+  q = put_uint(q, end, p.return_index);
+  *q++ = ',';
+  q = put_fixed(q, end, p.azimuth_deg, 3);
+  *q++ = ',';
+  q = put_fixed(q, end, p.elevation_deg, 3);
+  *q++ = ',';
+  q = put_fixed(q, end, p.distance_m, 4);
+  *q++ = ',';
+  q = put_fixed(q, end, p.x, 4);
+  *q++ = ',';
+  q = put_fixed(q, end, p.y, 4);
+  *q++ = ',';
+  q = put_fixed(q, end, p.z, 4);
+  *q++ = ',';
+  q = put_uint(q, end, p.intensity);
+  *q++ = ',';
+  q = put_int(q, end, p.time_ns);
+  return static_cast<std::size_t>(q - out);
+}
+
+CsvWriter::~CsvWriter() {
+  if (stream_ != nullptr) (void)close();
+}
+
+WriteResult CsvWriter::open(const std::string& path) {
+  if (stream_ != nullptr) return WriteResult::failure("CsvWriter: '" + name_ + "' is still open");
+  std::FILE* f = std::fopen(path.c_str(), "wb");
+  if (f == nullptr) {
+    const int err = errno;
+    return WriteResult::failure(os_message("cannot open", path, err), err);
+  }
+  WriteResult r = open(f, path);
+  owned_ = true;
+  return r;
+}
+
+WriteResult CsvWriter::open(std::FILE* stream, const std::string& name) {
+  if (stream_ != nullptr) return WriteResult::failure("CsvWriter: '" + name_ + "' is still open");
+  if (stream == nullptr) return WriteResult::failure("CsvWriter: no stream for '" + name + "'");
+  stream_ = stream;
+  owned_ = false;
+  name_ = name;
+  buffer_.resize(kBlockBytes);
+  used_ = 0;
+  rows_ = 0;
+  sticky_ = WriteResult();
+  const std::size_t n = std::strlen(kHeader);
+  std::memcpy(buffer_.data(), kHeader, n);
+  buffer_[n] = '\n';
+  used_ = n + 1;
+  return {};
+}
+
+WriteResult CsvWriter::write_buffer() {
+  if (used_ != 0 && sticky_.ok() && std::fwrite(buffer_.data(), 1, used_, stream_) != used_) {
+    const int err = errno;
+    sticky_ = WriteResult::failure(os_message("cannot write", name_, err), err);
+  }
+  used_ = 0;
+  return sticky_;
+}
+
+WriteResult CsvWriter::write(const Point& p, std::uint32_t frame, std::uint64_t packet) {
+  return write(&p, 1, frame, packet);
+}
+
+WriteResult CsvWriter::write(const Point* points, std::size_t count, std::uint32_t frame, std::uint64_t packet) {
+  if (stream_ == nullptr) return WriteResult::failure("CsvWriter: not open");
+  for (std::size_t i = 0; i < count; ++i) {
+    if (buffer_.size() - used_ < kCsvMaxRow + 1) (void)write_buffer();
+    const std::size_t n = format_csv_row(buffer_.data() + used_, points[i], frame, packet);
+    used_ += n;
+    buffer_[used_++] = '\n';
+  }
+  rows_ += count;
+  return sticky_;
+}
+
+WriteResult CsvWriter::flush() {
+  if (stream_ == nullptr) return WriteResult::failure("CsvWriter: not open");
+  (void)write_buffer();
+  if (sticky_.ok() && std::fflush(stream_) != 0) {
+    const int err = errno;
+    sticky_ = WriteResult::failure(os_message("cannot write", name_, err), err);
+  }
+  return sticky_;
+}
+
+WriteResult CsvWriter::close() {
+  if (stream_ == nullptr) return WriteResult::failure("CsvWriter: not open");
+  (void)write_buffer();
+  if (owned_) {
+    if (std::fclose(stream_) != 0 && sticky_.ok()) {
+      const int err = errno;
+      sticky_ = WriteResult::failure(os_message("cannot close", name_, err), err);
+    }
+  } else if (std::fflush(stream_) != 0 && sticky_.ok()) {
+    const int err = errno;
+    sticky_ = WriteResult::failure(os_message("cannot write", name_, err), err);
+  }
+  stream_ = nullptr;
+  owned_ = false;
+  buffer_.clear();
+  buffer_.shrink_to_fit();
+  WriteResult r = sticky_;
+  sticky_ = WriteResult();
+  return r;
+}
+
+// ---- PCD ----
+
+std::string pcd_header(std::size_t n) {
+  const std::string count = std::to_string(n);
+  return "# .PCD v0.7 - Point Cloud Data file format\n"
+         "VERSION 0.7\n"
+         "FIELDS x y z intensity ring return timestamp\n"
+         "SIZE 4 4 4 4 2 1 8\n"
+         "TYPE F F F F U U F\n"
+         "COUNT 1 1 1 1 1 1 1\n"
+         "WIDTH " + count + "\n"
+         "HEIGHT 1\n"
+         "VIEWPOINT 0 0 0 1 0 0 0\n"
+         "POINTS " + count + "\n"
+         "DATA binary\n";
+}
+
+WriteResult write_pcd(const std::string& path, const Point* points, std::size_t count) {
+  FileSink sink;
+  WriteResult r = sink.open(path);
+  if (!r) return r;
+  const std::string header = pcd_header(count);
+  sink.append(header.data(), header.size());
+  for (std::size_t i = 0; i < count; ++i) {
+    const Point& pt = points[i];
+    std::uint8_t* const start = sink.reserve(kPcdPointBytes);
+    std::uint8_t* q = start;
+    put_f32(q, pt.x);
+    put_f32(q, pt.y);
+    put_f32(q, pt.z);
+    put_f32(q, static_cast<float>(pt.intensity));
+    store_le16(q, pt.channel);
+    q += 2;
+    *q++ = pt.return_index;
+    put_f64(q, seconds(pt.time_ns));
+    sink.commit(static_cast<std::size_t>(q - start));
+  }
+  return sink.close();
+}
+
+WriteResult write_pcd(const std::string& path, const std::vector<Point>& points) {
+  return write_pcd(path, points.data(), points.size());
+}
+
+// ---- PLY ----
+
+std::string ply_header(std::size_t n) {
+  return "ply\n"
+         "format binary_little_endian 1.0\n"
+         "comment hesai point cloud: metres; ring = channel; timestamp = s since 1970-01-01 UTC\n"
+         "element vertex " + std::to_string(n) + "\n"
+         "property float x\n"
+         "property float y\n"
+         "property float z\n"
+         "property uchar intensity\n"
+         "property uchar ring\n"
+         "property uchar return\n"
+         "property double timestamp\n"
+         "end_header\n";
+}
+
+WriteResult write_ply(const std::string& path, const Point* points, std::size_t count) {
+  FileSink sink;
+  WriteResult r = sink.open(path);
+  if (!r) return r;
+  const std::string header = ply_header(count);
+  sink.append(header.data(), header.size());
+  for (std::size_t i = 0; i < count; ++i) {
+    const Point& pt = points[i];
+    std::uint8_t* const start = sink.reserve(kPlyPointBytes);
+    std::uint8_t* q = start;
+    put_f32(q, pt.x);
+    put_f32(q, pt.y);
+    put_f32(q, pt.z);
+    *q++ = pt.intensity;
+    *q++ = pt.channel;
+    *q++ = pt.return_index;
+    put_f64(q, seconds(pt.time_ns));
+    sink.commit(static_cast<std::size_t>(q - start));
+  }
+  return sink.close();
+}
+
+WriteResult write_ply(const std::string& path, const std::vector<Point>& points) {
+  return write_ply(path, points.data(), points.size());
+}
+
+// ---- whole files ----
+
+WriteResult write_file(const std::string& path, const std::uint8_t* bytes, std::size_t size) {
+  FileSink sink;
+  WriteResult r = sink.open(path);
+  if (!r) return r;
+  sink.append(bytes, size);
+  return sink.close();
+}
+
+}  // namespace port
+}  // namespace hesai
