@@ -20,14 +20,14 @@ inline std::vector<std::uint8_t> pandar64_packet(std::uint8_t return_mode, const
                                                  bool with_sequence = false, std::uint32_t seq = 0) {
   std::vector<std::uint8_t> p(with_sequence ? 1198 : 1194, 0);
   p[0] = 0xEE; p[1] = 0xFF; p[2] = 0x40; p[3] = 0x06; p[5] = 0x04;
-  for (int b = 0; b < 6; ++b) hesai::store_le16(&p[8 + 194 * b], 10000);  // 100.00 degrees
+  for (std::size_t b = 0; b < 6; ++b) hesai::store_le16(&p[8 + 194 * b], 10000);  // 100.00 degrees
   const std::size_t t = 1172;
   hesai::store_le16(&p[t + 8], rpm);
   hesai::store_le32(&p[t + 10], s.us);
   p[t + 14] = return_mode;
   p[t + 15] = 0x42;
   const int dt[6] = {s.year - 2000, s.month, s.day, s.hour, s.minute, s.second};
-  for (int i = 0; i < 6; ++i) p[t + 16 + i] = static_cast<std::uint8_t>(dt[i]);
+  for (std::size_t i = 0; i < 6; ++i) p[t + 16 + i] = static_cast<std::uint8_t>(dt[i]);
   if (with_sequence) hesai::store_le32(&p[1194], seq);
   return p;
 }
@@ -70,9 +70,9 @@ inline std::vector<std::uint8_t> qt128_packet(std::uint8_t flags, std::uint8_t r
                                               const Stamp& s, std::uint16_t rpm = 600, std::uint32_t seq = 0) {
   std::size_t len = 12 + 1028 + 4;
   const std::size_t fs = (flags & 4) ? len : 0;
-  len += (flags & 4) ? 17 : 0;
+  len += (flags & 4) ? 17u : 0u;
   const std::size_t tail = len;
-  len += 26 + ((flags & 1) ? 4 : 0) + 4 + ((flags & 8) ? 32 : 0);
+  len += 26u + ((flags & 1) ? 4u : 0u) + 4u + ((flags & 8) ? 32u : 0u);
   std::vector<std::uint8_t> p(len, 0);
   p[0] = 0xEE; p[1] = 0xFF; p[2] = 3; p[3] = 2;
   p[6] = 0x80; p[7] = 0x02; p[9] = 0x04;
@@ -86,7 +86,7 @@ inline std::vector<std::uint8_t> qt128_packet(std::uint8_t flags, std::uint8_t r
   p[tail + 12] = return_mode;
   hesai::store_le16(&p[tail + 13], rpm);
   const int dt[6] = {s.year - 1900, s.month, s.day, s.hour, s.minute, s.second};
-  for (int i = 0; i < 6; ++i) p[tail + 15 + static_cast<std::size_t>(i)] = static_cast<std::uint8_t>(dt[i]);
+  for (std::size_t i = 0; i < 6; ++i) p[tail + 15 + i] = static_cast<std::uint8_t>(dt[i]);
   hesai::store_le32(&p[tail + 21], s.us);
   p[tail + 25] = 0x42;
   if (flags & 1) hesai::store_le32(&p[tail + 26], seq);

@@ -22,13 +22,13 @@ using namespace hesai_test;
 
 namespace {
 
-struct Run {
+struct CmdResult {
   int status = -1;
   std::string out;
 };
 
-Run run(const std::string& args) {
-  Run r;
+CmdResult run(const std::string& args) {
+  CmdResult r;
   const std::string cmd = std::string(HESAI_CLI_PATH) + " " + args + " 2>/dev/null";
   FILE* p = popen(cmd.c_str(), "r");
   if (!p) return r;
@@ -98,7 +98,7 @@ void write_pcap(const std::string& path, const std::vector<std::vector<std::uint
 TEST(Cli, HelpAndExitStatuses) {
   EXPECT_EQ(run("--help").status, 0);
   for (const char* cmd : {"decode", "stats", "listen", "replay"}) {
-    const Run r = run(std::string(cmd) + " --help");
+    const CmdResult r = run(std::string(cmd) + " --help");
     EXPECT_EQ(r.status, 0) << cmd;
     EXPECT_NE(r.out.find("usage: hesai"), std::string::npos) << cmd;
   }
@@ -128,7 +128,7 @@ class CliCapture : public ::testing::TestWithParam<CaptureCase> {};
 
 TEST_P(CliCapture, StatsJsonOnRealCapture) {
   const CaptureCase& c = GetParam();
-  const Run r = run("stats " + data_path(c.file) + " --json");
+  const CmdResult r = run("stats " + data_path(c.file) + " --json");
   ASSERT_EQ(r.status, 0) << r.out;
   auto j = json_numbers(r.out);
   for (const char* key : {"packets", "points", "frames", "crc_errors", "signature_valid", "signature_invalid",
@@ -168,7 +168,7 @@ TEST_P(CliCapture, PerFrameCsvEqualsDecoderApi) {
     }
   }
   const std::string dir = temp_dir();
-  const Run r = run("decode " + data_path(c.file) + " --per-frame --format csv --quiet --out " + dir);
+  const CmdResult r = run("decode " + data_path(c.file) + " --per-frame --format csv --quiet --out " + dir);
   ASSERT_EQ(r.status, 0);
   for (const auto& [id, n] : expected) {
     char name[64];
@@ -181,11 +181,13 @@ TEST_P(CliCapture, PerFrameCsvEqualsDecoderApi) {
     std::uint64_t rows = 0;
     while (std::getline(f, line)) {
       ++rows;
-      if (rows == 1) EXPECT_EQ(line.substr(0, line.find(',')), std::to_string(id));
+      if (rows == 1) {
+        EXPECT_EQ(line.substr(0, line.find(',')), std::to_string(id));
+      }
     }
     EXPECT_EQ(rows, n) << "frame " << id;
   }
-  const Run s = run("stats " + data_path(c.file) + " --json");
+  const CmdResult s = run("stats " + data_path(c.file) + " --json");
   EXPECT_EQ(json_numbers(s.out)["frames"], static_cast<long long>(expected.size()));
 }
 
@@ -197,7 +199,7 @@ INSTANTIATE_TEST_SUITE_P(Bundled, CliCapture,
 
 TEST(Cli, PacketRangeAndRangeFilter) {
   const std::string dir = temp_dir();
-  const Run r = run("decode " + data_path("pandar64_dual.pcap") + " --packets 10:12 --out -");
+  const CmdResult r = run("decode " + data_path("pandar64_dual.pcap") + " --packets 10:12 --out -");
   ASSERT_EQ(r.status, 0);
   // Every row belongs to packet 10 or 11; the count equals the non-zero distances of those two.
   const auto packets = pcap_payloads("pandar64_dual.pcap");
@@ -216,7 +218,7 @@ TEST(Cli, PacketRangeAndRangeFilter) {
     pos = end + 1;
   }
   EXPECT_EQ(rows, expected);
-  const Run near = run("decode " + data_path("pandar64_dual.pcap") + " --packets 10:12 --max-range 5 --out -");
+  const CmdResult near = run("decode " + data_path("pandar64_dual.pcap") + " --packets 10:12 --max-range 5 --out -");
   EXPECT_LT(near.out.size(), r.out.size());
 }
 
@@ -242,7 +244,7 @@ TEST(Cli, StatsCountsDropsDuplicatesLateAndCrcErrors) {
   out.push_back(junk);
   const std::string dir = temp_dir();
   write_pcap(dir + "/faults.pcap", out);
-  const Run r = run("stats " + dir + "/faults.pcap --json");
+  const CmdResult r = run("stats " + dir + "/faults.pcap --json");
   ASSERT_EQ(r.status, 0);
   auto j = json_numbers(r.out);
   EXPECT_EQ(j["packets"], 19);
@@ -313,7 +315,7 @@ TEST(Cli, ListenReceivesEveryReplayedPacket) {
   FILE* l = popen(listen.c_str(), "r");
   ASSERT_NE(l, nullptr);
   usleep(300000);  // let it bind
-  const Run sent = run("replay " + data_path("qt128c2x_dual.pcap") + " --to 127.0.0.1:" + std::to_string(port) + " --rate 4 --quiet");
+  const CmdResult sent = run("replay " + data_path("qt128c2x_dual.pcap") + " --to 127.0.0.1:" + std::to_string(port) + " --rate 4 --quiet");
   EXPECT_EQ(sent.status, 0);
   std::string out;
   char buf[4096];

@@ -147,9 +147,8 @@ TEST_P(Golden, CountsFromRawBytes) {
   }
   EXPECT_EQ(decoded, raw_nonzero);
   // Totals from an independent count (python over the same files, see the note in README).
-  if (l.model == Model::pandar40p) EXPECT_EQ(raw_nonzero, 434934u);
-  if (l.model == Model::pandar64) EXPECT_EQ(raw_nonzero, 716622u);
-  if (l.model == Model::qt128c2x) EXPECT_EQ(raw_nonzero, 337108u);
+  const std::size_t expected = l.model == Model::pandar40p ? 434934u : l.model == Model::pandar64 ? 716622u : 337108u;
+  EXPECT_EQ(raw_nonzero, expected);
 }
 
 // Every point against the reference computation, with the unit's own angle and firing-time files.
@@ -229,7 +228,7 @@ TEST_P(Golden, CalibrationFileIsApplied) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Captures, Golden, ::testing::Values(kPandar40P, kPandar64, kQt128),
-                         [](const auto& info) { return std::string(hesai::model_name(info.param.model)); });
+                         [](const auto& i) { return std::string(hesai::model_name(i.param.model)); });
 
 // ---- Header fields of the first packets, with the bytes they were read from ----
 
