@@ -258,6 +258,13 @@ TEST(Reject, EveryTruncationOfRealPackets) {
     for (std::size_t n = 0; n < full.size(); ++n) {
       std::vector<std::uint8_t> cut(full.begin(), full.begin() + static_cast<long>(n));
       const Error e = dec.decode(view(cut), info, pts);
+      if (m == Model::pandar64 && n == 1194) {
+        // Without its last 4 bytes a 1198-byte packet is a valid packet without UDP sequence:
+        // the manual's two layouts cannot be told apart there.
+        EXPECT_EQ(e, Error::ok);
+        EXPECT_FALSE(info.has_sequence);
+        continue;
+      }
       EXPECT_NE(e, Error::ok) << name << " length " << n;
       EXPECT_EQ(pts.count, 0u);
       // The expected code: a length no layout has, or a known length of another packet kind.
