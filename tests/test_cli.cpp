@@ -7,7 +7,7 @@
 #include <cstdio>
 #include <fstream>
 #include <map>
-#include <regex>
+#include <cctype>
 #include <string>
 #include <vector>
 
@@ -43,9 +43,14 @@ CmdResult run(const std::string& args) {
 // The integer value of "key": in a flat JSON object (models is read separately).
 std::map<std::string, long long> json_numbers(const std::string& json) {
   std::map<std::string, long long> m;
-  std::regex re("\"([a-zA-Z0-9_]+)\":(-?[0-9]+)");
-  for (auto it = std::sregex_iterator(json.begin(), json.end(), re); it != std::sregex_iterator(); ++it)
-    m[(*it)[1]] = std::stoll((*it)[2]);
+  for (std::size_t q = json.find('"'); q != std::string::npos; q = json.find('"', q + 1)) {
+    const std::size_t end = json.find('"', q + 1);
+    if (end == std::string::npos) break;
+    const std::string key = json.substr(q + 1, end - q - 1);
+    if (end + 2 < json.size() && json[end + 1] == ':' && (std::isdigit(static_cast<unsigned char>(json[end + 2])) || json[end + 2] == '-'))
+      m[key] = std::stoll(json.substr(end + 2));
+    q = end;
+  }
   return m;
 }
 
