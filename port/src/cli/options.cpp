@@ -33,7 +33,9 @@ const char* const kKeyOptionsHelp =
 const char* const kOutputOptionsHelp =
     "  --format csv|pcd|ply|png  output format (default csv)\n"
     "  --out PATH              output file ('-' = stdout for csv); a directory with --per-frame\n"
-    "  --per-frame             one file per frame in --out: frame_000001.pcd, ...\n";
+    "  --per-frame             one file per frame in --out: frame_000001.pcd, ...\n"
+    "  --png-range M           PNG: metres from the sensor to the image edge (default 60)\n"
+    "  --png-color intensity|height  PNG: what colours the points (default intensity)\n";
 
 Args::Args(int argc, char** argv, int first) {
   for (int i = first; i < argc; ++i) args_.emplace_back(argv[i]);
@@ -181,7 +183,7 @@ bool parse_output_option(Args& args, OutputOptions& o, std::string& error) {
     o.per_frame = true;
     return true;
   }
-  if (opt != "--format" && opt != "--out") return false;
+  if (opt != "--format" && opt != "--out" && opt != "--png-range" && opt != "--png-color") return false;
   args.take();
   std::string v;
   if (!args.value(opt, v)) {
@@ -190,6 +192,11 @@ bool parse_output_option(Args& args, OutputOptions& o, std::string& error) {
   }
   if (opt == "--out") {
     o.out = v;
+  } else if (opt == "--png-range") {
+    if (!parse_float(v, o.png_range_m) || o.png_range_m <= 0) error = "--png-range takes metres > 0, got '" + v + "'";
+  } else if (opt == "--png-color") {
+    if (v != "intensity" && v != "height") error = "--png-color takes intensity or height, got '" + v + "'";
+    o.png_height = v == "height";
   } else if (v == "csv" || v == "pcd" || v == "ply" || v == "png") {
     o.format = v;
   } else {

@@ -19,6 +19,8 @@ struct OutputOptions {
   std::string format = "csv";  ///< csv | pcd | ply | png
   std::string out;             ///< --out PATH ("-" for stdout, CSV only); a directory with --per-frame
   bool per_frame = false;      ///< one file per frame: frame_000001.pcd ...
+  float png_range_m = 60;      ///< --png-range: metres from the centre to the image edge
+  bool png_height = false;     ///< --png-color height (default intensity)
 };
 
 /// Arguments left to right, consumed by the parsers below.

@@ -76,7 +76,12 @@ bool OutputSink::write_cloud(const std::string& path, std::string& error) {
   port::WriteResult r;
   if (options_.format == "pcd") r = port::write_pcd(path, cloud_);
   if (options_.format == "ply") r = port::write_ply(path, cloud_);
-  if (options_.format == "png") r = port::write_png(path, cloud_);
+  if (options_.format == "png") {
+    port::PngOptions png;
+    png.range_m = options_.png_range_m;
+    png.color_by = options_.png_height ? port::ColorBy::height : port::ColorBy::intensity;
+    r = port::write_png(path, cloud_, png);
+  }
   if (!r) {
     error = r.message();
     return false;
