@@ -7,6 +7,7 @@
 #include "hesai/qt128_packet.h"
 #include "hesai/tables/pandar40_tables.h"
 #include "hesai/tables/pandar64_tables.h"
+#include "hesai/tables/block_times.h"
 #include "hesai/tables/qt128_tables.h"
 
 namespace hesai {
@@ -15,9 +16,28 @@ namespace {
 
 constexpr std::size_t kGpsBytes = 512;
 
-std::int32_t round_to_int(double v) {
+constexpr std::int32_t round_to_int(double v) {
   return static_cast<std::int32_t>(v < 0 ? v - 0.5 : v + 0.5);
 }
+
+// Block time offsets from t0 in ns (tables/block_times.h: end times for Pandar40/40P/64, start
+// times for QT128), indexed [dual][block].
+template <std::size_t N>
+constexpr std::array<std::array<std::int64_t, N>, 2> block_ns(const std::array<double, N>& single,
+                                                              const std::array<double, N>& dual) {
+  std::array<std::array<std::int64_t, N>, 2> ns{};
+  for (std::size_t b = 0; b < N; ++b) {
+    ns[0][b] = round_to_int(single[b] * 1000);
+    ns[1][b] = round_to_int(dual[b] * 1000);
+  }
+  return ns;
+}
+constexpr auto kPandar40BlockNs = block_ns(tables::pandar40_block_end_us_single, tables::pandar40_block_end_us_dual);
+constexpr auto kPandar64BlockNs = block_ns(tables::pandar64_block_end_us_single, tables::pandar64_block_end_us_dual);
+constexpr auto kQt128BlockNs = block_ns(tables::qt128_block_start_us_single, tables::qt128_block_start_us_dual);
+// Pandar64 App. B.3: block 1 of 6 ends at t0 - 42.58 - 55.56 x 5 us, or x 2 in dual return.
+static_assert(kPandar64BlockNs[0][0] == -320380 && kPandar64BlockNs[1][0] == -153700);
+static_assert(kQt128BlockNs[0][1] == 120110 && kQt128BlockNs[1][1] == 9000);
 
 }  // namespace
 
@@ -224,41 +244,27 @@ Error Decoder::decode(ByteView payload, PacketInfo& info, PacketPoints& out) noe
   const Error e = validate(payload, info);
   if (e != Error::ok) return e;
   const std::uint8_t* p = payload.data;
-  const bool dual = info.returns == 2;
+  const std::size_t dual = info.returns == 2 ? 1 : 0;
   switch (model_) {
     case Model::pandar40:
-    case Model::pandar40p: {
-      // Appendix II: block N ends at t0 - 28.58 - 55.56 (10 - N) us; dual pairs share a firing.
-      for (std::size_t b = 0; b < pandar40::kBlocks; ++b) {
-        const std::size_t firings_after = dual ? (pandar40::kBlocks - 1 - b) / 2 : pandar40::kBlocks - 1 - b;
-        const std::int64_t t = info.time_ns + pandar40::kLastBlockEndNs -
-                               pandar40::kFiringPeriodNs * static_cast<std::int64_t>(firings_after);
-        emit_block<pandar40::kPointBytes>(p + b * pandar40::kBlockBytes + pandar40::kBlockPoints,
-                                          pandar40::kChannels, info, b, t, 0, out);
-      }
+    case Model::pandar40p:
+      for (std::size_t b = 0; b < pandar40::kBlocks; ++b)
+        emit_block<pandar40::kPointBytes>(p + b * pandar40::kBlockBytes + pandar40::kBlockPoints, pandar40::kChannels,
+                                          info, b, info.time_ns + kPandar40BlockNs[dual][b], 0, out);
       break;
-    }
-    case Model::pandar64: {
-      // App. B.3: block N ends at t0 - 42.58 - 55.56 (6 - N) us; dual pairs share a firing.
-      for (std::size_t b = 0; b < pandar64::kBlocks; ++b) {
-        const std::size_t firings_after = dual ? (pandar64::kBlocks - 1 - b) / 2 : pandar64::kBlocks - 1 - b;
-        const std::int64_t t = info.time_ns + pandar64::kLastBlockEndNs -
-                               pandar64::kFiringPeriodNs * static_cast<std::int64_t>(firings_after);
+    case Model::pandar64:
+      for (std::size_t b = 0; b < pandar64::kBlocks; ++b)
         emit_block<pandar64::kPointBytes>(p + pandar64::kBody + b * pandar64::kBlockBytes + pandar64::kBlockPoints,
-                                          pandar64::kChannels, info, b, t, 0, out);
-      }
+                                          pandar64::kChannels, info, b, info.time_ns + kPandar64BlockNs[dual][b], 0, out);
       break;
-    }
     case Model::qt128c2x: {
-      // App. II: block 1 starts at t0 + 9 us, block 2 111.11 us later; dual: one firing at t0 + 9 us.
-      // Mode flag bit 0: block 1 uses firing sequence 1 (loop 0) when set, sequence 2 otherwise.
+      // Mode flag bit 0: block 1 uses firing sequence 1 (loop 0) when set, sequence 2 otherwise;
+      // in single return block 2 uses the other sequence, in dual return both blocks share one firing.
       const std::size_t loop1 = (info.mode_flag & 1) ? 0 : 1;
       for (std::size_t b = 0; b < qt128::kBlocks; ++b) {
         const std::size_t loop = (dual || b == 0) ? loop1 : 1 - loop1;
-        const std::int64_t t = info.time_ns + qt128::kFirstBlockStartNs +
-                               (dual ? 0 : qt128::kBlockPeriodNs * static_cast<std::int64_t>(b));
         emit_block<qt128::kPointBytes>(p + qt128::kBody + b * qt128::kBlockBytes + qt128::kBlockPoints,
-                                       qt128::kChannels, info, b, t, loop, out);
+                                       qt128::kChannels, info, b, info.time_ns + kQt128BlockNs[dual][b], loop, out);
       }
       break;
     }

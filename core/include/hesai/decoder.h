@@ -152,4 +152,7 @@ class Decoder {
   HmacSha256Key key_;
 };
 
+// The budget for a decoder context, also what a firmware image can afford per sensor.
+static_assert(sizeof(Decoder) <= 8 * 1024, "decoder state must stay within 8 KiB");
+
 }  // namespace hesai

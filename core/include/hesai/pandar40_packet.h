@@ -38,9 +38,4 @@ inline constexpr std::size_t kSequence = kPandar40PBytes;
 inline constexpr std::size_t kPandar40PSequenceBytes = kPandar40PBytes + 4;
 static_assert(kPandar40PBytes == 1262 && kPandar40PSequenceBytes == 1266);
 
-// Block end times (Appendix II): block N (1-based) of 10 ends at t0 - 28.58 - 55.56 (10 - N) us;
-// in dual return the two blocks of one firing share the time of the later one.
-inline constexpr std::int64_t kLastBlockEndNs = -28580;
-inline constexpr std::int64_t kFiringPeriodNs = 55560;
-
 }  // namespace hesai::pandar40

@@ -37,9 +37,4 @@ inline constexpr std::size_t kSequence = kPacketBytes;
 inline constexpr std::size_t kSequencePacketBytes = kPacketBytes + 4;
 static_assert(kTail == 1172 && kPacketBytes == 1194 && kSequencePacketBytes == 1198);
 
-// Block end times (App. B.3): block N of 6 ends at t0 - 42.58 - 55.56 (6 - N) us; in dual return
-// blocks 5 and 6 end at t0 - 42.58, 3 and 4 one period earlier, 1 and 2 two periods earlier.
-inline constexpr std::int64_t kLastBlockEndNs = -42580;
-inline constexpr std::int64_t kFiringPeriodNs = 55560;
-
 }  // namespace hesai::pandar64

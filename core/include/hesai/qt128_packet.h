@@ -93,9 +93,4 @@ struct Layout {
 static_assert(Layout::from_flags(0x1D).total == 1127 && Layout::from_flags(0x1D).tail == 1061);
 static_assert(Layout::from_flags(0x00).total == 1074);
 
-// Block start times (manual App. II): block 1 starts at t0 + 9 us, block 2 at t0 + 9 + 111.11 us
-// in single return; in dual return both blocks hold one firing that starts at t0 + 9 us.
-inline constexpr std::int64_t kFirstBlockStartNs = 9000;
-inline constexpr std::int64_t kBlockPeriodNs = 111110;
-
 }  // namespace hesai::qt128
