@@ -10,6 +10,7 @@
 
 #include "hesai/calibration.h"
 #include "hesai/decoder.h"
+#include "hesai/tables/qt128_tables.h"
 #include "test_support.h"
 
 using hesai::ByteView;
@@ -309,6 +310,32 @@ TEST(GoldenHeader, Qt128FirstPacket) {
   EXPECT_EQ(info.time_ns, 1602245009LL * 1000000000 + 403019000LL);
   // The signature bytes are all zero: signing was not started.
   EXPECT_EQ(info.signature, hesai::SignatureStatus::not_signed);
+}
+
+}  // namespace
+
+namespace {
+
+// QT128 App. II: the tail's mode flag names the firing sequence of block 1, and a channel that
+// does not fire in a sequence has all four bytes zero. On the real capture, every channel
+// outside the named sequence is zero, and each sequence leaves one bank of 32 channels dark.
+TEST(GoldenQt128, ModeFlagNamesTheFiringSequence) {
+  const auto packets = pcap_payloads("qt128c2x_dual.pcap");
+  std::size_t zero_outside = 0, outside = 0, flag_set = 0;
+  for (const auto& p : packets) {
+    const bool seq1 = p[1066] & 1;
+    flag_set += seq1;
+    for (std::size_t b = 0; b < 2; ++b)
+      for (std::size_t c = 0; c < 128; ++c) {
+        const bool fires = seq1 ? hesai::tables::qt128_fires_in_loop1[c] : hesai::tables::qt128_fires_in_loop2[c];
+        if (fires) continue;
+        ++outside;
+        zero_outside += hesai::load_le32(&p[12 + b * 514 + 2 + c * 4]) == 0;
+      }
+  }
+  EXPECT_EQ(outside, packets.size() * 2 * 32);  // 32 dark channels per block
+  EXPECT_EQ(zero_outside, outside);
+  EXPECT_EQ(flag_set, packets.size() / 2);  // dual return: the sequence alternates packet to packet
 }
 
 }  // namespace
