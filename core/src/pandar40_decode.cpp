@@ -1,6 +1,7 @@
 // Validation of Pandar40 (1256 bytes) and Pandar40P (1262/1266 bytes) packets.
 #include "hesai/decoder.h"
 #include "hesai/pandar40_packet.h"
+#include "field_checks.h"
 
 namespace hesai {
 
@@ -28,28 +29,11 @@ Error Decoder::validate_pandar40(ByteView p, PacketInfo& info) noexcept {
     info.sequence = load_le32(p.data + kSequence);
   }
 
-  const auto mode = static_cast<ReturnMode>(info.return_mode);
-  if (mode != ReturnMode::strongest && mode != ReturnMode::last && mode != ReturnMode::last_strongest)
-    return Error::bad_return_mode;
-  info.returns = mode == ReturnMode::last_strongest ? 2 : 1;
+  if (const Error e = detail::pandar_return_mode(info); e != Error::ok) return e;
+  if (const Error e = detail::block_azimuths(p.data + kBlockAzimuth, kBlockBytes, info); e != Error::ok) return e;
 
-  for (std::size_t b = 0; b < kBlocks; ++b) {
-    info.block_azimuth[b] = load_le16(p.data + b * kBlockBytes + kBlockAzimuth);
-    if (info.block_azimuth[b] >= 36000) return Error::bad_azimuth;
-  }
-  if (info.returns == 2)
-    for (std::size_t b = 0; b < kBlocks; b += 2)
-      if (info.block_azimuth[b] != info.block_azimuth[b + 1]) return Error::dual_block_mismatch;
-
-  if (is_40p) {
-    // Date-time: year - 2000, month, day, hour, minute, second; timestamp: us within the second.
-    const std::uint8_t* dt = p.data + kDateTime;
-    info.date_time = DateTime{2000 + dt[0], dt[1], dt[2], dt[3], dt[4], dt[5]};
-    if (!is_valid(info.date_time)) return Error::bad_date_time;
-    if (info.timestamp_us > 999999) return Error::bad_timestamp;
-    info.time_ns = unix_seconds(info.date_time) * 1000000000LL + static_cast<std::int64_t>(info.timestamp_us) * 1000;
-    return Error::ok;
-  }
+  // Pandar40P: date-time year - 2000; timestamp in us within the second.
+  if (is_40p) return detail::tail_time(p.data + kDateTime, 2000, 999999, info);
 
   // Pandar40: the timestamp counts us from the top of the hour (the GPS packet sets it to
   // (minute x 60 + second) x 1e6 at each PPS); the date and hour come from the last GPS packet.

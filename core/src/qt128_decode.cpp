@@ -4,6 +4,7 @@
 #include "hesai/ct.h"
 #include "hesai/decoder.h"
 #include "hesai/qt128_packet.h"
+#include "field_checks.h"
 
 namespace hesai {
 
@@ -97,19 +98,9 @@ Error Decoder::validate_qt128(ByteView p, PacketInfo& info) noexcept {
   }
   if (!qt128_return_mode(info.return_mode, info.returns) || info.returns != return_num) return Error::bad_return_mode;
 
-  for (std::size_t b = 0; b < kBlocks; ++b) {
-    info.block_azimuth[b] = load_le16(p.data + kBody + b * kBlockBytes);
-    if (info.block_azimuth[b] >= 36000) return Error::bad_azimuth;
-  }
-  if (info.returns == 2 && info.block_azimuth[0] != info.block_azimuth[1]) return Error::dual_block_mismatch;
-
+  if (const Error e = detail::block_azimuths(p.data + kBody, kBlockBytes, info); e != Error::ok) return e;
   // Date & Time: year - 1900 (>= 70); Timestamp: us, 0..1000000 (the manual's range).
-  const std::uint8_t* dt = tail + kTailDateTime;
-  info.date_time = DateTime{1900 + dt[0], dt[1], dt[2], dt[3], dt[4], dt[5]};
-  if (!is_valid(info.date_time)) return Error::bad_date_time;
-  if (info.timestamp_us > 1000000) return Error::bad_timestamp;
-  info.time_ns = unix_seconds(info.date_time) * 1000000000LL + static_cast<std::int64_t>(info.timestamp_us) * 1000;
-  return Error::ok;
+  return detail::tail_time(tail + kTailDateTime, 1900, 1000000, info);
 }
 
 }  // namespace hesai

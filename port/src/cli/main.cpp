@@ -66,7 +66,7 @@ int run_capture(const std::string& path, Pipeline& pipeline, bool quiet) {
       pipeline.finish();
       return kExitInput;
     }
-    if (!pipeline.feed(d.payload, source_key(d), static_cast<std::int64_t>(d.time_ns))) {
+    if (!pipeline.feed(d.payload, source_key(d))) {
       std::fprintf(stderr, "hesai: %s\n", pipeline.error().c_str());
       return kExitUsage;
     }
@@ -252,7 +252,7 @@ int cmd_listen(Args& args) {
       for (const port::Datagram& d : batch) {
         if (count != 0 && received >= count) break;
         ++received;
-        if (!pipeline.feed(ByteView{d.data, d.size}, rx == &gps_rx ? 1 : 0, d.time_ns)) {
+        if (!pipeline.feed(ByteView{d.data, d.size}, rx == &gps_rx ? 1 : 0)) {
           std::fprintf(stderr, "hesai listen: %s\n", pipeline.error().c_str());
           return kExitUsage;
         }

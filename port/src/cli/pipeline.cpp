@@ -78,7 +78,7 @@ Pipeline::Source* Pipeline::source_for(std::uint64_t key, Model model) {
   d.set_firetime_correction(options_.firetime_azimuth);
   if (options_.has_key) d.set_session_key(options_.session_key.data());
   d.set_allow_unsigned(options_.allow_unsigned);
-  if (have_gps_) d.update_gps(last_gps_[0]);
+  if (have_gps_) d.update_gps(last_gps_);
   if (options_.cut_deg != 0) s.frames.set_cut_deg(options_.cut_deg);
   if (options_.has_fov) s.frames.set_fov_deg(options_.fov_start, options_.fov_end);
   return &sources_.emplace(key, std::move(s)).first->second;
@@ -89,7 +89,7 @@ void Pipeline::close_frame(const FrameInfo& f) {
   if (sink_) sink_->frame_closed(f);
 }
 
-bool Pipeline::feed(ByteView payload, std::uint64_t source_key, std::int64_t /*receive_ns*/) {
+bool Pipeline::feed(ByteView payload, std::uint64_t source_key) {
   ++stats_.packets;
   Model model = Model::unknown;
   PacketKind kind = PacketKind::point_cloud;
@@ -103,7 +103,7 @@ bool Pipeline::feed(ByteView payload, std::uint64_t source_key, std::int64_t /*r
       return true;
     }
     ++stats_.gps_packets;
-    last_gps_[0] = gps;
+    last_gps_ = gps;
     have_gps_ = true;
     for (auto& [key, s] : sources_) s.decoder->update_gps(gps);
     return true;

@@ -61,9 +61,9 @@ class Pipeline {
   /// count). Returns false with a message for a missing or unreadable file.
   bool load_files(std::string& error);
 
-  /// One UDP payload; `source` identifies the sender (address and port), `receive_ns` is its
-  /// capture or receive time. Returns false on a fatal configuration error (message in error()).
-  bool feed(ByteView payload, std::uint64_t source, std::int64_t receive_ns);
+  /// One UDP payload; `source` identifies the sender (address and port). Returns false on a
+  /// fatal configuration error (message in error()).
+  bool feed(ByteView payload, std::uint64_t source);
   /// Closes the open frames at the end of the input.
   void finish();
 
@@ -88,7 +88,7 @@ class Pipeline {
   Sink* sink_;
   std::string angles_text_, firetimes_text_, channel_config_text_;
   std::map<std::uint64_t, Source> sources_;
-  std::array<GpsPacket, 1> last_gps_{};
+  GpsPacket last_gps_{};
   bool have_gps_ = false;
   Stats stats_{};
   std::map<Error, std::uint64_t> rejections_;
