@@ -210,21 +210,28 @@ TEST_P(Golden, EveryPointMatchesDoubleReference) {
 }
 
 // unit_a and unit_b are different units of the same model: their files must move the points.
+// (No second QT128 unit file is bundled: its unit_a file is compared with the manual's design
+// angles, from which it differs by up to 0.0005 degree.)
 TEST_P(Golden, CalibrationFileIsApplied) {
   const Layout& l = GetParam();
-  if (l.model == Model::qt128c2x) GTEST_SKIP() << "no second QT128 unit file is bundled";
+  const bool has_b = l.model != Model::qt128c2x;
   const auto packets = pcap_payloads(l.capture);
   Decoder a(l.model), b(l.model);
   ASSERT_EQ(a.set_angles(load_angles(l.angles_a, l.channels)), Error::ok);
-  ASSERT_EQ(b.set_angles(load_angles(l.angles_b, l.channels)), Error::ok);
+  if (has_b) {
+    ASSERT_EQ(b.set_angles(load_angles(l.angles_b, l.channels)), Error::ok);
+  }
   PacketPoints pa, pb;
   PacketInfo ia, ib;
   ASSERT_EQ(a.decode(view(packets[0]), ia, pa), Error::ok);
   ASSERT_EQ(b.decode(view(packets[0]), ib, pb), Error::ok);
   ASSERT_EQ(pa.count, pb.count);
   std::size_t moved = 0;
-  for (std::size_t i = 0; i < pa.count; ++i)
-    moved += pa.points[i].elevation_deg != pb.points[i].elevation_deg && std::fabs(pa.points[i].z - pb.points[i].z) > 1e-4;
+  for (std::size_t i = 0; i < pa.count; ++i) {
+    const bool angle = pa.points[i].elevation_deg != pb.points[i].elevation_deg ||
+                       pa.points[i].azimuth_deg != pb.points[i].azimuth_deg;
+    moved += angle && (!has_b || std::fabs(pa.points[i].z - pb.points[i].z) > 1e-4);
+  }
   EXPECT_GT(moved, pa.count / 2);
 }
 
