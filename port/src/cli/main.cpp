@@ -12,6 +12,10 @@
 #include <string>
 #include <vector>
 
+#include "hesai/crc32.h"
+#include "hesai/pandar40_packet.h"
+#include "hesai/pandar64_packet.h"
+#include "hesai/qt128_packet.h"
 #include "hesai_port/capture.h"
 #include "hesai_port/udp.h"
 #include "options.h"
@@ -278,10 +282,30 @@ int cmd_listen(Args& args) {
 
 // ---- replay ----
 
+// Writes `seq` into a packet's UDP sequence field, if it has one (QT128: CRC3 re-sealed).
+// Returns false for packets without a sequence field.
+bool renumber(std::vector<std::uint8_t>& p, std::uint32_t seq) {
+  Model m = Model::unknown;
+  PacketKind kind = PacketKind::point_cloud;
+  if (identify(ByteView{p.data(), p.size()}, m, kind) != Error::ok || kind != PacketKind::point_cloud) return false;
+  if (m == Model::pandar64 && p.size() == pandar64::kSequencePacketBytes) {
+    store_le32(&p[pandar64::kSequence], seq);
+  } else if (m == Model::pandar40p && p.size() == pandar40::kPandar40PSequenceBytes) {
+    store_le32(&p[pandar40::kSequence], seq);
+  } else if (m == Model::qt128c2x && (p[qt128::kFlags] & qt128::kFlagSequence)) {
+    const qt128::Layout l = qt128::Layout::from_flags(p[qt128::kFlags]);
+    store_le32(&p[l.tail + qt128::kTailSequence], seq);
+    store_le32(&p[l.crc3], crc32_mpeg2(ByteView{&p[l.tail], l.crc3 - l.tail}));
+  } else {
+    return false;
+  }
+  return true;
+}
+
 int cmd_replay(Args& args) {
   std::string capture, to, error, rate_text = "1";
   std::uint64_t loops = 1;
-  bool quiet = false;
+  bool quiet = false, renumber_sequence = false;
   while (!args.empty()) {
     const std::string a = args.take();
     std::string v;
@@ -291,6 +315,8 @@ int cmd_replay(Args& args) {
                   "  --to HOST:PORT          destination\n"
                   "  --rate 1|N|max          the recorded pace (1), N times faster, or as fast as possible\n"
                   "  --loop N                play the capture N times (default 1)\n"
+                  "  --renumber              rewrite UDP sequence numbers to count up across loops (QT128:\n"
+                  "                          CRC3 re-sealed; signatures then no longer verify)\n"
                   "  --quiet                 no summary\n");
       return kExitOk;
     }
@@ -298,6 +324,7 @@ int cmd_replay(Args& args) {
     else if (a == "--rate") { if (!args.value(a, rate_text)) return usage_error("replay", "--rate needs 1, N or max"); }
     else if (a == "--loop") { if (!args.value(a, v) || !parse_u64(v, loops) || loops == 0) return usage_error("replay", "--loop needs N >= 1"); }
     else if (a == "--quiet") quiet = true;
+    else if (a == "--renumber") renumber_sequence = true;
     else if (a.rfind("--", 0) == 0) return usage_error("replay", "unknown option " + a);
     else if (capture.empty()) capture = a;
     else return usage_error("replay", "one capture at a time ('" + a + "')");
@@ -317,6 +344,8 @@ int cmd_replay(Args& args) {
   }
   std::signal(SIGINT, on_signal);
   std::uint64_t sent = 0, failed = 0;
+  std::uint32_t next_sequence = 0;
+  std::vector<std::uint8_t> packet;
   const std::int64_t start = port::monotonic_ns();
   for (std::uint64_t loop = 0; loop < loops && !g_stop; ++loop) {
     if (loop > 0 && file.open(capture) != Error::ok) return kExitInput;
@@ -334,7 +363,15 @@ int cmd_replay(Args& args) {
         if (first_record < 0) first_record = t;
         port::sleep_until_ns(loop_start + static_cast<std::int64_t>(static_cast<double>(t - first_record) / rate));
       }
-      if (sender.send(d.payload.data, d.payload.size)) ++sent;
+      bool ok;
+      if (renumber_sequence) {
+        packet.assign(d.payload.data, d.payload.data + d.payload.size);
+        if (renumber(packet, next_sequence)) ++next_sequence;
+        ok = sender.send(packet.data(), packet.size());
+      } else {
+        ok = sender.send(d.payload.data, d.payload.size);
+      }
+      if (ok) ++sent;
       else ++failed;
     }
   }
