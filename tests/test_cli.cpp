@@ -367,7 +367,7 @@ TEST(Cli, LoadTestReportsLossHonestly) {
   const int port = 20000 + static_cast<int>((getpid() + 7919) % 20000);
   const long long sent_packets = 56 * 1800;
   const std::string listen = std::string(HESAI_CLI_PATH) + " listen --bind 127.0.0.1 --port " + std::to_string(port) +
-                             " --gps-port 0 --count " + std::to_string(sent_packets) + " --seconds 20 --json --quiet 2>/dev/null";
+                             " --gps-port 0 --count " + std::to_string(sent_packets) + " --seconds 10 --json --quiet 2>/dev/null";
   FILE* l = popen(listen.c_str(), "r");
   ASSERT_NE(l, nullptr);
   ASSERT_TRUE(wait_for_listener(port));
