@@ -123,6 +123,9 @@ struct RefPoint {
   std::int64_t time_ns;
 };
 
+// Test names and failure messages show the model, not the struct's bytes.
+void PrintTo(const Layout& l, std::ostream* os) { *os << hesai::model_name(l.model); }
+
 class Golden : public ::testing::TestWithParam<Layout> {};
 
 // Packets, non-zero distances, return mode and spin rate, counted from the raw bytes.

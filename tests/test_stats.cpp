@@ -67,9 +67,9 @@ TEST(Stats, OkCountsNothing) {
 }
 
 TEST(Stats, EveryCodeMovesExactlyOneCounter) {
-  // Every code from truncated (1) to capture_not_udp (the last): the 8 named above go to their
+  // Every code from truncated (1) to the last: the 8 named above go to their
   // counters, every other one to malformed.
-  const auto last = static_cast<unsigned>(Error::capture_not_udp);
+  const auto last = static_cast<unsigned>(hesai::kLastError);
   unsigned crc = 0, sig_inv = 0, sig_miss = 0, unsup = 0, malformed = 0;
   for (unsigned v = 1; v <= last; ++v) {
     Stats s{};

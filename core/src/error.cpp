@@ -24,7 +24,6 @@ const char* error_name(Error e) noexcept {
     case Error::signature_missing: return "signature_missing";
     case Error::signature_invalid: return "signature_invalid";
     case Error::model_mismatch: return "model_mismatch";
-    case Error::buffer_too_small: return "buffer_too_small";
     case Error::invalid_argument: return "invalid_argument";
     case Error::bad_gps_field: return "bad_gps_field";
     case Error::calib_bad_header: return "calib_bad_header";
@@ -36,7 +35,6 @@ const char* error_name(Error e) noexcept {
     case Error::capture_truncated: return "capture_truncated";
     case Error::capture_bad_record: return "capture_bad_record";
     case Error::capture_unsupported_link: return "capture_unsupported_link";
-    case Error::capture_not_udp: return "capture_not_udp";
     case Error::capture_io: return "capture_io";
   }
   return "unknown";

@@ -26,7 +26,7 @@ enum class Error : std::uint8_t {
   bad_azimuth,            ///< block azimuth >= 360.00 degrees
   bad_return_mode,        ///< return-mode byte not listed in the manual
   bad_date_time,          ///< tail date-time outside the calendar
-  bad_timestamp,          ///< microsecond field >= 1 000 000 (>= 3 600 000 000 for Pandar40)
+  bad_timestamp,          ///< microsecond field beyond its manual's range (999 999; QT128 1 000 000)
   dual_block_mismatch,    ///< the two blocks of one dual-return firing disagree in azimuth
 
   // Integrity.
@@ -38,7 +38,6 @@ enum class Error : std::uint8_t {
 
   // Decoder use.
   model_mismatch,         ///< the packet is of another model than the decoder's calibration
-  buffer_too_small,       ///< caller-provided storage cannot hold the result
   invalid_argument,       ///< a parameter outside its documented range
 
   // GPS packets.
@@ -56,9 +55,11 @@ enum class Error : std::uint8_t {
   capture_truncated,      ///< a record or block ends past the end of the file
   capture_bad_record,     ///< a record or block length that cannot be (absurd, misaligned)
   capture_unsupported_link, ///< a link type we do not read
-  capture_not_udp,        ///< the frame carries no UDP datagram (skipped, not fatal)
   capture_io,             ///< the capture file cannot be opened, read or mapped (see errno)
 };
+
+/// The last code, for loops over every code (keep it last when adding codes).
+inline constexpr Error kLastError = Error::capture_io;
 
 /// Stable lower-case name of an error code, for logs and JSON ("crc_body").
 const char* error_name(Error e) noexcept;
