@@ -41,7 +41,12 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
             hesai_fuzz::same_bits(a.azimuth_deg[i], b.azimuth_deg[i]));
     }
     hesai::Decoder d(model);
-    check(d.set_angles(a) == hesai::Error::ok);
+    bool in_range = true;
+    for (std::size_t i = 0; i < n; ++i)
+      in_range = in_range && std::fabs(a.elevation_deg[i]) <= 90 && std::fabs(a.azimuth_deg[i]) <= 360;
+    const hesai::Error e = d.set_angles(a);
+    check(e == (in_range ? hesai::Error::ok : hesai::Error::invalid_argument));
+    if (!in_range) continue;
     // Any parsed geometry gives finite points in range.
     check(hesai_fuzz::decode_checked(d, seed_packet(model)) == hesai::Error::ok);
   }

@@ -46,10 +46,17 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
       check(fires);  // every channel fires in some loop
     }
     hesai::Decoder d(model);
+    bool in_range = true;
+    for (std::size_t loop = 0; loop < a.loops; ++loop)
+      for (std::size_t ch = 0; ch < n; ++ch)
+        in_range = in_range && (!a.fires[loop][ch] || std::fabs(a.firetime_us[loop][ch]) <= 1000);
     const hesai::Error e = d.set_firetimes(a);
-    // Only a QT128 decoder may refuse a parsed file (a one-loop file).
     if (e == hesai::Error::ok) check(hesai_fuzz::decode_checked(d, seed_packet(model)) == hesai::Error::ok);
-    check(e == hesai::Error::ok || (model == hesai::Model::qt128c2x && a.loops == 1 && e == hesai::Error::calib_channel_count));
+    // A QT128 decoder refuses a one-loop file; every decoder refuses times beyond 1 ms.
+    if (model == hesai::Model::qt128c2x && a.loops == 1)
+      check(e == hesai::Error::calib_channel_count);
+    else
+      check(e == (in_range ? hesai::Error::ok : hesai::Error::invalid_argument));
   }
   return 0;
 }
