@@ -73,8 +73,9 @@ inline void check_points(hesai::Model model, const hesai::PacketInfo& info, cons
   check(out.count <= blocks * channels && out.count <= hesai::kMaxPointsPerPacket);
   check(std::strcmp(hesai::return_mode_name(info.return_mode), "unknown") != 0);
   for (std::size_t b = 0; b < info.blocks; ++b) check(info.block_azimuth[b] < 36000);
-  // Largest range: 65535 distance steps of dis_unit_mm.
-  const double max_range_m = 65535.0 * info.dis_unit_mm / 1000.0 + 1e-3;
+  // Largest range: 65535 distance steps of dis_unit_mm (the decoder works in float: allow for
+  // its rounding, a few ulp, e.g. 11534.1611 m for 65535 x 176 mm).
+  const double max_range_m = 65535.0 * info.dis_unit_mm / 1000.0 * (1 + 1e-5) + 1e-3;
   for (std::size_t i = 0; i < out.count; ++i) {
     const hesai::Point& p = out.points[i];
     check(std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z));
