@@ -15,6 +15,9 @@ namespace hesai {
 namespace {
 
 constexpr std::size_t kGpsBytes = 512;
+/// Largest firing-time offset accepted, us: well beyond any block period of the manuals
+/// (55.56 us Pandar, 111.11 us QT128); keeps the ns value in range of an int32.
+constexpr double kMaxFiretimeUs = 1000.0;
 
 constexpr std::int32_t round_to_int(double v) {
   return static_cast<std::int32_t>(v < 0 ? v - 0.5 : v + 0.5);
@@ -136,6 +139,11 @@ void Decoder::set_channel_angle(std::size_t ch, double elevation_deg, double azi
 
 Error Decoder::set_angles(const AngleCorrection& angles) noexcept {
   if (angles.channels != channel_count(model_)) return Error::calib_channel_count;
+  // Written so that NaN fails too. Checked before any change, so a refused file changes nothing.
+  for (std::size_t i = 0; i < angles.channels; ++i) {
+    if (!(angles.elevation_deg[i] >= -90.0 && angles.elevation_deg[i] <= 90.0)) return Error::invalid_argument;
+    if (!(angles.azimuth_deg[i] >= -360.0 && angles.azimuth_deg[i] <= 360.0)) return Error::invalid_argument;
+  }
   for (std::size_t i = 0; i < angles.channels; ++i) set_channel_angle(i, angles.elevation_deg[i], angles.azimuth_deg[i]);
   return Error::ok;
 }
@@ -144,6 +152,12 @@ Error Decoder::set_firetimes(const FiretimeCorrection& f) noexcept {
   if (f.channels != channel_count(model_)) return Error::calib_channel_count;
   const bool two_loops = model_ == Model::qt128c2x;
   if (two_loops && f.loops != 2) return Error::calib_channel_count;
+  for (std::size_t loop = 0; loop < f.loops && loop < 2; ++loop) {
+    for (std::size_t i = 0; i < f.channels; ++i) {
+      const double us = f.firetime_us[loop][i];
+      if (f.fires[loop][i] && !(us >= -kMaxFiretimeUs && us <= kMaxFiretimeUs)) return Error::invalid_argument;
+    }
+  }
   for (std::size_t i = 0; i < f.channels; ++i) {
     for (std::size_t loop = 0; loop < 2; ++loop) {
       const std::size_t src = two_loops ? loop : 0;

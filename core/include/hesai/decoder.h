@@ -102,10 +102,13 @@ class Decoder {
 
   Model model() const noexcept { return model_; }
 
-  /// Uses a unit's angle corrections. Error::calib_channel_count if the channel count differs.
+  /// Uses a unit's angle corrections. Error::calib_channel_count if the channel count differs;
+  /// Error::invalid_argument (and no change) if an elevation lies outside [-90, 90] degrees or an
+  /// azimuth offset outside [-360, 360] degrees.
   Error set_angles(const AngleCorrection& angles) noexcept;
   /// Uses a firing-time file. Error::calib_channel_count if the channel count differs, or if a
-  /// QT128 decoder is given a one-loop file.
+  /// QT128 decoder is given a one-loop file; Error::invalid_argument (and no change) if a firing
+  /// time lies outside [-1000, 1000] us.
   Error set_firetimes(const FiretimeCorrection& firetimes) noexcept;
   /// Azimuth firing-time correction (on by default): adds firing time x spin rate to each point.
   void set_firetime_correction(bool on) noexcept { firetime_correction_ = on; }

@@ -1,0 +1,316 @@
+// hesai_bench: packet validation and decoding per sensor, with a memcpy baseline of the same
+// packets; the CRC-32/MPEG-2 paths; SHA-256 and HMAC-SHA256 beside OpenSSL's.
+// Packets are real ones from data/*.pcap, taken round-robin (a handful, not one).
+// bench/report.py turns the JSON output into a table of ratios and target checks.
+#include <benchmark/benchmark.h>
+
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <fstream>
+#include <iterator>
+#include <string>
+#include <vector>
+
+#include "hesai/crc32.h"
+#include "hesai/decoder.h"
+#include "hesai/hmac.h"
+#include "hesai/qt128_packet.h"
+#include "hesai/sha256.h"
+
+#ifdef HESAI_BENCH_OPENSSL
+#include <openssl/evp.h>
+#include <openssl/hmac.h>
+#include <openssl/sha.h>
+#endif
+
+namespace {
+
+using Bytes = std::vector<std::uint8_t>;
+constexpr std::size_t kPacketsPerSensor = 16;
+
+/// UDP payloads of a classic pcap of Ethernet/IPv4/UDP frames (42 bytes of headers).
+std::vector<Bytes> pcap_payloads(const char* name, std::size_t limit) {
+  const std::string path = std::string(HESAI_DATA_DIR) + "/" + name;
+  std::ifstream f(path, std::ios::binary);
+  const Bytes file((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
+  if (file.size() < 24) {
+    std::fprintf(stderr, "hesai_bench: cannot read %s\n", path.c_str());
+    std::exit(1);
+  }
+  std::vector<Bytes> out;
+  std::size_t off = 24;
+  // Spread the picks over the first part of the capture.
+  std::size_t index = 0;
+  while (off + 16 <= file.size() && out.size() < limit) {
+    const std::uint32_t incl = hesai::load_le32(&file[off + 8]);
+    off += 16;
+    if (incl < 42 || incl > file.size() - off) break;
+    if (index++ % 7 == 0) out.emplace_back(file.begin() + static_cast<long>(off + 42), file.begin() + static_cast<long>(off + incl));
+    off += incl;
+  }
+  return out;
+}
+
+std::uint8_t session_key(std::size_t i) { return static_cast<std::uint8_t>(0xA5 ^ (i * 29)); }
+
+struct Sensor {
+  hesai::Model model;
+  std::vector<Bytes> packets;
+};
+
+const Sensor& sensor(hesai::Model m) {
+  static const Sensor p40p{hesai::Model::pandar40p, pcap_payloads("pandar40p_dual.pcap", kPacketsPerSensor)};
+  static const Sensor p64{hesai::Model::pandar64, pcap_payloads("pandar64_dual.pcap", kPacketsPerSensor)};
+  static const Sensor qt{hesai::Model::qt128c2x, pcap_payloads("qt128c2x_dual.pcap", kPacketsPerSensor)};
+  // Pandar40 (1256 bytes): no bundled capture; the 40P packets' 1240 bytes of blocks + the
+  // first 16 bytes of their tail.
+  static const Sensor p40 = [] {
+    Sensor s{hesai::Model::pandar40, {}};
+    for (const Bytes& p : p40p.packets) s.packets.emplace_back(p.begin(), p.begin() + 1256);
+    return s;
+  }();
+  switch (m) {
+    case hesai::Model::pandar40: return p40;
+    case hesai::Model::pandar40p: return p40p;
+    case hesai::Model::pandar64: return p64;
+    default: return qt;
+  }
+}
+
+/// QT128 packets signed with the session key: HMAC-SHA256 of the bytes before the signature.
+const std::vector<Bytes>& signed_qt128() {
+  static const std::vector<Bytes> packets = [] {
+    std::uint8_t key[32];
+    for (std::size_t i = 0; i < 32; ++i) key[i] = session_key(i);
+    std::vector<Bytes> out = sensor(hesai::Model::qt128c2x).packets;
+    for (Bytes& p : out) {
+      const std::size_t at = hesai::qt128::Layout::from_flags(p[hesai::qt128::kFlags]).signature;
+      if (at == 0 || p.size() != at + hesai::qt128::kSignatureBytes) {
+        std::fprintf(stderr, "hesai_bench: QT128 capture packets carry no signature section\n");
+        std::exit(1);
+      }
+      hesai::hmac_sha256({key, 32}, {p.data(), at}, p.data() + at);
+    }
+    return out;
+  }();
+  return packets;
+}
+
+enum class Stage { validate, decode, decode_nofiretime, decode_signed };
+
+void finish_counters(benchmark::State& state, std::uint64_t bytes, std::uint64_t points) {
+  state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations()));
+  state.SetBytesProcessed(static_cast<std::int64_t>(bytes));
+  state.counters["points/s"] = benchmark::Counter(static_cast<double>(points), benchmark::Counter::kIsRate);
+}
+
+void BM_Decoder(benchmark::State& state, hesai::Model model, Stage stage) {
+  const std::vector<Bytes>& packets = stage == Stage::decode_signed ? signed_qt128() : sensor(model).packets;
+  hesai::Decoder decoder(model);
+  if (stage == Stage::decode_nofiretime) decoder.set_firetime_correction(false);
+  if (stage == Stage::decode_signed) {
+    std::uint8_t key[32];
+    for (std::size_t i = 0; i < 32; ++i) key[i] = session_key(i);
+    decoder.set_session_key(key);
+  }
+  // Every packet must pass, or the benchmark would time the error path.
+  static hesai::PacketPoints out;
+  for (const Bytes& p : packets) {
+    hesai::PacketInfo info;
+    if (decoder.decode({p.data(), p.size()}, info, out) != hesai::Error::ok) {
+      state.SkipWithError("a benchmark packet does not decode");
+      return;
+    }
+  }
+  std::size_t i = 0;
+  std::uint64_t bytes = 0, points = 0;
+  hesai::PacketInfo info;
+  for (auto _ : state) {
+    const Bytes& p = packets[i];
+    i = i + 1 == packets.size() ? 0 : i + 1;
+    hesai::Error e;
+    if (stage == Stage::validate) {
+      e = decoder.validate({p.data(), p.size()}, info);
+    } else {
+      e = decoder.decode({p.data(), p.size()}, info, out);
+      points += out.count;
+    }
+    benchmark::DoNotOptimize(e);
+    benchmark::DoNotOptimize(info);
+    benchmark::ClobberMemory();
+    bytes += p.size();
+  }
+  finish_counters(state, bytes, points);
+}
+
+/// The floor: copying the packet into a buffer.
+void BM_Copy(benchmark::State& state, hesai::Model model) {
+  const std::vector<Bytes>& packets = sensor(model).packets;
+  alignas(64) static std::uint8_t buffer[2048];
+  std::size_t i = 0;
+  std::uint64_t bytes = 0;
+  for (auto _ : state) {
+    const Bytes& p = packets[i];
+    i = i + 1 == packets.size() ? 0 : i + 1;
+    std::memcpy(buffer, p.data(), p.size());
+    benchmark::DoNotOptimize(buffer);
+    benchmark::ClobberMemory();
+    bytes += p.size();
+  }
+  finish_counters(state, bytes, 0);
+}
+
+Bytes pseudo_random(std::size_t n) {
+  Bytes b(n);
+  std::uint32_t x = 0x12345678u;
+  for (auto& v : b) {
+    x ^= x << 13;
+    x ^= x >> 17;
+    x ^= x << 5;
+    v = static_cast<std::uint8_t>(x);
+  }
+  return b;
+}
+
+void BM_Crc(benchmark::State& state, hesai::CrcPath path) {
+  const Bytes data = pseudo_random(static_cast<std::size_t>(state.range(0)));
+  for (auto _ : state) {
+    std::uint32_t crc = hesai::crc32_mpeg2_update(path, hesai::kCrc32Mpeg2Init, {data.data(), data.size()});
+    benchmark::DoNotOptimize(crc);
+  }
+  state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations()));
+  state.SetBytesProcessed(static_cast<std::int64_t>(state.iterations()) * state.range(0));
+}
+
+constexpr std::size_t kSignedBytes = 1095;  // QT128 bytes before the signature (flags 0x1D)
+
+void BM_Sha256(benchmark::State& state, hesai::Sha256Path path) {
+  const Bytes data = pseudo_random(static_cast<std::size_t>(state.range(0)));
+  std::uint8_t digest[32];
+  for (auto _ : state) {
+    hesai::Sha256 h(path);
+    h.update({data.data(), data.size()});
+    h.finish(digest);
+    benchmark::DoNotOptimize(digest);
+  }
+  state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations()));
+  state.SetBytesProcessed(static_cast<std::int64_t>(state.iterations()) * state.range(0));
+}
+
+/// One-shot HMAC (key set-up included), as OpenSSL's HMAC().
+void BM_Hmac(benchmark::State& state, hesai::Sha256Path path) {
+  const Bytes data = pseudo_random(static_cast<std::size_t>(state.range(0)));
+  const Bytes key = pseudo_random(32);
+  std::uint8_t mac[32];
+  for (auto _ : state) {
+    const hesai::HmacSha256Key k({key.data(), key.size()}, path);
+    hesai::HmacSha256 h(k);
+    h.update({data.data(), data.size()});
+    h.finish(mac);
+    benchmark::DoNotOptimize(mac);
+  }
+  state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations()));
+  state.SetBytesProcessed(static_cast<std::int64_t>(state.iterations()) * state.range(0));
+}
+
+/// Per-packet HMAC with the key prepared once (what the decoder does).
+void BM_HmacPrepared(benchmark::State& state, hesai::Sha256Path path) {
+  const Bytes data = pseudo_random(static_cast<std::size_t>(state.range(0)));
+  const Bytes key = pseudo_random(32);
+  const hesai::HmacSha256Key k({key.data(), key.size()}, path);
+  std::uint8_t mac[32];
+  for (auto _ : state) {
+    hesai::HmacSha256 h(k);
+    h.update({data.data(), data.size()});
+    h.finish(mac);
+    benchmark::DoNotOptimize(mac);
+  }
+  state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations()));
+  state.SetBytesProcessed(static_cast<std::int64_t>(state.iterations()) * state.range(0));
+}
+
+#ifdef HESAI_BENCH_OPENSSL
+void BM_Sha256_openssl(benchmark::State& state) {
+  const Bytes data = pseudo_random(static_cast<std::size_t>(state.range(0)));
+  unsigned char digest[32];
+  for (auto _ : state) {
+    SHA256(data.data(), data.size(), digest);
+    benchmark::DoNotOptimize(digest);
+  }
+  state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations()));
+  state.SetBytesProcessed(static_cast<std::int64_t>(state.iterations()) * state.range(0));
+}
+
+void BM_Hmac_openssl(benchmark::State& state) {
+  const Bytes data = pseudo_random(static_cast<std::size_t>(state.range(0)));
+  const Bytes key = pseudo_random(32);
+  unsigned char mac[32];
+  unsigned int len = 0;
+  for (auto _ : state) {
+    HMAC(EVP_sha256(), key.data(), static_cast<int>(key.size()), data.data(), data.size(), mac, &len);
+    benchmark::DoNotOptimize(mac);
+  }
+  state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations()));
+  state.SetBytesProcessed(static_cast<std::int64_t>(state.iterations()) * state.range(0));
+}
+#endif
+
+struct NamedModel {
+  const char* name;
+  hesai::Model model;
+};
+constexpr NamedModel kSensors[] = {{"Pandar40", hesai::Model::pandar40},
+                                   {"Pandar40P", hesai::Model::pandar40p},
+                                   {"Pandar64", hesai::Model::pandar64},
+                                   {"QT128C2X", hesai::Model::qt128c2x}};
+
+void register_all() {
+  for (const NamedModel& s : kSensors) {
+    const std::string n = s.name;
+    benchmark::RegisterBenchmark(("BM_Baseline_copy_" + n).c_str(), BM_Copy, s.model);
+    benchmark::RegisterBenchmark(("BM_" + n + "_validate").c_str(), BM_Decoder, s.model, Stage::validate);
+    benchmark::RegisterBenchmark(("BM_" + n + "_decode").c_str(), BM_Decoder, s.model, Stage::decode);
+    benchmark::RegisterBenchmark(("BM_" + n + "_decode_nofiretime").c_str(), BM_Decoder, s.model,
+                                 Stage::decode_nofiretime);
+  }
+  benchmark::RegisterBenchmark("BM_QT128C2X_decode_signed", BM_Decoder, hesai::Model::qt128c2x, Stage::decode_signed);
+
+  const struct {
+    const char* name;
+    hesai::CrcPath path;
+  } crcs[] = {{"bitwise", hesai::CrcPath::bitwise},
+              {"table", hesai::CrcPath::table},
+              {"slicing", hesai::CrcPath::slicing},
+              {"hardware", hesai::CrcPath::hardware}};
+  for (const auto& c : crcs)
+    benchmark::RegisterBenchmark((std::string("BM_CRC32_") + c.name).c_str(), BM_Crc, c.path)
+        ->Arg(1028)
+        ->Arg(64 * 1024);
+
+  const std::int64_t n = static_cast<std::int64_t>(kSignedBytes);
+  benchmark::RegisterBenchmark("BM_SHA256_portable", BM_Sha256, hesai::Sha256Path::portable)->Arg(n);
+  benchmark::RegisterBenchmark("BM_SHA256_hardware", BM_Sha256, hesai::Sha256Path::hardware)->Arg(n);
+  benchmark::RegisterBenchmark("BM_HMAC_SHA256_portable", BM_Hmac, hesai::Sha256Path::portable)->Arg(n);
+  benchmark::RegisterBenchmark("BM_HMAC_SHA256_hardware", BM_Hmac, hesai::Sha256Path::hardware)->Arg(n);
+  benchmark::RegisterBenchmark("BM_HMAC_SHA256_prepared_portable", BM_HmacPrepared, hesai::Sha256Path::portable)->Arg(n);
+  benchmark::RegisterBenchmark("BM_HMAC_SHA256_prepared_hardware", BM_HmacPrepared, hesai::Sha256Path::hardware)->Arg(n);
+#ifdef HESAI_BENCH_OPENSSL
+  benchmark::RegisterBenchmark("BM_SHA256_openssl", BM_Sha256_openssl)->Arg(n);
+  benchmark::RegisterBenchmark("BM_HMAC_SHA256_openssl", BM_Hmac_openssl)->Arg(n);
+#endif
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  benchmark::Initialize(&argc, argv);
+  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
+  benchmark::AddCustomContext("crc32_hardware", hesai::crc32_hardware_available() ? "yes" : "no");
+  benchmark::AddCustomContext("sha256_hardware", hesai::sha256_hardware_available() ? "yes" : "no");
+  register_all();
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  return 0;
+}

@@ -1,0 +1,120 @@
+#!/usr/bin/env python3
+"""Reads hesai_bench JSON output (--benchmark_out=FILE --benchmark_out_format=json) and prints
+each benchmark's ns/packet (CPU time per iteration), points/s, bytes/s and its ratio to its baseline, then checks the
+performance targets (PASS/MISS). Never fails on a MISS: exit status 1 only when the file cannot
+be read or holds no results. With repetitions, the median aggregate is used.
+Usage: python3 bench/report.py BENCH.json"""
+import json
+import re
+import sys
+
+UNIT_NS = {'ns': 1.0, 'us': 1e3, 'ms': 1e6, 's': 1e9}
+
+
+def load(path):
+    with open(path) as f:
+        doc = json.load(f)
+    rows, medians = {}, {}
+    for b in doc.get('benchmarks', []):
+        if b.get('error_occurred'):
+            rows[b.get('run_name', b['name'])] = None
+            continue
+        name = b.get('run_name', b['name'])
+        if b.get('run_type') == 'aggregate':
+            if b.get('aggregate_name') == 'median':
+                medians[name] = b
+            continue
+        rows.setdefault(name, b)  # first repetition when there is no median
+    rows.update(medians)
+    return doc.get('context', {}), rows
+
+
+def ns(b):
+    # CPU time, as the rates: on a shared machine wall time counts other processes' time slices.
+    return b['cpu_time'] * UNIT_NS[b.get('time_unit', 'ns')]
+
+
+def baseline_of(name, names):
+    m = re.match(r'BM_(Pandar40P|Pandar40|Pandar64|QT128C2X)_', name)
+    if m:
+        return 'BM_Baseline_copy_' + m.group(1)
+    m = re.match(r'BM_CRC32_(\w+)/(\d+)$', name)
+    if m and m.group(1) != 'bitwise':
+        return 'BM_CRC32_bitwise/' + m.group(2)
+    m = re.match(r'BM_SHA256_(\w+)/(\d+)$', name)
+    if m and m.group(1) != 'openssl':
+        return 'BM_SHA256_openssl/' + m.group(2)
+    m = re.match(r'BM_HMAC_SHA256_(\w+)/(\d+)$', name)
+    if m and m.group(1) != 'openssl':
+        return 'BM_HMAC_SHA256_openssl/' + m.group(2)
+    return None
+
+
+def fmt_rate(v, unit):
+    if v is None:
+        return '-'
+    for scale, prefix in ((1e9, 'G'), (1e6, 'M'), (1e3, 'k')):
+        if v >= scale:
+            return '%.2f %s%s' % (v / scale, prefix, unit)
+    return '%.0f %s' % (v, unit)
+
+
+def main():
+    if len(sys.argv) != 2:
+        print(__doc__)
+        return 2
+    try:
+        context, rows = load(sys.argv[1])
+    except (OSError, ValueError, KeyError) as e:
+        print('report.py: cannot read %s: %s' % (sys.argv[1], e))
+        return 1
+    if not rows:
+        print('report.py: no benchmark results in %s' % sys.argv[1])
+        return 1
+    print('host: %s CPUs at %s MHz, crc32_hardware=%s, sha256_hardware=%s' % (
+        context.get('num_cpus', '?'), context.get('mhz_per_cpu', '?'),
+        context.get('crc32_hardware', '?'), context.get('sha256_hardware', '?')))
+    print('%-40s %12s %14s %14s %20s' % ('benchmark', 'ns/packet', 'points/s', 'bytes/s', 'time / baseline'))
+    for name, b in rows.items():
+        if b is None:
+            print('%-40s %12s' % (name, 'ERROR'))
+            continue
+        base_name = baseline_of(name, rows)
+        base = rows.get(base_name) if base_name else None
+        ratio = '%.2f x %s' % (ns(b) / ns(base), base_name.replace('BM_', '').split('/')[0]) if base else '-'
+        pts = b.get('points/s') or None
+        print('%-40s %12.1f %14s %14s %20s' % (name, ns(b), fmt_rate(pts, 'pt/s'),
+                                             fmt_rate(b.get('bytes_per_second'), 'B/s'), ratio))
+
+    def get(name):
+        return rows.get(name)
+
+    checks = []
+
+    def target(label, value, ok, shown):
+        checks.append((label, 'PASS' if ok else 'MISS', shown) if value is not None else (label, 'n/a', 'not run'))
+
+    d = get('BM_Pandar64_decode')  # decode() runs validate() first: the whole per-packet cost
+    target('Pandar64 validate+decode <= 100 ns', d, d and ns(d) <= 100, d and '%.1f ns' % ns(d))
+    q = get('BM_QT128C2X_decode')
+    target('QT128C2X decode (no signature) <= 80 ns', q, q and ns(q) <= 80, q and '%.1f ns' % ns(q))
+    h, o = get('BM_HMAC_SHA256_hardware/1095'), get('BM_HMAC_SHA256_openssl/1095')
+    if h is None:
+        h = get('BM_HMAC_SHA256_portable/1095')
+    target('HMAC-SHA256 1095 B <= 1.2 x OpenSSL HMAC()', h and o, h and o and ns(h) <= 1.2 * ns(o),
+           h and o and '%.2f x (%.0f vs %.0f ns)' % (ns(h) / ns(o), ns(h), ns(o)))
+    s = get('BM_CRC32_slicing/65536')
+    target('CRC slicing >= 2.5 GB/s (64 KiB)', s, s and s['bytes_per_second'] >= 2.5e9,
+           s and '%.2f GB/s' % (s['bytes_per_second'] / 1e9))
+    w = get('BM_CRC32_hardware/65536')
+    target('CRC hardware >= 10 GB/s (64 KiB)', w, w and w['bytes_per_second'] >= 10e9,
+           w and '%.2f GB/s' % (w['bytes_per_second'] / 1e9))
+    print()
+    print('%-45s %-5s %s' % ('target', 'check', 'measured'))
+    for label, verdict, shown in checks:
+        print('%-45s %-5s %s' % (label, verdict, shown))
+    return 0
+
+
+if __name__ == '__main__':
+    sys.exit(main())

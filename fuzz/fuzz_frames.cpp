@@ -1,0 +1,106 @@
+// libFuzzer harness: a stream of packets. Input: one byte of cut angle, then records of a u16
+// little-endian length and that many payload bytes (a short last record takes what is left).
+// Each record goes through identify(), the decoder of its model (GPS packets update the
+// Pandar40 decoder), the SequenceTracker and the FrameAssembler.
+#include <cstddef>
+#include <cstdint>
+
+#include "fuzz_common.h"
+#include "hesai/bytes.h"
+#include "hesai/frame.h"
+#include "hesai/sequence.h"
+
+namespace {
+
+struct Totals {
+  std::uint64_t packets = 0, decoded = 0, points = 0, frames = 0, frame_points = 0, frame_blocks = 0;
+  std::uint64_t last_id = 0;
+  hesai::SequenceCounts seq;
+};
+
+void close_frame(const hesai::FrameInfo& f, Totals& t) {
+  using hesai_fuzz::check;
+  check(f.id == t.last_id + 1);  // ids open in order, none skipped
+  check(f.first_packet <= f.last_packet && f.packets >= 1 && f.blocks >= 1);
+  check(f.first_azimuth_cdeg < 36000 && f.last_azimuth_cdeg < 36000);
+  check(!(f.lost_packets > 0) || f.loss);
+  t.last_id = f.id;
+  ++t.frames;
+  t.frame_points += f.points;
+  t.frame_blocks += f.blocks;
+}
+
+Totals run(hesai::ByteView in) {
+  using hesai_fuzz::check;
+  Totals t;
+  if (in.size == 0) return t;
+  hesai::Decoder decoders[] = {hesai::Decoder(hesai::Model::pandar40), hesai::Decoder(hesai::Model::pandar40p),
+                               hesai::Decoder(hesai::Model::pandar64), hesai::Decoder(hesai::Model::qt128c2x)};
+  static hesai::SequenceTracker tracker;
+  tracker.reset();
+  hesai::FrameAssembler frames;
+  check(frames.set_cut_deg(static_cast<float>(in[0]) * 360.0f / 256.0f) == hesai::Error::ok);
+  std::uint64_t blocks_given = 0;
+  std::size_t off = 1;
+  while (off < in.size) {
+    std::size_t n = in.size - off;
+    if (n >= 2) {
+      n = hesai::load_le16(in.data + off);
+      off += 2;
+      if (n > in.size - off) n = in.size - off;
+    } else {
+      off = in.size - n;
+    }
+    const hesai::ByteView p = in.sub(off, n);
+    off += n;
+    ++t.packets;
+    hesai::Model model = hesai::Model::unknown;
+    hesai::PacketKind kind = hesai::PacketKind::point_cloud;
+    const hesai::Error e = hesai::identify(p, model, kind);
+    hesai_fuzz::check_named(e);
+    if (e != hesai::Error::ok) continue;
+    if (kind == hesai::PacketKind::gps) {
+      check(model == hesai::Model::unknown);
+      hesai::GpsPacket gps;
+      if (hesai::parse_gps_packet(p, gps) == hesai::Error::ok) decoders[0].update_gps(gps);
+      continue;
+    }
+    check(model != hesai::Model::unknown);
+    hesai::Decoder& d = decoders[static_cast<std::size_t>(model) - 1];
+    static hesai::PacketPoints points;
+    hesai::PacketInfo info;
+    if (hesai_fuzz::decode_checked(d, p) != hesai::Error::ok) continue;
+    check(d.decode(p, info, points) == hesai::Error::ok);
+    ++t.decoded;
+    t.points += points.count;
+    const std::uint32_t lost = info.has_sequence ? tracker.observe(info.sequence) : 0;
+    frames.begin_packet(t.packets, lost);
+    for (std::size_t b = 0; b < info.blocks; ++b) {
+      if (frames.block(info.block_azimuth[b])) close_frame(frames.last_closed(), t);
+      ++blocks_given;
+      std::uint32_t in_block = 0;
+      for (std::size_t i = 0; i < points.count; ++i) in_block += points.points[i].block == b ? 1u : 0u;
+      frames.add_points(in_block);
+    }
+  }
+  hesai::FrameInfo last;
+  if (frames.finish(last)) close_frame(last, t);
+  check(!frames.is_open());
+  check(t.frame_points == t.points);  // every point lands in exactly one frame
+  check(t.frame_blocks == blocks_given);
+  t.seq = tracker.counts();
+  check(t.seq.stale <= t.seq.reordered && t.seq.packets <= t.decoded);
+  return t;
+}
+
+}  // namespace
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  const hesai_fuzz::ExactCopy in(data, size);
+  const Totals a = run(in.view());
+  const Totals b = run(in.view());
+  hesai_fuzz::check(a.packets == b.packets && a.decoded == b.decoded && a.points == b.points &&
+                    a.frames == b.frames && a.seq.lost == b.seq.lost && a.seq.duplicates == b.seq.duplicates &&
+                    a.seq.reordered == b.seq.reordered && a.seq.resyncs == b.seq.resyncs);
+  return 0;
+}

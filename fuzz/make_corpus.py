@@ -1,0 +1,223 @@
+#!/usr/bin/env python3
+"""Writes the seed corpora fuzz/corpus/<harness>/ and fuzz/seed_packets.inc from the bundled
+captures and calibration files (data/). Deterministic: running it again gives the same files.
+Files it does not write (regress_* and found_* inputs from fuzzing campaigns) are left alone.
+Usage: python3 fuzz/make_corpus.py"""
+import hashlib
+import hmac
+import os
+import struct
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+DATA = os.path.join(HERE, '..', 'data')
+CORPUS = os.path.join(HERE, 'corpus')
+KEY = bytes(range(32))  # the session key of fuzz_signature.cpp
+
+
+def pcap_records(name):
+    d = open(os.path.join(DATA, name), 'rb').read()
+    off, out = 24, []
+    while off + 16 <= len(d):
+        incl = struct.unpack_from('<I', d, off + 8)[0]
+        out.append(d[off:off + 16 + incl])  # record header + frame
+        off += 16 + incl
+    return d[:24], out
+
+
+def payloads(name):
+    return [r[16 + 42:] for r in pcap_records(name)[1]]
+
+
+def crc32_mpeg2(data, crc=0xFFFFFFFF):
+    for b in data:
+        crc ^= b << 24
+        for _ in range(8):
+            crc = ((crc << 1) ^ 0x04C11DB7) & 0xFFFFFFFF if crc & 0x80000000 else (crc << 1) & 0xFFFFFFFF
+    return crc
+
+
+# QT128C2X protocol 3.2 layout (core/include/hesai/qt128_packet.h).
+QT_BODY_END, QT_FS, QT_TAIL = 1044, 17, 26
+
+
+def qt128_with_flags(p, flags, sign=False, fs=None):
+    """Rebuilds a 0x1D QT128 packet with other flags: sections per the flags, CRC3 recomputed,
+    the signature (if any) HMAC-SHA256 under KEY when sign, else all-zero."""
+    assert p[11] == 0x1D and len(p) == 1127
+    fs_bytes = fs if fs is not None else p[1044:1061]
+    tail = p[1061:1087]
+    seq = p[1087:1091]
+    out = bytearray(p[:11]) + bytes([flags]) + p[12:QT_BODY_END]
+    if flags & 0x04:
+        out += fs_bytes
+    t0 = len(out)
+    out += tail
+    if flags & 0x01:
+        out += seq
+    out += struct.pack('<I', crc32_mpeg2(out[t0:]))
+    if flags & 0x08:
+        out += hmac.new(KEY, bytes(out), hashlib.sha256).digest() if sign else bytes(32)
+    return bytes(out)
+
+
+def fix_fs_crc(fs):
+    fs = bytearray(fs)
+    fs[13:17] = struct.pack('<I', crc32_mpeg2(fs[1:13]))
+    return bytes(fs)
+
+
+def gps_packet(layout, yy=24, mo=5, dd=17, hh=13, mi=42, ss=7, status=b'A', pps=1, nmea=None):
+    def pair(v):
+        return bytes([0x30 + v % 10, 0x30 + v // 10])  # units digit first
+    p = bytearray(b'\xFF\xEE') + pair(yy) + pair(mo) + pair(dd) + pair(ss) + pair(mi) + pair(hh)
+    p += struct.pack('<I', (mi * 60 + ss) * 1000000) if layout == 40 else bytes(4)
+    size = 77 if layout == 40 else 84
+    if nmea is None:
+        body = 'GPRMC,134207.00,A,3110.4706,N,12123.1151,E,0.0,0.0,170524,,,A'
+        x = 0
+        for c in body:
+            x ^= ord(c)
+        nmea = ('$%s*%02X' % (body, x)).encode()
+    p += nmea[:size].ljust(size, b'\x00')
+    p += b'\xDF' * (506 - len(p))
+    p += status + bytes([pps]) + bytes(4)
+    assert len(p) == 512
+    return bytes(p)
+
+
+def write(harness, name, data):
+    d = os.path.join(CORPUS, harness)
+    os.makedirs(d, exist_ok=True)
+    with open(os.path.join(d, name), 'wb') as f:
+        f.write(data)
+
+
+def pick(ps, count):
+    """A few packets spread over the capture, with distinct return modes where there are."""
+    step = max(1, len(ps) // count)
+    return [ps[i] for i in range(0, len(ps), step)][:count]
+
+
+def main():
+    p40p = payloads('pandar40p_dual.pcap')
+    p64 = payloads('pandar64_dual.pcap')
+    qt = payloads('qt128c2x_dual.pcap')
+    p40 = [p[:1240] + p[1240:1256] for p in p40p]  # Pandar40: 1240 bytes of blocks + 16-byte tail
+    gps40, gps64 = gps_packet(40), gps_packet(64)
+
+    sets = {'pandar40': p40, 'pandar40p': p40p, 'pandar64': p64, 'qt128': qt}
+    for h, ps in sets.items():
+        for i, p in enumerate(pick(ps, 3)):
+            write(h, 'real_%d' % i, p)
+        p = ps[0]
+        for n in (0, 1, 4, 12, len(p) // 2, len(p) - 1):
+            write(h, 'trunc_%d' % n, p[:n])
+        write(h, 'long', p + b'\x00')
+    # Pandar40P with its 4-byte UDP sequence, Pandar64 without.
+    write('pandar40p', 'sequence', p40p[1] + struct.pack('<I', 1234))
+    write('pandar64', 'no_sequence', p64[1][:1194])
+    for flags in (0x00, 0x01, 0x04, 0x05, 0x08, 0x0D, 0x1D, 0x15, 0x09):
+        write('qt128', 'flags_%02x' % flags, qt128_with_flags(qt[5], flags))
+    write('qt128', 'imu_flag', qt128_with_flags(qt[5], 0x1F))
+    write('qt128', 'custom_flag', qt128_with_flags(qt[5], 0x45))
+    write('qt128', 'fs_fault', qt128_with_flags(qt[6], 0x05, fs=fix_fs_crc(bytes([1, 2, 0x11, 0x34, 0x12]) + bytes(8) + bytes(4))))
+
+    # Signature: signed under KEY (valid), unsigned (zeros), wrong key, no signature section.
+    for i, p in enumerate(pick(qt, 2)):
+        write('signature', 'signed_%d' % i, qt128_with_flags(p, 0x1D, sign=True))
+        write('signature', 'signed_0d_%d' % i, qt128_with_flags(p, 0x0D, sign=True))
+    write('signature', 'signed_08', qt128_with_flags(qt[3], 0x08, sign=True))
+    write('signature', 'unsigned', qt128_with_flags(qt[3], 0x1D))
+    write('signature', 'no_section', qt128_with_flags(qt[3], 0x15))
+    bad = bytearray(qt128_with_flags(qt[3], 0x1D, sign=True))
+    bad[-1] ^= 1
+    write('signature', 'bad_mac', bytes(bad))
+    write('signature', 'capture', qt[0])
+
+    # GPS: both layouts, NMEA variants, a bad field each.
+    write('gps', 'pandar40', gps40)
+    write('gps', 'pandar64', gps64)
+    gga = b'$GPGGA,134207.00,3110.4706,N,12123.1151,E,1,08,1.0,10.0,M,0.0,M,,*4F'
+    write('gps', 'pandar64_gga', gps_packet(64, status=b'1', nmea=gga))
+    write('gps', 'no_nmea', gps_packet(40, nmea=b''))
+    write('gps', 'unlocked_v', gps_packet(40, status=b'V', pps=0))
+    write('gps', 'bad_month', gps_packet(40, mo=13))
+    write('gps', 'leap_day', gps_packet(64, yy=24, mo=2, dd=29))
+    write('gps', 'bad_day', gps_packet(64, yy=23, mo=2, dd=29))
+    write('gps', 'short', gps40[:511])
+    write('gps', 'bad_status', gps40[:506] + b'X' + gps40[507:])
+
+    # CSV files: the shipped files and short pieces of them.
+    cal = os.path.join(DATA, 'calibration')
+    for harness, files in (('angles_csv', ['pandar40p_unit_a_angles.csv', 'pandar64_unit_b_angles.csv',
+                                           'qt128c2x_unit_a_angles.csv']),
+                           ('firetimes_csv', ['pandar40p_firetimes.csv', 'pandar64_firetimes.csv',
+                                              'qt128c2x_firetimes.csv']),
+                           ('channel_config_csv', ['qt128c2x_channel_config.csv'])):
+        for f in files:
+            text = open(os.path.join(cal, f), 'rb').read()
+            stem = f.replace('.csv', '')
+            write(harness, stem, text)
+            lines = text.splitlines(keepends=True)
+            write(harness, stem + '_head', b''.join(lines[:4]))
+            write(harness, stem + '_crlf', text.replace(b'\r\n', b'\n').replace(b'\n', b'\r\n'))
+            write(harness, stem + '_bom', b'\xEF\xBB\xBF' + text)
+            write(harness, stem + '_cut', text[:len(text) * 2 // 3])
+    write('angles_csv', 'numbers', b'Channel,Elevation,Azimuth\n1,-1.5e+1,0.000001\n2,+15,-.5\n')
+
+    # Captures: a few records of each capture as pcap (usec, nsec, big-endian) and pcapng.
+    for name, tag in (('pandar40p_dual.pcap', '40p'), ('pandar64_dual.pcap', '64'), ('qt128c2x_dual.pcap', 'qt')):
+        hdr, recs = pcap_records(name)
+        write('capture', 'pcap_' + tag, hdr + b''.join(recs[:2]))
+    hdr, recs = pcap_records('qt128c2x_dual.pcap')
+    small = hdr + b''.join(recs[:2])
+    write('capture', 'truncated', small[:len(small) - 100])
+    write('capture', 'header_only', hdr)
+    nsec = b'\x4D\x3C\xB2\xA1' + hdr[4:] + b''.join(recs[:1])
+    write('capture', 'pcap_nsec', nsec)
+    be = bytearray(struct.pack('>IHHiIII', 0xA1B2C3D4, 2, 4, 0, 0, 65535, 1))
+    for r in recs[:1]:
+        ts, us, incl, orig = struct.unpack_from('<IIII', r)
+        be += struct.pack('>IIII', ts, us, incl, orig) + r[16:]
+    write('capture', 'pcap_big_endian', bytes(be))
+
+    def block(btype, body):
+        body += bytes((-len(body)) % 4)
+        n = 12 + len(body)
+        return struct.pack('<II', btype, n) + body + struct.pack('<I', n)
+    shb = block(0x0A0D0D0A, struct.pack('<IHHq', 0x1A2B3C4D, 1, 0, -1))
+    idb = block(1, struct.pack('<HHI', 1, 0, 65535) + struct.pack('<HHB3x', 9, 1, 9) + bytes(4))  # if_tsresol 9
+    epbs = b''
+    for r in recs[:2]:
+        ts, us, incl, orig = struct.unpack_from('<IIII', r)
+        t = ts * 10**9 + us * 1000
+        epbs += block(6, struct.pack('<IIIII', 0, t >> 32, t & 0xFFFFFFFF, incl, orig) + r[16:])
+    spb = block(3, struct.pack('<I', len(recs[0]) - 16) + recs[0][16:])
+    write('capture', 'pcapng', shb + idb + epbs)
+    write('capture', 'pcapng_spb', shb + idb + spb)
+    write('capture', 'pcapng_trunc', (shb + idb + epbs)[:-50])
+
+    # Frames: a cut byte, then u16 length + payload records.
+    def stream(cut, ps):
+        return bytes([cut]) + b''.join(struct.pack('<H', len(p)) + p for p in ps)
+    write('frames', 'pandar64', stream(0, p64[:4]))
+    write('frames', 'pandar64_gap', stream(64, [p64[0], p64[3], p64[2]]))
+    write('frames', 'qt128', stream(128, qt[:4]))
+    write('frames', 'pandar40_gps', stream(0, [p40[0], gps40, p40[1]]))
+    write('frames', 'pandar40p', stream(200, p40p[:3]))
+    write('frames', 'mixed', stream(10, [gps64, p64[10], qt[10], p40p[10], b'\xEE\xFF']))
+
+    # One real packet per model for the calibration harnesses (decoded under the parsed files).
+    with open(os.path.join(HERE, 'seed_packets.inc'), 'w') as f:
+        f.write('// Generated by fuzz/make_corpus.py from data/*.pcap: one real packet per model.\n')
+        for name, p in (('kPandar40P', p40p[7]), ('kPandar64', p64[7]), ('kQt128', qt[7])):
+            f.write('inline constexpr unsigned char %s[%d] = {\n' % (name, len(p)))
+            for i in range(0, len(p), 24):
+                f.write('  ' + ','.join('%d' % b for b in p[i:i + 24]) + ',\n')
+            f.write('};\n')
+    total = sum(os.path.getsize(os.path.join(dp, fn)) for dp, _, fns in os.walk(CORPUS) for fn in fns)
+    print('corpus: %d bytes' % total)
+
+
+if __name__ == '__main__':
+    main()
