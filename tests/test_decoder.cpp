@@ -326,6 +326,8 @@ TEST(Reject, Pandar64TailFields) {
   EXPECT_EQ(with(1191, 24), Error::bad_date_time);       // hour 24
   EXPECT_EQ(with(1193, 60), Error::bad_date_time);       // second 60
   EXPECT_EQ(with(1185, 0x01), Error::bad_timestamp);     // >= 1 000 000 us
+  EXPECT_EQ(with(1181, 0x06), Error::bad_motor_speed);   // 0x0657 = 1623 rpm
+  EXPECT_EQ(with(1181, 0x05), Error::ok);                // 0x0557 = 1367 rpm: a plausible speed
   EXPECT_EQ(with(9, 0x8D), Error::bad_azimuth);          // block 1 azimuth >= 36000
   EXPECT_EQ(with(8 + 194, 0x48), Error::dual_block_mismatch);  // block 2 azimuth differs from block 1
   EXPECT_EQ(pts.count, 0u);

@@ -17,6 +17,7 @@ const char* error_name(Error e) noexcept {
     case Error::bad_return_mode: return "bad_return_mode";
     case Error::bad_date_time: return "bad_date_time";
     case Error::bad_timestamp: return "bad_timestamp";
+    case Error::bad_motor_speed: return "bad_motor_speed";
     case Error::dual_block_mismatch: return "dual_block_mismatch";
     case Error::crc_body: return "crc_body";
     case Error::crc_functional_safety: return "crc_functional_safety";

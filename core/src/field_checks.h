@@ -17,6 +17,13 @@ inline Error pandar_return_mode(PacketInfo& info) {
   return Error::ok;
 }
 
+/// The manuals' spin rates are 600 and 1200 rpm; 1500 leaves room for a motor settling. Beyond
+/// it the field is corrupt (and the firing-time correction, a short series, would lose accuracy).
+inline constexpr std::uint16_t kMaxMotorRpm = 1500;
+inline Error motor_speed(const PacketInfo& info) {
+  return info.motor_rpm > kMaxMotorRpm ? Error::bad_motor_speed : Error::ok;
+}
+
 /// Reads the block azimuths (u16 LE at `first`, then every `stride` bytes): each below 360.00
 /// degrees, and the two blocks of a dual-return firing at one azimuth.
 inline Error block_azimuths(const std::uint8_t* first, std::size_t stride, PacketInfo& info) {

@@ -30,6 +30,7 @@ Error Decoder::validate_pandar40(ByteView p, PacketInfo& info) noexcept {
   }
 
   if (const Error e = detail::pandar_return_mode(info); e != Error::ok) return e;
+  if (const Error e = detail::motor_speed(info); e != Error::ok) return e;
   if (const Error e = detail::block_azimuths(p.data + kBlockAzimuth, kBlockBytes, info); e != Error::ok) return e;
 
   // Pandar40P: date-time year - 2000; timestamp in us within the second.

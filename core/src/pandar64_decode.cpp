@@ -22,6 +22,7 @@ Error Decoder::validate_pandar64(ByteView p, PacketInfo& info) noexcept {
   }
 
   if (const Error e = detail::pandar_return_mode(info); e != Error::ok) return e;
+  if (const Error e = detail::motor_speed(info); e != Error::ok) return e;
   if (const Error e = detail::block_azimuths(p.data + kBody, kBlockBytes, info); e != Error::ok) return e;
   // Date & Time: year - 2000 (section 3.1.2.3); Timestamp: us within the second, 0..999999.
   return detail::tail_time(p.data + kDateTime, 2000, 999999, info);

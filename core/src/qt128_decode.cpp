@@ -97,6 +97,7 @@ Error Decoder::validate_qt128(ByteView p, PacketInfo& info) noexcept {
     info.sequence = load_le32(tail + kTailSequence);
   }
   if (!qt128_return_mode(info.return_mode, info.returns) || info.returns != return_num) return Error::bad_return_mode;
+  if (const Error e = detail::motor_speed(info); e != Error::ok) return e;
 
   if (const Error e = detail::block_azimuths(p.data + kBody, kBlockBytes, info); e != Error::ok) return e;
   // Date & Time: year - 1900 (>= 70); Timestamp: us, 0..1000000 (the manual's range).

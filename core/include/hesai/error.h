@@ -27,6 +27,7 @@ enum class Error : std::uint8_t {
   bad_return_mode,        ///< return-mode byte not listed in the manual
   bad_date_time,          ///< tail date-time outside the calendar
   bad_timestamp,          ///< microsecond field beyond its manual's range (999 999; QT128 1 000 000)
+  bad_motor_speed,        ///< motor speed above 1500 rpm (the sensors spin at 600 or 1200)
   dual_block_mismatch,    ///< the two blocks of one dual-return firing disagree in azimuth
 
   // Integrity.
