@@ -22,6 +22,15 @@ using namespace hesai_test;
 
 namespace {
 
+// The program, started through the emulator in cross builds (qemu-user).
+std::string cli() {
+#if defined(HESAI_CLI_EMULATOR)
+  return std::string(HESAI_CLI_EMULATOR) + " " + HESAI_CLI_PATH;
+#else
+  return HESAI_CLI_PATH;
+#endif
+}
+
 struct CmdResult {
   int status = -1;
   std::string out;
@@ -29,7 +38,7 @@ struct CmdResult {
 
 CmdResult run(const std::string& args) {
   CmdResult r;
-  const std::string cmd = std::string(HESAI_CLI_PATH) + " " + args + " 2>/dev/null";
+  const std::string cmd = cli() + " " + args + " 2>/dev/null";
   FILE* p = popen(cmd.c_str(), "r");
   if (!p) return r;
   char buf[65536];
@@ -324,7 +333,7 @@ TEST(Cli, StatsCountsSignatures) {
 
 TEST(Cli, ListenReceivesEveryReplayedPacket) {
   const int port = 20000 + static_cast<int>(getpid() % 20000);
-  const std::string listen = std::string(HESAI_CLI_PATH) + " listen --bind 127.0.0.1 --port " + std::to_string(port) +
+  const std::string listen = cli() + " listen --bind 127.0.0.1 --port " + std::to_string(port) +
                              " --gps-port 0 --count 1800 --seconds 30 --json --quiet 2>/dev/null";
   FILE* l = popen(listen.c_str(), "r");
   ASSERT_NE(l, nullptr);
