@@ -129,6 +129,16 @@ TEST(Cli, HelpAndExitStatuses) {
                 data_path("calibration/qt128c2x_unit_a_angles.csv")).status, 1);
 }
 
+// The text report prints capture times as UTC dates. The Pandar64 capture is dated 2120 (year
+// byte 120 after 2000; calendar.timegm((2120,6,25,12,2,9)) = 4748760129, see test_golden.cpp),
+// past 2038: a 32-bit time_t (armhf without _TIME_BITS=64) printed 1984-05-19.
+TEST(Cli, StatsTextPrintsDatesPast2038) {
+  const CmdResult r = run("stats " + data_path("pandar64_dual.pcap"));
+  ASSERT_EQ(r.status, 0) << r.out;
+  // First packet: 2120-06-25 12:02:09 and 977341 us (its timestamp field).
+  EXPECT_NE(r.out.find("2120-06-25T12:02:09.977341000Z"), std::string::npos) << r.out;
+}
+
 // ---- The bundled captures ----
 
 struct CaptureCase {
