@@ -22,6 +22,15 @@ using namespace hesai_test;
 
 namespace {
 
+// The program, started through the emulator in cross builds (qemu-user).
+std::string cli() {
+#if defined(HESAI_CLI_EMULATOR)
+  return std::string(HESAI_CLI_EMULATOR) + " " + HESAI_CLI_PATH;
+#else
+  return HESAI_CLI_PATH;
+#endif
+}
+
 struct CmdResult {
   int status = -1;
   std::string out;
@@ -29,7 +38,7 @@ struct CmdResult {
 
 CmdResult run(const std::string& args) {
   CmdResult r;
-  const std::string cmd = std::string(HESAI_CLI_PATH) + " " + args + " 2>/dev/null";
+  const std::string cmd = cli() + " " + args + " 2>/dev/null";
   FILE* p = popen(cmd.c_str(), "r");
   if (!p) return r;
   char buf[65536];
@@ -133,6 +142,16 @@ TEST(Cli, HelpAndExitStatuses) {
   // A QT128 calibration for a Pandar64 capture: a configuration error, named.
   EXPECT_EQ(run("stats " + data_path("pandar64_dual.pcap") + " --calibration " +
                 data_path("calibration/qt128c2x_unit_a_angles.csv")).status, 1);
+}
+
+// The text report prints capture times as UTC dates. The Pandar64 capture is dated 2120 (year
+// byte 120 after 2000; calendar.timegm((2120,6,25,12,2,9)) = 4748760129, see test_golden.cpp),
+// past 2038: a 32-bit time_t (armhf without _TIME_BITS=64) printed 1984-05-19.
+TEST(Cli, StatsTextPrintsDatesPast2038) {
+  const CmdResult r = run("stats " + data_path("pandar64_dual.pcap"));
+  ASSERT_EQ(r.status, 0) << r.out;
+  // First packet: 2120-06-25 12:02:09 and 977341 us (its timestamp field).
+  EXPECT_NE(r.out.find("2120-06-25T12:02:09.977341000Z"), std::string::npos) << r.out;
 }
 
 // ---- The bundled captures ----
@@ -339,7 +358,7 @@ TEST(Cli, StatsCountsSignatures) {
 
 TEST(Cli, ListenReceivesEveryReplayedPacket) {
   const int port = 20000 + static_cast<int>(getpid() % 20000);
-  const std::string listen = std::string(HESAI_CLI_PATH) + " listen --bind 127.0.0.1 --port " + std::to_string(port) +
+  const std::string listen = cli() + " listen --bind 127.0.0.1 --port " + std::to_string(port) +
                              " --gps-port 0 --count 1800 --seconds 30 --json --quiet 2>/dev/null";
   FILE* l = popen(listen.c_str(), "r");
   ASSERT_NE(l, nullptr);

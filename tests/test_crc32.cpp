@@ -118,6 +118,15 @@ TEST(Crc32Mpeg2, HardwareDetectionAgreesWithTheCompiler) {
 }
 #endif
 
+// ARMv8 with the Crypto extension (-march=armv8-a+crypto, the aarch64 cross preset): the PMULL
+// folding path is chosen at compile time, so it must be the one the hardware path runs.
+#if defined(__aarch64__) && (defined(__ARM_FEATURE_CRYPTO) || defined(__ARM_FEATURE_AES)) && \
+    defined(__BYTE_ORDER__) && __BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__
+TEST(Crc32Mpeg2, PmullPathIsAvailableOnArmv8Crypto) {
+  EXPECT_TRUE(hesai::crc32_hardware_available());
+}
+#endif
+
 // ---- Every path against the definition, every length 0..4096 at every alignment 0..15 ----
 
 #if defined(__SANITIZE_ADDRESS__)

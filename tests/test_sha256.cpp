@@ -155,6 +155,16 @@ TEST(Sha256, ForcedHardwareFallsBackWhenUnavailable) {
   std::printf("SHA-256 hardware path available: %s\n", hesai::sha256_hardware_available() ? "yes" : "no");
 }
 
+// ARMv8 with the SHA-2 instructions (-march=armv8-a+crypto, the aarch64 cross preset): the
+// hardware compression function is compiled in and chosen by default.
+#if defined(__aarch64__) && (defined(__ARM_FEATURE_SHA2) || defined(__ARM_FEATURE_CRYPTO)) && \
+    !defined(__ARM_BIG_ENDIAN)
+TEST(Sha256, Armv8ShaPathIsAvailableOnArmv8Crypto) {
+  EXPECT_TRUE(hesai::sha256_hardware_available());
+  EXPECT_EQ(hesai::sha256_best_path(), Sha256Path::hardware);
+}
+#endif
+
 // The two compression functions on the same inputs: every length 0..1000, pseudo-random bytes.
 TEST(Sha256, PathsAgreeOnEveryLengthUpTo1000) {
   if (!hesai::sha256_hardware_available()) GTEST_SKIP() << "no SHA instructions on this CPU";

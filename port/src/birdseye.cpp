@@ -156,8 +156,8 @@ RgbImage render_birdseye(const Point* points, std::size_t count, const PngOption
   }
   if (error != nullptr) error->clear();
 
-  const long w = o.width;
-  const long h = o.height;
+  const auto w = static_cast<long>(o.width);  // <= 16384 (checked above): fits a 32-bit long
+  const auto h = static_cast<long>(o.height);
   const double ppm = static_cast<double>(w < h ? w : h) / (2.0 * o.range_m);  // pixels per metre
   const double cx = static_cast<double>(w) / 2.0;
   const double cy = static_cast<double>(h) / 2.0;
