@@ -5,20 +5,9 @@
 
 #include "fuzz_common.h"
 #include "hesai/calibration.h"
-#include "seed_packets.inc"
+#include "seed_packets.h"
 
-namespace {
-
-/// A real packet of `model` (fuzz/seed_packets.inc).
-hesai::ByteView seed_packet(hesai::Model model) {
-  switch (model) {
-    case hesai::Model::pandar64: return {kPandar64, sizeof kPandar64};
-    case hesai::Model::qt128c2x: return {kQt128, sizeof kQt128};
-    default: return {kPandar40P, sizeof kPandar40P};
-  }
-}
-
-}  // namespace
+using hesai_fuzz::seed_packet;
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const hesai_fuzz::ExactCopy in(data, size);

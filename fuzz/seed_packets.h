@@ -1,0 +1,20 @@
+// One real packet of each model (fuzz/seed_packets.inc, written by make_corpus.py), for harnesses
+// that apply a parsed calibration file and then decode a real packet.
+#pragma once
+
+#include "hesai/bytes.h"
+#include "hesai/model.h"
+#include "seed_packets.inc"
+
+namespace hesai_fuzz {
+
+/// A real packet of `model` (the Pandar40P one for the 40-channel models).
+inline hesai::ByteView seed_packet(hesai::Model model) {
+  switch (model) {
+    case hesai::Model::pandar64: return {kPandar64, sizeof kPandar64};
+    case hesai::Model::qt128c2x: return {kQt128, sizeof kQt128};
+    default: return {kPandar40P, sizeof kPandar40P};
+  }
+}
+
+}  // namespace hesai_fuzz
