@@ -9,17 +9,17 @@ namespace hesai {
 void HmacSha256Key::set(ByteView key, Sha256Path path) noexcept {
   std::uint8_t k0[kSha256BlockSize] = {};
   if (key.size > kSha256BlockSize) {
-    Sha256 h(path);
-    h.update(key);
-    h.finish(k0);
+    inner_.reset(path);  // hashes the long key here rather than in a context on the stack
+    inner_.update(key);
+    inner_.finish(k0);
   } else if (key.size != 0) {
     std::memcpy(k0, key.data, key.size);
   }
   for (std::uint8_t& b : k0) b ^= 0x36;  // ipad
-  inner_ = Sha256(path);
+  inner_.reset(path);
   inner_.update({k0, sizeof k0});
   for (std::uint8_t& b : k0) b ^= 0x36 ^ 0x5c;  // ipad off, opad on
-  outer_ = Sha256(path);
+  outer_.reset(path);
   outer_.update({k0, sizeof k0});
   secure_wipe(k0, sizeof k0);
 }
@@ -32,9 +32,9 @@ void HmacSha256Key::wipe() noexcept {
 void HmacSha256::finish(std::uint8_t out[kSha256Size]) noexcept {
   std::uint8_t inner_digest[kSha256Size];
   inner_.finish(inner_digest);
-  Sha256 outer(key_->outer_);
-  outer.update({inner_digest, sizeof inner_digest});
-  outer.finish(out);
+  inner_ = key_->outer_;  // the outer hash reuses this context: no second one on the stack
+  inner_.update({inner_digest, sizeof inner_digest});
+  inner_.finish(out);
   secure_wipe(inner_digest, sizeof inner_digest);
   inner_ = key_->inner_;
 }

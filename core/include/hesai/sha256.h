@@ -39,6 +39,8 @@ class Sha256 {
 
   /// Starts a new message (same path); wipes the buffered bytes.
   void reset() noexcept;
+  /// Starts a new message on `path` (as a new Sha256(path) would, without a temporary).
+  void reset(Sha256Path path) noexcept;
   /// Absorbs `data` (any length, split anywhere).
   void update(ByteView data) noexcept;
   /// Writes the 32-byte digest of everything absorbed since the last reset, then resets.

@@ -1,0 +1,219 @@
+#!/usr/bin/env python3
+"""Size and stack report of the core on a bare-metal target, with the budgets of issue #6.
+
+Sizes: arm-none-eabi-size of each core object (every function it has), and what the firmware
+image's linker map says each object contributes after --gc-sections (what a product linking the
+same functions pays). Stack: the worst path from each entry point through the call graph that GCC
+writes with -fcallgraph-info=su (each function's own frame, from -fstack-usage, summed along the
+deepest chain of calls). Budgets: the four decoders with CRC and HMAC (with the C library and
+libgcc routines they pull in) within 48 KiB of flash; at most 1 KiB of stack per call. Prints a
+Markdown report, writes it to --out, and exits 1 when a budget is exceeded.
+"""
+import argparse
+import glob
+import os
+import re
+import subprocess
+import sys
+
+FLASH_BUDGET = 48 * 1024
+STACK_BUDGET = 1024
+
+# Components of the core: archive member (source file) -> component.
+COMPONENTS = [
+    ('decoders (identify, validate, decode; all four sensors)',
+     ['decoder', 'pandar40_decode', 'pandar64_decode', 'qt128_decode', 'tables', 'error']),
+    ('CRC-32/MPEG-2', ['crc32', 'crc32_arm', 'crc32_x86']),
+    ('SHA-256 + HMAC-SHA256', ['sha256', 'hmac', 'ct']),
+    ('HKDF', ['hkdf']),
+    ('calibration files', ['calibration']),
+    ('GPS packets', ['gps']),
+    ('frames, sequence, stats', ['frame', 'sequence', 'stats']),
+]
+IN_BUDGET = {'decoders (identify, validate, decode; all four sensors)', 'CRC-32/MPEG-2', 'SHA-256 + HMAC-SHA256'}
+
+
+def member_component(member):
+    for name, members in COMPONENTS:
+        if member in members:
+            return name
+    return 'other core'
+
+
+def object_sizes(size_tool, objects):
+    """{member: (text, data, bss)} from arm-none-eabi-size (Berkeley format)."""
+    files = sorted(glob.glob(os.path.join(objects, '*.obj')) + glob.glob(os.path.join(objects, '*.o')))
+    out = subprocess.run([size_tool] + files, check=True, capture_output=True, text=True).stdout
+    sizes = {}
+    for line in out.splitlines()[1:]:
+        f = line.split()
+        sizes[os.path.basename(f[5]).split('.')[0]] = (int(f[0]), int(f[1]), int(f[2]))
+    return sizes
+
+
+def linked_sizes(map_file):
+    """{owner: [flash, ram]} from a GNU ld map; owner is a core member, 'libgcc', 'picolibc' or 'test image'."""
+    sizes = {}
+    in_map = False
+    pending = None
+    row = re.compile(r'^ (\S+)?\s+0x([0-9a-f]+)\s+0x([0-9a-f]+)\s+(\S.*)$')
+    for line in open(map_file):
+        if line.startswith('Linker script and memory map'):
+            in_map = True
+            continue
+        if not in_map:
+            continue
+        if re.match(r'^ \.\S+$', line.rstrip('\n')):  # a long section name alone on its line
+            pending = line.strip()
+            continue
+        m = row.match(line.rstrip('\n'))
+        if not m:
+            pending = None
+            continue
+        section = m.group(1) or pending
+        pending = None
+        if not section or not section.startswith('.') or section.startswith(('.debug', '.comment', '.ARM.attributes')):
+            continue
+        size, source = int(m.group(3), 16), m.group(4)
+        if size == 0:
+            continue
+        if 'libhesai_core.a(' in source:
+            owner = source.split('(')[1].split('.')[0]
+        elif 'libgcc.a(' in source:
+            owner = 'libgcc'
+        elif 'libc.a(' in source:
+            owner = 'picolibc'
+        else:
+            owner = 'test image'
+        flash = 0 if section.startswith(('.bss', 'COMMON', '.stack')) else size
+        ram = size if section.startswith(('.data', '.bss', 'COMMON')) else 0
+        entry = sizes.setdefault(owner, [0, 0])
+        entry[0] += flash
+        entry[1] += ram
+    return sizes
+
+
+def call_graph(objects):
+    """(frames, edges, names): own frame bytes per function, its callees, and demangled names."""
+    frames, edges, names, dynamic = {}, {}, {}, set()
+    node = re.compile(r'node: \{ title: "([^"]+)" label: "([^"]*)"')
+    edge = re.compile(r'edge: \{ sourcename: "([^"]+)" targetname: "([^"]+)"')
+    for path in glob.glob(os.path.join(objects, '*.ci')):
+        for line in open(path):
+            m = node.match(line)
+            if m:
+                title, label = m.groups()
+                parts = label.split('\\n')
+                names.setdefault(title, parts[0])
+                frame = re.search(r'(\d+) bytes \((\w[\w,]*)\)', label)
+                if frame:
+                    frames[title] = int(frame.group(1))
+                    if 'dynamic' in frame.group(2) and 'bounded' not in frame.group(2):
+                        dynamic.add(title)
+                continue
+            m = edge.match(line)
+            if m:
+                edges.setdefault(m.group(1), set()).add(m.group(2))
+    return frames, edges, names, dynamic
+
+
+def worst_stack(fn, frames, edges, memo, stack=()):
+    """Deepest stack from fn: (bytes, chain, external calls, recursive)."""
+    if fn in memo:
+        return memo[fn]
+    if fn in stack:
+        return (0, [fn], set(), True)
+    best = (0, [], set(), False)
+    external = set()
+    recursive = False
+    for callee in sorted(edges.get(fn, ())):
+        if callee not in frames:
+            external.add(callee)
+            continue
+        r = worst_stack(callee, frames, edges, memo, stack + (fn,))
+        external |= r[2]
+        recursive |= r[3]
+        if r[0] > best[0]:
+            best = r
+    result = (frames.get(fn, 0) + best[0], [fn] + best[1], external, recursive)
+    memo[fn] = result
+    return result
+
+
+def short_name(demangled):
+    """'hesai::Error hesai::Decoder::decode(...)' -> 'hesai::Decoder::decode'."""
+    head = re.sub(r'\[with .*\]$', '', demangled).split('(')[0].strip()
+    return head.split(' ')[-1] if head else demangled
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument('--map', required=True)
+    ap.add_argument('--objects', required=True)
+    ap.add_argument('--size', required=True)
+    ap.add_argument('--out')
+    args = ap.parse_args()
+    lines, over = [], []
+
+    objs = object_sizes(args.size, args.objects)
+    linked = linked_sizes(args.map)
+    lines += ['### Size of the core (bytes)', '',
+              '| component | archive members | flash, every function (text + data) | flash, linked into the test image | RAM (data + bss) |',
+              '| --- | --- | ---: | ---: | ---: |']
+    budget_flash = 0
+    for name, members in COMPONENTS:
+        present = [m for m in members if m in objs]
+        whole = sum(objs[m][0] + objs[m][1] for m in present)
+        used = sum(linked.get(m, [0, 0])[0] for m in present)
+        ram = sum(objs[m][1] + objs[m][2] for m in present)
+        lines.append('| %s | %s | %d | %d | %d |' % (name, ', '.join(present), whole, used, ram))
+        if name in IN_BUDGET:
+            budget_flash += used
+    runtime = linked.get('libgcc', [0, 0])[0] + linked.get('picolibc', [0, 0])[0]
+    lines.append('| libgcc + picolibc routines the image uses (soft-float double, memcpy, ...) | | | %d | |' % runtime)
+    lines.append('| the test image itself (known answers, four real packets, startup) | | | %d | %d |'
+                 % (linked.get('test image', [0, 0])[0], linked.get('test image', [0, 0])[1]))
+    budget_flash += runtime
+    verdict = 'within' if budget_flash <= FLASH_BUDGET else 'OVER'
+    lines += ['', 'Four decoders + CRC + SHA-256/HMAC + the libgcc/picolibc routines linked: **%d bytes (%.1f KiB), %s the 48 KiB budget**.'
+              % (budget_flash, budget_flash / 1024.0, verdict), '']
+    if budget_flash > FLASH_BUDGET:
+        over.append('flash %d > %d' % (budget_flash, FLASH_BUDGET))
+
+    frames, edges, names, dynamic = call_graph(args.objects)
+    memo = {}
+    rows = []
+    for fn in frames:
+        n = names.get(fn, fn)
+        if 'hesai::' not in n or '{anonymous}' in n or '::detail::' in n:
+            continue
+        total, chain, external, recursive = worst_stack(fn, frames, edges, memo)
+        rows.append((total, short_name(n), chain, external, recursive or fn in dynamic))
+    rows.sort(key=lambda r: (-r[0], r[1]))
+    lines += ['### Worst stack use per entry point (bytes, from -fstack-usage and the call graph)', '',
+              '| function | worst stack | deepest chain | library calls (not counted) |', '| --- | ---: | --- | --- |']
+    seen = set()
+    for total, name, chain, external, unbounded in rows:
+        if name in seen:
+            continue
+        seen.add(name)
+        chain_text = ' → '.join(short_name(names.get(c, c)).replace('hesai::', '') for c in chain[1:4])
+        lib = ', '.join(sorted(e for e in external if not e.startswith('_ZN5hesai')))[:60]
+        lines.append('| %s | %d%s | %s | %s |' % (name, total, ' (unbounded!)' if unbounded else '', chain_text, lib))
+        if total > STACK_BUDGET or unbounded:
+            over.append('stack %s %d' % (name, total))
+    lines += ['', 'Budget: at most %d bytes of stack per call; worst: %d bytes.' % (STACK_BUDGET, rows[0][0] if rows else 0)]
+
+    text = '\n'.join(lines) + '\n'
+    print(text)
+    if args.out:
+        with open(args.out, 'w') as f:
+            f.write(text)
+    if over:
+        print('BUDGET EXCEEDED: ' + '; '.join(over))
+        return 1
+    return 0
+
+
+if __name__ == '__main__':
+    sys.exit(main())
