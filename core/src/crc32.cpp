@@ -17,16 +17,25 @@ constexpr std::uint32_t table_update(std::uint32_t crc, const std::uint8_t* p, s
   return crc;
 }
 
-// Eight bytes per step. The register is xored into the first four bytes (read big-endian, with
-// shifts: no aligned or host-order loads), then byte j of the eight, followed by 7 - j more
-// bytes, contributes slicing table 7 - j.
+// The lookups of one big-endian word w whose first byte is followed by `after` more bytes of the
+// step: byte j of the word uses slicing table after - j. Two pairs, combined as a tree.
+constexpr std::uint32_t word_lookup(std::uint32_t w, std::size_t after) noexcept {
+  return (kSlicing[after][w >> 24] ^ kSlicing[after - 1][(w >> 16) & 0xFFu]) ^
+         (kSlicing[after - 2][(w >> 8) & 0xFFu] ^ kSlicing[after - 3][w & 0xFFu]);
+}
+
+// kCrc32Mpeg2Slices bytes per step, read as big-endian words with shifts (no aligned or
+// host-order loads). The register is xored into the first word; byte j of the step, followed by
+// S - 1 - j more bytes, contributes slicing table S - 1 - j. Only the first word depends on the
+// register: the other words' lookups run while it waits for the previous step, which is what
+// bounds the speed (one chain of xor, lookup, xor per step), so more bytes per step is faster.
 constexpr std::uint32_t slicing_update(std::uint32_t crc, const std::uint8_t* p, std::size_t n) noexcept {
-  static_assert(kCrc32Mpeg2Slices == 8, "the step below is written out for slicing-by-8");
-  for (; n >= 8; p += 8, n -= 8) {
-    const std::uint32_t a = crc ^ load_be32(p);
-    crc = kSlicing[7][a >> 24] ^ kSlicing[6][(a >> 16) & 0xFFu] ^ kSlicing[5][(a >> 8) & 0xFFu] ^
-          kSlicing[4][a & 0xFFu] ^ kSlicing[3][p[4]] ^ kSlicing[2][p[5]] ^ kSlicing[1][p[6]] ^
-          kSlicing[0][p[7]];
+  constexpr std::size_t kStep = kCrc32Mpeg2Slices;
+  static_assert(kStep % 4 == 0 && kStep >= 8, "whole words per step");
+  for (; n >= kStep; p += kStep, n -= kStep) {
+    std::uint32_t ahead = 0;
+    for (std::size_t w = 4; w < kStep; w += 4) ahead ^= word_lookup(load_be32(p + w), kStep - 1 - w);
+    crc = word_lookup(crc ^ load_be32(p), kStep - 1) ^ ahead;
   }
   return table_update(crc, p, n);
 }

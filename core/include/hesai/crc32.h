@@ -39,8 +39,10 @@ constexpr std::array<std::uint32_t, 256> crc32_mpeg2_make_table() noexcept {
   return t;
 }
 
-/// Number of slicing tables: the slicing path consumes this many bytes per step.
-inline constexpr std::size_t kCrc32Mpeg2Slices = 8;
+/// Number of slicing tables: the slicing path consumes this many bytes per step. 16 (16 KiB of
+/// tables) on 64-bit targets; 8 (8 KiB) on 32-bit ones, microcontrollers among them, where flash
+/// is scarce.
+inline constexpr std::size_t kCrc32Mpeg2Slices = sizeof(void*) >= 8 ? 16 : 8;
 
 /// Slicing tables: table k, entry b is the register that byte b followed by k zero bytes yields
 /// from a zero register (table 0 is the byte table).
