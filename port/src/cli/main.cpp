@@ -187,18 +187,19 @@ int cmd_listen(Args& args) {
   out.format = "pcd";
   std::string bind_addr = "0.0.0.0", error;
   std::uint64_t port = 2368, gps_port = 10110, count = 0;
-  float seconds = 0;
+  float seconds = 0, idle = 0;
   bool json = false, quiet = false;
   while (!args.empty()) {
     const std::string a = args.peek();
     if (a == "--help" || a == "-h") {
       std::printf("usage: hesai listen [options]\n\nReceives sensor packets over UDP, prints statistics once a second\n"
-                  "(on stderr) and a summary at the end (Ctrl-C, --count or --seconds).\n\n"
+                  "(on stderr) and a summary at the end (Ctrl-C, --count, --seconds or --idle).\n\n"
                   "  --bind ADDR             local IPv4 address (default 0.0.0.0)\n"
                   "  --port N                point-cloud port (default 2368)\n"
                   "  --gps-port N            GPS port (default 10110; 0: none)\n"
                   "  --count N               stop after N packets\n"
                   "  --seconds S             stop after S seconds\n"
+                  "  --idle S                stop when no packet came for S seconds (after the first)\n"
                   "  --json                  the summary as one JSON object (keys as in 'hesai stats --json')\n"
                   "  --quiet                 no statistics once a second\n%s%s%s",
                   kDecodeOptionsHelp, kOutputOptionsHelp, kKeyOptionsHelp);
@@ -218,8 +219,9 @@ int cmd_listen(Args& args) {
       if (!args.value(a, v) || !parse_u64(v, n) || (a != "--count" && n > 65535))
         return usage_error("listen", a + " needs a number");
       (a == "--port" ? port : a == "--gps-port" ? gps_port : count) = n;
-    } else if (a == "--seconds") {
-      if (!args.value(a, v) || !parse_float(v, seconds) || seconds <= 0) return usage_error("listen", "--seconds needs a positive number");
+    } else if (a == "--seconds" || a == "--idle") {
+      float& target = a == "--seconds" ? seconds : idle;
+      if (!args.value(a, v) || !parse_float(v, target) || target <= 0) return usage_error("listen", a + " needs a positive number");
     } else return usage_error("listen", "unknown option " + a);
   }
   if (!finish_key_options(o, error)) return usage_error("listen", error);
@@ -247,12 +249,16 @@ int cmd_listen(Args& args) {
   const std::int64_t deadline = seconds > 0 ? start + static_cast<std::int64_t>(seconds * 1e9) : INT64_MAX;
   std::int64_t next_report = start + 1000000000;
   std::vector<port::Datagram> batch;
+  const std::int64_t idle_ns = static_cast<std::int64_t>(idle * 1e9);
+  std::int64_t last_packet = 0;  // monotonic time of the last datagram; 0 before the first
   std::uint64_t received = 0;
   bool fatal = false;
-  while (!g_stop && !fatal && (count == 0 || received < count) && port::monotonic_ns() < deadline) {
+  auto idle_over = [&] { return idle_ns > 0 && last_packet != 0 && port::monotonic_ns() - last_packet > idle_ns; };
+  while (!g_stop && !fatal && (count == 0 || received < count) && port::monotonic_ns() < deadline && !idle_over()) {
     for (port::UdpReceiver* rx : {&points_rx, &gps_rx}) {
       if (rx->fd() < 0) continue;
       if (rx->receive(batch, rx == &points_rx ? 50 : 0) < 0) fatal = true;
+      if (!batch.empty()) last_packet = port::monotonic_ns();
       for (const port::Datagram& d : batch) {
         if (count != 0 && received >= count) break;
         ++received;
