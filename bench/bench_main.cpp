@@ -1,5 +1,6 @@
 // hesai_bench: packet validation and decoding per sensor, with a memcpy baseline of the same
-// packets; the CRC-32/MPEG-2 paths; SHA-256 and HMAC-SHA256 beside OpenSSL's.
+// packets and a baseline that only writes their Points; the CRC-32/MPEG-2 paths; SHA-256 and
+// HMAC-SHA256 beside OpenSSL's.
 // Packets are real ones from data/*.pcap, taken round-robin (a handful, not one).
 // bench/report.py turns the JSON output into a table of ratios and target checks.
 #include <benchmark/benchmark.h>
@@ -162,6 +163,51 @@ void BM_Copy(benchmark::State& state, hesai::Model model) {
   finish_counters(state, bytes, 0);
 }
 
+/// The output floor: writing as many 40-byte Points as decode() yields for the same packets
+/// (each field stored, none computed), i.e. what the output format alone costs.
+void BM_WritePoints(benchmark::State& state, hesai::Model model) {
+  const std::vector<Bytes>& packets = sensor(model).packets;
+  hesai::Decoder decoder(model);
+  static hesai::PacketPoints out;
+  std::vector<std::size_t> counts;
+  hesai::PacketInfo info;
+  for (const Bytes& p : packets) {
+    if (decoder.decode({p.data(), p.size()}, info, out) != hesai::Error::ok) {
+      state.SkipWithError("a benchmark packet does not decode");
+      return;
+    }
+    counts.push_back(out.count);
+  }
+  std::size_t i = 0;
+  std::uint64_t bytes = 0, points = 0;
+  for (auto _ : state) {
+    const std::size_t n = counts[i];
+    const float f = static_cast<float>(i);
+    for (std::size_t k = 0; k < n; ++k) {
+      hesai::Point& o = out.points[k];
+      o.x = f;
+      o.y = f;
+      o.z = f;
+      o.distance_m = f;
+      o.azimuth_deg = f;
+      o.elevation_deg = f;
+      o.time_ns = static_cast<std::int64_t>(k);
+      o.intensity = static_cast<std::uint8_t>(k);
+      o.channel = static_cast<std::uint8_t>(k);
+      o.return_index = 0;
+      o.confidence = 0;
+      o.block = static_cast<std::uint8_t>(i);
+    }
+    out.count = n;
+    benchmark::DoNotOptimize(out);
+    benchmark::ClobberMemory();
+    bytes += packets[i].size();
+    points += n;
+    i = i + 1 == packets.size() ? 0 : i + 1;
+  }
+  finish_counters(state, bytes, points);
+}
+
 Bytes pseudo_random(std::size_t n) {
   Bytes b(n);
   std::uint32_t x = 0x12345678u;
@@ -270,6 +316,7 @@ void register_all() {
   for (const NamedModel& s : kSensors) {
     const std::string n = s.name;
     benchmark::RegisterBenchmark(("BM_Baseline_copy_" + n).c_str(), BM_Copy, s.model);
+    benchmark::RegisterBenchmark(("BM_Baseline_write_points_" + n).c_str(), BM_WritePoints, s.model);
     benchmark::RegisterBenchmark(("BM_" + n + "_validate").c_str(), BM_Decoder, s.model, Stage::validate);
     benchmark::RegisterBenchmark(("BM_" + n + "_decode").c_str(), BM_Decoder, s.model, Stage::decode);
     benchmark::RegisterBenchmark(("BM_" + n + "_decode_nofiretime").c_str(), BM_Decoder, s.model,

@@ -109,6 +109,18 @@ def main():
     w = get('BM_CRC32_hardware/65536')
     target('CRC hardware >= 10 GB/s (64 KiB)', w, w and w['bytes_per_second'] >= 10e9,
            w and '%.2f GB/s' % (w['bytes_per_second'] / 1e9))
+    # What the output format alone costs: writing the same number of 40-byte Points.
+    floors = []
+    for sensor in ('Pandar40', 'Pandar40P', 'Pandar64', 'QT128C2X'):
+        dec, wp = get('BM_%s_decode' % sensor), get('BM_Baseline_write_points_%s' % sensor)
+        if dec and wp:
+            floors.append('%-12s decode %8.1f ns, writing its Points alone %7.1f ns (%.1f x)' % (
+                sensor, ns(dec), ns(wp), ns(dec) / ns(wp)))
+    if floors:
+        print()
+        print('output floor (BM_Baseline_write_points_<sensor>):')
+        for line in floors:
+            print('  ' + line)
     print()
     print('%-45s %-5s %s' % ('target', 'check', 'measured'))
     for label, verdict, shown in checks:

@@ -61,6 +61,50 @@ TEST(ManualExample, Pandar64Channel5Block3) {
   EXPECT_EQ(pts.points[0].time_ns, ns_of(s) - 227224);  // time does not depend on the switch
 }
 
+// The decoder keeps per-channel values for the last spin rate: a new rate, new angles and new
+// firing times must each take effect on the next packet. Channel 5 of the Pandar64 as above
+// (offset -1.042 deg, firing -17.964 us); 1200 rpm spins 0.0072 deg/us: -0.1293408 deg.
+TEST(ManualExample, Pandar64SpinRateAndCalibrationChangesApply) {
+  const Stamp s;
+  Decoder dec(Model::pandar64);
+  PacketInfo info;
+  PacketPoints pts;
+  auto decode_one = [&](std::uint16_t rpm, std::uint16_t block_cdeg) {
+    auto p = pandar64_packet(0x37, s, rpm);
+    pandar64_azimuth(p, 3, block_cdeg);
+    pandar64_point(p, 3, 5, 2500, 77);
+    EXPECT_EQ(dec.decode(view(p), info, pts), Error::ok);
+    EXPECT_EQ(pts.count, 1u);
+    return pts.points[0];
+  };
+  EXPECT_NEAR(decode_one(600, 10000).azimuth_deg, 100.0 - 1.042 - 0.0646704, 1e-4);
+  EXPECT_NEAR(decode_one(1200, 10000).azimuth_deg, 100.0 - 1.042 - 0.1293408, 1e-4);
+  EXPECT_NEAR(decode_one(600, 10000).azimuth_deg, 100.0 - 1.042 - 0.0646704, 1e-4);
+  // Across 0: block 0.50 deg -> 0.5 - 1.042 - 0.0646704 + 360.
+  EXPECT_NEAR(decode_one(600, 50).azimuth_deg, 360.0 + 0.5 - 1.042 - 0.0646704, 1e-4);
+
+  // Channel 5 moved to elevation 0 and offset +2 deg: z = 0, a = 100 + 2 - 0.0646704.
+  AngleCorrection angles;
+  angles.channels = 64;
+  angles.azimuth_deg[4] = 2.0;
+  ASSERT_EQ(dec.set_angles(angles), Error::ok);
+  Point q = decode_one(600, 10000);
+  EXPECT_NEAR(q.azimuth_deg, 101.9353296, 1e-4);
+  EXPECT_NEAR(q.z, 0.0, 1e-6);
+  EXPECT_NEAR(q.x, 10 * std::sin(101.9353296 * M_PI / 180), 1e-4);
+  // Across 360: block 359.00 deg + 2 - 0.0646704 -> 0.9353296.
+  EXPECT_NEAR(decode_one(600, 35900).azimuth_deg, 0.9353296, 1e-4);
+
+  // Firing times of 0: no correction, and the point time is the block's end time t0 - 209.26 us.
+  FiretimeCorrection fire;
+  fire.channels = 64;
+  for (std::size_t i = 0; i < 64; ++i) fire.fires[0][i] = true;
+  ASSERT_EQ(dec.set_firetimes(fire), Error::ok);
+  q = decode_one(600, 10000);
+  EXPECT_NEAR(q.azimuth_deg, 102.0, 1e-4);
+  EXPECT_EQ(q.time_ns, ns_of(s) - 209260);
+}
+
 // Pandar64 App. B.3, dual return: blocks 5 and 6 end at t0 - 42.58 us, blocks 1 and 2 at
 // t0 - 42.58 - 55.56 x 2 = t0 - 153.70 us. Channel 5 fires 17.964 us before its block ends.
 TEST(ManualExample, Pandar64DualReturnBlockPairs) {

@@ -95,30 +95,21 @@ Decoder::Decoder(Model model) noexcept : model_(model) {
       for (std::size_t i = 0; i < pandar40::kChannels; ++i) {
         set_channel_angle(i, tables::pandar40_channel_angles[i].elevation_deg,
                           tables::pandar40_channel_angles[i].azimuth_deg);
-        channels_[i].fire_us = {static_cast<float>(tables::pandar40_firetime_us[i]),
-                                static_cast<float>(tables::pandar40_firetime_us[i])};
-        channels_[i].fire_ns = {round_to_int(tables::pandar40_firetime_us[i] * 1000),
-                                round_to_int(tables::pandar40_firetime_us[i] * 1000)};
+        set_channel_firetime(i, tables::pandar40_firetime_us[i], tables::pandar40_firetime_us[i]);
       }
       break;
     case Model::pandar64:
       for (std::size_t i = 0; i < pandar64::kChannels; ++i) {
         set_channel_angle(i, tables::pandar64_channel_angles[i].elevation_deg,
                           tables::pandar64_channel_angles[i].azimuth_deg);
-        channels_[i].fire_us = {static_cast<float>(tables::pandar64_firetime_us[i]),
-                                static_cast<float>(tables::pandar64_firetime_us[i])};
-        channels_[i].fire_ns = {round_to_int(tables::pandar64_firetime_us[i] * 1000),
-                                round_to_int(tables::pandar64_firetime_us[i] * 1000)};
+        set_channel_firetime(i, tables::pandar64_firetime_us[i], tables::pandar64_firetime_us[i]);
       }
       break;
     case Model::qt128c2x:
       for (std::size_t i = 0; i < qt128::kChannels; ++i) {
         set_channel_angle(i, tables::qt128_channel_angles[i].elevation_deg,
                           tables::qt128_channel_angles[i].azimuth_deg);
-        const double t1 = tables::qt128_firetime_us_loop1[i];
-        const double t2 = tables::qt128_firetime_us_loop2[i];
-        channels_[i].fire_us = {static_cast<float>(t1), static_cast<float>(t2)};
-        channels_[i].fire_ns = {round_to_int(t1 * 1000), round_to_int(t2 * 1000)};
+        set_channel_firetime(i, tables::qt128_firetime_us_loop1[i], tables::qt128_firetime_us_loop2[i]);
       }
       break;
     case Model::unknown: break;
@@ -128,13 +119,47 @@ Decoder::Decoder(Model model) noexcept : model_(model) {
 void Decoder::set_channel_angle(std::size_t ch, double elevation_deg, double azimuth_deg) noexcept {
   const SinCos e = sin_cos_deg(elevation_deg);
   const SinCos a = sin_cos_deg(azimuth_deg);
-  Channel& c = channels_[ch];
-  c.cos_el = static_cast<float>(e.cos);
-  c.sin_el = static_cast<float>(e.sin);
-  c.cos_az = static_cast<float>(a.cos);
-  c.sin_az = static_cast<float>(a.sin);
-  c.elevation_deg = static_cast<float>(elevation_deg);
-  c.azimuth_deg = static_cast<float>(azimuth_deg);
+  geo_.cos_el_cos_az[ch] = static_cast<float>(e.cos * a.cos);
+  geo_.cos_el_sin_az[ch] = static_cast<float>(e.cos * a.sin);
+  geo_.sin_el[ch] = static_cast<float>(e.sin);
+  geo_.elevation_deg[ch] = static_cast<float>(elevation_deg);
+  geo_.azimuth_deg[ch] = static_cast<float>(azimuth_deg);
+  spin_.rpm = SpinCache::kStale;
+}
+
+void Decoder::set_channel_firetime(std::size_t ch, double loop1_us, double loop2_us) noexcept {
+  geo_.fire_us[0][ch] = static_cast<float>(loop1_us);
+  geo_.fire_us[1][ch] = static_cast<float>(loop2_us);
+  geo_.fire_ns[0][ch] = round_to_int(loop1_us * 1000);
+  geo_.fire_ns[1][ch] = round_to_int(loop2_us * 1000);
+  spin_.rpm = SpinCache::kStale;
+}
+
+void Decoder::update_spin(std::uint16_t rpm) noexcept {
+  // Spin rate in radians per microsecond: rpm x 2 pi / 60e6.
+  const float omega = static_cast<float>(rpm) * static_cast<float>(2 * kPi / 60e6);
+  constexpr float kRadToDeg = static_cast<float>(180.0 / kPi);
+  // The Pandars fire one sequence (both loops hold the same times); the QT128 alternates two.
+  const std::size_t loops = model_ == Model::qt128c2x ? 2 : 1;
+  const std::size_t channels = channel_count(model_);
+  for (std::size_t loop = 0; loop < loops; ++loop) {
+    for (std::size_t ch = 0; ch < channels; ++ch) {
+      // Beam azimuth b = azimuth offset + firing-time correction d (|d| < 0.01 rad: a short series).
+      const float d = geo_.fire_us[loop][ch] * omega;
+      const float cos_d = 1.0f - 0.5f * d * d;
+      const float sin_d = d - d * d * d * (1.0f / 6.0f);
+      const float cc = geo_.cos_el_cos_az[ch];
+      const float cs = geo_.cos_el_sin_az[ch];
+      spin_.dir_cos[loop][ch] = cc * cos_d - cs * sin_d;
+      spin_.dir_sin[loop][ch] = cs * cos_d + cc * sin_d;
+      // In [0, 360) (calibration offsets may be negative or reach 360 degrees).
+      float az = geo_.azimuth_deg[ch] + d * kRadToDeg;
+      while (az < 0) az += 360.0f;
+      while (az >= 360.0f) az -= 360.0f;
+      spin_.azimuth_deg[loop][ch] = az;
+    }
+  }
+  spin_.rpm = rpm;
 }
 
 Error Decoder::set_angles(const AngleCorrection& angles) noexcept {
@@ -159,12 +184,12 @@ Error Decoder::set_firetimes(const FiretimeCorrection& f) noexcept {
     }
   }
   for (std::size_t i = 0; i < f.channels; ++i) {
+    std::array<double, 2> us{};
     for (std::size_t loop = 0; loop < 2; ++loop) {
       const std::size_t src = two_loops ? loop : 0;
-      const double us = f.fires[src][i] ? f.firetime_us[src][i] : 0.0;
-      channels_[i].fire_us[loop] = static_cast<float>(us);
-      channels_[i].fire_ns[loop] = round_to_int(us * 1000);
+      us[loop] = f.fires[src][i] ? f.firetime_us[src][i] : 0.0;
     }
+    set_channel_firetime(i, us[0], us[1]);
   }
   return Error::ok;
 }
@@ -206,57 +231,63 @@ template <std::size_t kPointBytes>
 void Decoder::emit_block(const std::uint8_t* points, std::size_t channels, const PacketInfo& info,
                          std::size_t block, std::int64_t block_time_ns, std::size_t loop,
                          PacketPoints& out) const noexcept {
-  const float block_deg = static_cast<float>(info.block_azimuth[block]) * 0.01f;
-  const SinCos ab = sin_cos_deg(static_cast<double>(info.block_azimuth[block]) * 0.01);
+  const std::uint16_t block_azimuth = info.block_azimuth[block];
+  const float block_deg = static_cast<float>(block_azimuth) * 0.01f;
+  const SinCos ab = sin_cos_deg(static_cast<double>(block_azimuth) * 0.01);
   const float sin_a = static_cast<float>(ab.sin);
   const float cos_a = static_cast<float>(ab.cos);
-  // Spin rate in radians per microsecond: rpm x 2 pi / 60e6.
-  const float omega = firetime_correction_ ? static_cast<float>(info.motor_rpm) * static_cast<float>(2 * kPi / 60e6) : 0.0f;
   const float unit_m = static_cast<float>(info.dis_unit_mm) * 0.001f;
   const std::uint8_t return_index = info.returns == 2 ? static_cast<std::uint8_t>(block & 1) : 0;
+  const std::uint8_t block_index = static_cast<std::uint8_t>(block);
   const std::uint16_t min_distance = model_ == Model::qt128c2x ? 2 : 1;  // QT128 reserves distance 1 as a marker
-  constexpr float kRadToDeg = static_cast<float>(180.0 / kPi);
+  const float* const dir_cos = spin_.dir_cos[loop].data();
+  const float* const dir_sin = spin_.dir_sin[loop].data();
+  const float* const azimuth_deg = spin_.azimuth_deg[loop].data();
+  const float* const sin_el = geo_.sin_el.data();
+  const float* const elevation_deg = geo_.elevation_deg.data();
+  const std::int32_t* const fire_ns = geo_.fire_ns[loop].data();
 
+  // Every channel's point is written at out.points[n] and kept (n advanced) only when its
+  // distance is valid: no branch to mispredict. n <= the channels before this one, so the
+  // write stays below blocks x channels <= kMaxPointsPerPacket.
+  Point* const pts = out.points.data();
+  std::size_t n = out.count;
   for (std::size_t ch = 0; ch < channels; ++ch) {
     const std::uint8_t* p = points + ch * kPointBytes;
     const std::uint16_t raw = load_le16(p);
-    if (raw < min_distance) continue;
-    const Channel& c = channels_[ch];
-    // Channel angle b = azimuth offset + firing-time correction d (|d| < 0.01 rad: a short series).
-    const float d = c.fire_us[loop] * omega;
-    const float cos_d = 1.0f - 0.5f * d * d;
-    const float sin_d = d - d * d * d * (1.0f / 6.0f);
-    const float cos_b = c.cos_az * cos_d - c.sin_az * sin_d;
-    const float sin_b = c.sin_az * cos_d + c.cos_az * sin_d;
-    // Point azimuth a = block azimuth + b, by the angle-sum identities.
-    const float sin_ab = sin_a * cos_b + cos_a * sin_b;
-    const float cos_ab = cos_a * cos_b - sin_a * sin_b;
     const float r = static_cast<float>(raw) * unit_m;
-    const float rh = r * c.cos_el;
-
-    Point& o = out.points[out.count++];
-    o.x = rh * sin_ab;
-    o.y = rh * cos_ab;
-    o.z = r * c.sin_el;
+    // Point azimuth a + b by the angle-sum identities (dir_cos, dir_sin carry cos(e)).
+    Point& o = pts[n];
+    o.x = r * (sin_a * dir_cos[ch] + cos_a * dir_sin[ch]);
+    o.y = r * (cos_a * dir_cos[ch] - sin_a * dir_sin[ch]);
+    o.z = r * sin_el[ch];
     o.distance_m = r;
-    float az = block_deg + c.azimuth_deg + d * kRadToDeg;
-    if (az < 0) az += 360.0f;
+    // Both terms lie in [0, 360): one exact subtraction brings the sum into range.
+    float az = block_deg + azimuth_deg[ch];
     if (az >= 360.0f) az -= 360.0f;
     o.azimuth_deg = az;
-    o.elevation_deg = c.elevation_deg;
-    o.time_ns = block_time_ns + c.fire_ns[loop];
+    o.elevation_deg = elevation_deg[ch];
+    o.time_ns = block_time_ns + fire_ns[ch];
     o.intensity = p[2];
     o.channel = static_cast<std::uint8_t>(ch + 1);
     o.return_index = return_index;
-    if constexpr (kPointBytes == 4) o.confidence = p[3];
-    o.block = static_cast<std::uint8_t>(block);
+    if constexpr (kPointBytes == 4) {
+      o.confidence = p[3];
+    } else {
+      o.confidence = 0;
+    }
+    o.block = block_index;
+    n += static_cast<std::size_t>(raw >= min_distance);
   }
+  out.count = n;
 }
 
 Error Decoder::decode(ByteView payload, PacketInfo& info, PacketPoints& out) noexcept {
   out.count = 0;
   const Error e = validate(payload, info);
   if (e != Error::ok) return e;
+  const std::uint16_t rpm = firetime_correction_ ? info.motor_rpm : 0;
+  if (rpm != spin_.rpm) update_spin(rpm);
   const std::uint8_t* p = payload.data;
   const std::size_t dual = info.returns == 2 ? 1 : 0;
   switch (model_) {

@@ -94,7 +94,8 @@ struct PacketInfo {
 };
 
 /// Decoder state for one sensor: per-channel geometry from the built-in tables or a
-/// calibration file, the session key, and the Pandar40 GPS time base. About 5 KiB.
+/// calibration file, the per-spin-rate point constants, the session key, and the Pandar40 GPS
+/// time base. About 8 KiB.
 class Decoder {
  public:
   /// A decoder for `model` using the manual's design angles and firing times.
@@ -129,15 +130,28 @@ class Decoder {
   Error decode(ByteView payload, PacketInfo& info, PacketPoints& out) noexcept;
 
  private:
-  struct Channel {
-    float cos_el, sin_el;        // elevation
-    float cos_az, sin_az;        // channel azimuth offset
-    float elevation_deg, azimuth_deg;
-    std::array<float, 2> fire_us;         // firing time offset per firing sequence (loop)
-    std::array<std::int32_t, 2> fire_ns;  // the same in ns
+  // Per-channel geometry from the tables or calibration files, one array per quantity.
+  struct Geometry {
+    std::array<float, kMaxChannels> cos_el_cos_az{};  // cos(elevation) cos(azimuth offset)
+    std::array<float, kMaxChannels> cos_el_sin_az{};  // cos(elevation) sin(azimuth offset)
+    std::array<float, kMaxChannels> sin_el{};
+    std::array<float, kMaxChannels> elevation_deg{};
+    std::array<float, kMaxChannels> azimuth_deg{};                   // azimuth offset
+    std::array<std::array<float, kMaxChannels>, 2> fire_us{};        // firing time offset, [loop][channel]
+    std::array<std::array<std::int32_t, kMaxChannels>, 2> fire_ns{};  // the same in ns
+  };
+  // The part of each point that depends only on the channel, the firing loop and the spin rate,
+  // computed once per rate: the beam direction b (azimuth offset + firing-time correction) as
+  // cos(e) cos(b), cos(e) sin(b) and b in degrees, [loop][channel].
+  struct SpinCache {
+    static constexpr std::uint16_t kStale = 0xFFFF;  // above any accepted rpm
+    std::uint16_t rpm = kStale;  // the spin rate the arrays hold (0: no firing-time correction)
+    std::array<std::array<float, kMaxChannels>, 2> dir_cos{}, dir_sin{}, azimuth_deg{};
   };
 
   void set_channel_angle(std::size_t ch, double elevation_deg, double azimuth_deg) noexcept;
+  void set_channel_firetime(std::size_t ch, double loop1_us, double loop2_us) noexcept;
+  void update_spin(std::uint16_t rpm) noexcept;
   Error validate_pandar40(ByteView p, PacketInfo& info) noexcept;
   Error validate_pandar64(ByteView p, PacketInfo& info) noexcept;
   Error validate_qt128(ByteView p, PacketInfo& info) noexcept;
@@ -151,7 +165,8 @@ class Decoder {
   bool allow_unsigned_ = false;
   bool has_gps_ = false;
   DateTime gps_time_;            // Pandar40: last GPS date-time
-  std::array<Channel, kMaxChannels> channels_{};
+  Geometry geo_;
+  SpinCache spin_;
   HmacSha256Key key_;
 };
 

@@ -26,7 +26,8 @@ struct Point {
   std::uint8_t block = 0;        ///< 0-based block index in the packet
 };
 
-/// Caller-owned storage for the points of one packet (at most 10 x 40 points).
+/// Caller-owned storage for the points of one packet (at most 10 x 40 points). Only the first
+/// `count` are points; decoding may overwrite the entries after them too.
 struct PacketPoints {
   std::array<Point, kMaxPointsPerPacket> points;
   std::size_t count = 0;
