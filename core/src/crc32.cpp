@@ -24,18 +24,33 @@ constexpr std::uint32_t word_lookup(std::uint32_t w, std::size_t after) noexcept
          (kSlicing[after - 2][(w >> 8) & 0xFFu] ^ kSlicing[after - 3][w & 0xFFu]);
 }
 
-// kCrc32Mpeg2Slices bytes per step, read as big-endian words with shifts (no aligned or
-// host-order loads). The register is xored into the first word; byte j of the step, followed by
-// S - 1 - j more bytes, contributes slicing table S - 1 - j. Only the first word depends on the
-// register: the other words' lookups run while it waits for the previous step, which is what
-// bounds the speed (one chain of xor, lookup, xor per step), so more bytes per step is faster.
+// One step over `step` bytes (a multiple of 4, at most kCrc32Mpeg2Slices), read as big-endian
+// words with shifts (no aligned or host-order loads). The register is xored into the first word;
+// byte j of the step, followed by step - 1 - j more bytes, contributes slicing table step - 1 - j.
+// Only the first word depends on the register: the other words' lookups run while it waits for
+// the previous step. That one chain (xor, lookup, xor) per step is what bounds the speed, so
+// more bytes per step is faster.
+constexpr std::uint32_t slicing_step(std::uint32_t crc, const std::uint8_t* p, std::size_t step) noexcept {
+  std::uint32_t ahead = 0;
+  for (std::size_t w = 4; w < step; w += 4) ahead ^= word_lookup(load_be32(p + w), step - 1 - w);
+  return word_lookup(crc ^ load_be32(p), step - 1) ^ ahead;
+}
+
 constexpr std::uint32_t slicing_update(std::uint32_t crc, const std::uint8_t* p, std::size_t n) noexcept {
   constexpr std::size_t kStep = kCrc32Mpeg2Slices;
   static_assert(kStep % 4 == 0 && kStep >= 8, "whole words per step");
-  for (; n >= kStep; p += kStep, n -= kStep) {
-    std::uint32_t ahead = 0;
-    for (std::size_t w = 4; w < kStep; w += 4) ahead ^= word_lookup(load_be32(p + w), kStep - 1 - w);
-    crc = word_lookup(crc ^ load_be32(p), kStep - 1) ^ ahead;
+  for (; n >= kStep; p += kStep, n -= kStep) crc = slicing_step(crc, p, kStep);
+  // The rest (short packet sections such as the QT128 tail): a step of 8 and one of 4 where they
+  // fit, as the same tables serve any step, then single bytes.
+  if (kStep > 8 && n >= 8) {
+    crc = slicing_step(crc, p, 8);
+    p += 8;
+    n -= 8;
+  }
+  if (n >= 4) {
+    crc = slicing_step(crc, p, 4);
+    p += 4;
+    n -= 4;
   }
   return table_update(crc, p, n);
 }
