@@ -24,6 +24,8 @@ struct Stats {
   std::uint64_t lost = 0;                  ///< UDP sequence numbers never seen (SequenceTracker)
   std::uint64_t duplicates = 0;            ///< sequence numbers seen again
   std::uint64_t reordered = 0;             ///< sequence numbers that arrived after a later one
+  std::uint64_t sequence_resyncs = 0;      ///< sequence series restarts: a sensor restart, or a loss
+                                           ///< longer than kSequenceWindow (not counted in `lost`)
   std::uint64_t gps_packets = 0;           ///< GPS packets (512 bytes)
   std::int64_t first_time_ns = 0;          ///< packet time of the first packet, ns (0: none yet)
   std::int64_t last_time_ns = 0;           ///< packet time of the last packet, ns (0: none yet)

@@ -149,7 +149,8 @@ int cmd_stats(Args& args) {
                   "  --json                  one JSON object: packets, models, points, frames, crc_errors,\n"
                   "                          signature_valid, signature_invalid, signature_missing,\n"
                   "                          signature_unverified, malformed, unsupported, lost, duplicates,\n"
-                  "                          reordered, gps_packets, first_time_ns, last_time_ns\n"
+                  "                          reordered, sequence_resyncs, gps_packets, first_time_ns,\n"
+                  "                          last_time_ns\n"
                   "  --quiet                 no progress line\n%s%s",
                   kDecodeOptionsHelp, kKeyOptionsHelp);
       return kExitOk;

@@ -139,11 +139,12 @@ bool Pipeline::feed(ByteView payload, std::uint64_t source_key) {
   std::uint32_t lost_before = 0;
   if (info.has_sequence) {
     lost_before = src->sequence.observe(info.sequence);
-    stats_.lost = stats_.duplicates = stats_.reordered = 0;
+    stats_.lost = stats_.duplicates = stats_.reordered = stats_.sequence_resyncs = 0;
     for (const auto& [key, s] : sources_) {
       stats_.lost += s.sequence.counts().lost;
       stats_.duplicates += s.sequence.counts().duplicates;
       stats_.reordered += s.sequence.counts().reordered;
+      stats_.sequence_resyncs += s.sequence.counts().resyncs;
     }
   }
 
@@ -173,12 +174,6 @@ void Pipeline::finish() {
     FrameInfo f;
     if (s.frames.finish(f)) close_frame(f);
   }
-}
-
-std::uint64_t Pipeline::resyncs() const {
-  std::uint64_t n = 0;
-  for (const auto& [key, s] : sources_) n += s.sequence.counts().resyncs;
-  return n;
 }
 
 }  // namespace hesai::cli

@@ -71,8 +71,6 @@ class Pipeline {
   const std::string& error() const { return error_; }
   /// Packets per Error code that rejected them (for the text summary).
   const std::map<Error, std::uint64_t>& rejections() const { return rejections_; }
-  /// Resyncs of the sequence trackers (sensor restarts), beside `lost`.
-  std::uint64_t resyncs() const;
 
  private:
   struct Source {

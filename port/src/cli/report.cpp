@@ -38,6 +38,7 @@ std::string stats_json(const Stats& s) {
   add(out, "lost", s.lost);
   add(out, "duplicates", s.duplicates);
   add(out, "reordered", s.reordered);
+  add(out, "sequence_resyncs", s.sequence_resyncs);
   add(out, "gps_packets", s.gps_packets);
   out += "\"first_time_ns\":" + std::to_string(s.first_time_ns) + ",";
   out += "\"last_time_ns\":" + std::to_string(s.last_time_ns) + "}";
@@ -80,7 +81,7 @@ std::string stats_text(const Pipeline& p) {
   line("lost", std::to_string(s.lost));
   line("duplicates", std::to_string(s.duplicates));
   line("reordered", std::to_string(s.reordered));
-  if (p.resyncs()) line("sequence_resyncs", std::to_string(p.resyncs()));
+  if (s.sequence_resyncs) line("sequence_resyncs", std::to_string(s.sequence_resyncs));
   for (const auto& [e, n] : p.rejections()) line(std::string("  rejected ") + error_name(e), std::to_string(n));
   return out;
 }
