@@ -198,7 +198,9 @@ def main():
             continue
         seen.add(name)
         chain_text = ' → '.join(short_name(names.get(c, c)).replace('hesai::', '') for c in chain[1:4])
-        lib = ', '.join(sorted(e for e in external if not e.startswith('_ZN5hesai')))[:60]
+        # Library routines only: a title with a path is a local function of the core that was
+        # inlined everywhere (it has no frame of its own).
+        lib = ', '.join(sorted(e for e in external if not e.startswith(('_ZN5hesai', '/'))))[:60]
         lines.append('| %s | %d%s | %s | %s |' % (name, total, ' (unbounded!)' if unbounded else '', chain_text, lib))
         if total > STACK_BUDGET or unbounded:
             over.append('stack %s %d' % (name, total))
