@@ -163,9 +163,17 @@ void BM_Copy(benchmark::State& state, hesai::Model model) {
   finish_counters(state, bytes, 0);
 }
 
+// The smallest output a decoder of x, y, z and time could have: four 4-byte arrays (time as an
+// offset from the packet time), 16 bytes a point, for BM_Baseline_write_xyzt_<sensor>.
+struct XyztArrays {
+  float x[hesai::kMaxPointsPerPacket], y[hesai::kMaxPointsPerPacket], z[hesai::kMaxPointsPerPacket];
+  std::int32_t t[hesai::kMaxPointsPerPacket];
+};
+
 /// The output floor: writing as many 40-byte Points as decode() yields for the same packets
-/// (each field stored, none computed), i.e. what the output format alone costs.
-void BM_WritePoints(benchmark::State& state, hesai::Model model) {
+/// (each field stored, none computed), i.e. what the output format alone costs. `xyzt`: the
+/// 16-byte minimum above instead of hesai::Point.
+void BM_WritePoints(benchmark::State& state, hesai::Model model, bool xyzt) {
   const std::vector<Bytes>& packets = sensor(model).packets;
   hesai::Decoder decoder(model);
   static hesai::PacketPoints out;
@@ -183,7 +191,17 @@ void BM_WritePoints(benchmark::State& state, hesai::Model model) {
   for (auto _ : state) {
     const std::size_t n = counts[i];
     const float f = static_cast<float>(i);
-    for (std::size_t k = 0; k < n; ++k) {
+    if (xyzt) {
+      static XyztArrays soa;
+      for (std::size_t k = 0; k < n; ++k) {
+        soa.x[k] = f;
+        soa.y[k] = f;
+        soa.z[k] = f;
+        soa.t[k] = static_cast<std::int32_t>(k);
+      }
+      benchmark::DoNotOptimize(soa);
+    }
+    for (std::size_t k = 0; !xyzt && k < n; ++k) {
       hesai::Point& o = out.points[k];
       o.x = f;
       o.y = f;
@@ -316,7 +334,8 @@ void register_all() {
   for (const NamedModel& s : kSensors) {
     const std::string n = s.name;
     benchmark::RegisterBenchmark(("BM_Baseline_copy_" + n).c_str(), BM_Copy, s.model);
-    benchmark::RegisterBenchmark(("BM_Baseline_write_points_" + n).c_str(), BM_WritePoints, s.model);
+    benchmark::RegisterBenchmark(("BM_Baseline_write_points_" + n).c_str(), BM_WritePoints, s.model, false);
+    benchmark::RegisterBenchmark(("BM_Baseline_write_xyzt_" + n).c_str(), BM_WritePoints, s.model, true);
     benchmark::RegisterBenchmark(("BM_" + n + "_validate").c_str(), BM_Decoder, s.model, Stage::validate);
     benchmark::RegisterBenchmark(("BM_" + n + "_decode").c_str(), BM_Decoder, s.model, Stage::decode);
     benchmark::RegisterBenchmark(("BM_" + n + "_decode_nofiretime").c_str(), BM_Decoder, s.model,

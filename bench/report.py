@@ -109,18 +109,22 @@ def main():
     w = get('BM_CRC32_hardware/65536')
     target('CRC hardware >= 10 GB/s (64 KiB)', w, w and w['bytes_per_second'] >= 10e9,
            w and '%.2f GB/s' % (w['bytes_per_second'] / 1e9))
-    # What the output format alone costs: writing the same number of 40-byte Points.
+    # What the output alone costs: writing the same number of 40-byte Points, or of the smallest
+    # possible x, y, z, time records (16 bytes), computing nothing; with validation beside it.
     floors = []
     for sensor in ('Pandar40', 'Pandar40P', 'Pandar64', 'QT128C2X'):
-        dec, wp = get('BM_%s_decode' % sensor), get('BM_Baseline_write_points_%s' % sensor)
-        if dec and wp:
-            floors.append('%-12s decode %8.1f ns, writing its Points alone %7.1f ns (%.1f x)' % (
-                sensor, ns(dec), ns(wp), ns(dec) / ns(wp)))
+        dec, val = get('BM_%s_decode' % sensor), get('BM_%s_validate' % sensor)
+        wp, wx = get('BM_Baseline_write_points_%s' % sensor), get('BM_Baseline_write_xyzt_%s' % sensor)
+        if dec and val and wp and wx:
+            floors.append('%-10s %8.1f %10.1f %13.1f %13.1f %22.1f' % (
+                sensor, ns(dec), ns(val), ns(wp), ns(wx), ns(val) + ns(wx)))
     if floors:
         print()
-        print('output floor (BM_Baseline_write_points_<sensor>):')
+        print('output floor, ns per packet (BM_Baseline_write_points_<sensor>, BM_Baseline_write_xyzt_<sensor>):')
+        print('%-10s %8s %10s %13s %13s %22s' % ('sensor', 'decode', 'validate', 'write Points', 'write x,y,z,t',
+                                                 'validate + write x,y,z,t'))
         for line in floors:
-            print('  ' + line)
+            print(line)
     print()
     print('%-45s %-5s %s' % ('target', 'check', 'measured'))
     for label, verdict, shown in checks:

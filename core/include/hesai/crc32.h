@@ -70,7 +70,7 @@ std::uint32_t crc32_mpeg2(ByteView data) noexcept;
 enum class CrcPath : std::uint8_t {
   bitwise,   ///< the definition, 8 shifts per byte
   table,     ///< one 256-entry table lookup per byte
-  slicing,   ///< slicing-by-8: eight table lookups per 8 bytes; portable byte loads
+  slicing,   ///< slicing-by-16 (64-bit targets) or -by-8: a table lookup per byte, one dependent step per 16 or 8 bytes
   hardware,  ///< PCLMULQDQ (x86-64) or PMULL (AArch64) folding; slicing when unavailable or short
 };
 
