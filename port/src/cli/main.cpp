@@ -251,15 +251,17 @@ int cmd_listen(Args& args) {
   std::int64_t next_report = start + 1000000000;
   std::vector<port::Datagram> batch;
   const std::int64_t idle_ns = static_cast<std::int64_t>(idle * 1e9);
+  std::int64_t now = start;
   std::int64_t last_packet = 0;  // monotonic time of the last datagram; 0 before the first
   std::uint64_t received = 0;
   bool fatal = false;
-  auto idle_over = [&] { return idle_ns > 0 && last_packet != 0 && port::monotonic_ns() - last_packet > idle_ns; };
-  while (!g_stop && !fatal && (count == 0 || received < count) && port::monotonic_ns() < deadline && !idle_over()) {
+  while (!g_stop && !fatal && (count == 0 || received < count) && now < deadline &&
+         !(idle_ns > 0 && last_packet != 0 && now - last_packet > idle_ns)) {
+    bool arrived = false;
     for (port::UdpReceiver* rx : {&points_rx, &gps_rx}) {
       if (rx->fd() < 0) continue;
       if (rx->receive(batch, rx == &points_rx ? 50 : 0) < 0) fatal = true;
-      if (!batch.empty()) last_packet = port::monotonic_ns();
+      arrived = arrived || !batch.empty();
       for (const port::Datagram& d : batch) {
         if (count != 0 && received >= count) break;
         ++received;
@@ -269,7 +271,8 @@ int cmd_listen(Args& args) {
         }
       }
     }
-    const std::int64_t now = port::monotonic_ns();
+    now = port::monotonic_ns();
+    if (arrived) last_packet = now;
     if (!quiet && now >= next_report) {
       const Stats& s = pipeline.stats();
       std::fprintf(stderr, "%6.1f s  packets %llu  points %llu  frames %llu  lost %llu  crc %llu  kernel drops %llu\n",
