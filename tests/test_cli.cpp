@@ -17,11 +17,9 @@
 #include <vector>
 
 #include "hesai/decoder.h"
-#include "hesai/bytes.h"
-#include "hesai/qt128_packet.h"
-#include "hesai/crc32.h"
 #include "hesai/frame.h"
 #include "hesai/hkdf.h"
+#include "hesai_port/udp.h"
 #include "packet_builder.h"
 #include "test_support.h"
 
@@ -410,21 +408,16 @@ TEST(Cli, ListenReceivesEveryReplayedPacket) {
 // A bounded load test: 100 800 packets at full rate (56 loops of the QT128 capture, sequence
 // numbers renumbered to count up). Whatever the kernel drops must show as `lost`: nothing
 // received is unaccounted for, and nothing is invented.
-// Sends one QT128 capture packet renumbered to `seq` (CRC3 re-sealed) to 127.0.0.1:port.
+// Sends one QT128 capture packet renumbered to `seq` (CRC3 covers the number) to 127.0.0.1:port.
 void send_renumbered_qt128(int port, std::uint32_t seq) {
   std::vector<std::uint8_t> p = pcap_payloads("qt128c2x_dual.pcap").at(0);
-  const hesai::qt128::Layout l = hesai::qt128::Layout::from_flags(p[hesai::qt128::kFlags]);
-  ASSERT_TRUE(p[hesai::qt128::kFlags] & hesai::qt128::kFlagSequence);
-  hesai::store_le32(&p[l.tail + hesai::qt128::kTailSequence], seq);
-  hesai::store_le32(&p[l.crc3], hesai::crc32_mpeg2(hesai::ByteView{&p[l.tail], l.crc3 - l.tail}));
-  const int fd = socket(AF_INET, SOCK_DGRAM, 0);
-  sockaddr_in to{};
-  to.sin_family = AF_INET;
-  to.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
-  to.sin_port = htons(static_cast<std::uint16_t>(port));
-  EXPECT_EQ(sendto(fd, p.data(), p.size(), 0, reinterpret_cast<const sockaddr*>(&to), sizeof to),
-            static_cast<ssize_t>(p.size()));
-  close(fd);
+  ASSERT_TRUE(p[11] & 1);  // flags bit 0: the tail has a UDP sequence
+  store_le32(&p[qt128_offsets(p[11]).tail + 26], seq);
+  qt128_seal(p);
+  hesai::port::UdpSender sender;
+  std::string error;
+  ASSERT_TRUE(sender.open("127.0.0.1:" + std::to_string(port), error)) << error;
+  EXPECT_TRUE(sender.send(p.data(), p.size()));
 }
 
 TEST(Cli, LoadTestReportsLossHonestly) {
