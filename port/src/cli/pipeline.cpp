@@ -138,14 +138,15 @@ bool Pipeline::feed(ByteView payload, std::uint64_t source_key) {
 
   std::uint32_t lost_before = 0;
   if (info.has_sequence) {
+    // Only this source's counters move: add their change. `lost` can fall (a late packet);
+    // unsigned arithmetic (modulo 2^64) adds a negative change as well.
+    const SequenceCounts before = src->sequence.counts();
     lost_before = src->sequence.observe(info.sequence);
-    stats_.lost = stats_.duplicates = stats_.reordered = stats_.sequence_resyncs = 0;
-    for (const auto& [key, s] : sources_) {
-      stats_.lost += s.sequence.counts().lost;
-      stats_.duplicates += s.sequence.counts().duplicates;
-      stats_.reordered += s.sequence.counts().reordered;
-      stats_.sequence_resyncs += s.sequence.counts().resyncs;
-    }
+    const SequenceCounts& after = src->sequence.counts();
+    stats_.lost += after.lost - before.lost;
+    stats_.duplicates += after.duplicates - before.duplicates;
+    stats_.reordered += after.reordered - before.reordered;
+    stats_.sequence_resyncs += after.resyncs - before.resyncs;
   }
 
   // Frames close at block boundaries; the points of a block belong to the frame it opens.
