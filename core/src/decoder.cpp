@@ -128,16 +128,14 @@ void Decoder::set_channel_angle(std::size_t ch, double elevation_deg, double azi
 }
 
 void Decoder::set_channel_firetime(std::size_t ch, double loop1_us, double loop2_us) noexcept {
-  geo_.fire_us[0][ch] = static_cast<float>(loop1_us);
-  geo_.fire_us[1][ch] = static_cast<float>(loop2_us);
   geo_.fire_ns[0][ch] = round_to_int(loop1_us * 1000);
   geo_.fire_ns[1][ch] = round_to_int(loop2_us * 1000);
   spin_.rpm = SpinCache::kStale;
 }
 
 void Decoder::update_spin(std::uint16_t rpm) noexcept {
-  // Spin rate in radians per microsecond: rpm x 2 pi / 60e6.
-  const float omega = static_cast<float>(rpm) * static_cast<float>(2 * kPi / 60e6);
+  // Spin rate in radians per nanosecond: rpm x 2 pi / 60e9.
+  const float omega = static_cast<float>(rpm) * static_cast<float>(2 * kPi / 60e9);
   constexpr float kRadToDeg = static_cast<float>(180.0 / kPi);
   // The Pandars fire one sequence (both loops hold the same times); the QT128 alternates two.
   const std::size_t loops = model_ == Model::qt128c2x ? 2 : 1;
@@ -145,7 +143,7 @@ void Decoder::update_spin(std::uint16_t rpm) noexcept {
   for (std::size_t loop = 0; loop < loops; ++loop) {
     for (std::size_t ch = 0; ch < channels; ++ch) {
       // Beam azimuth b = azimuth offset + firing-time correction d (|d| < 0.01 rad: a short series).
-      const float d = geo_.fire_us[loop][ch] * omega;
+      const float d = static_cast<float>(geo_.fire_ns[loop][ch]) * omega;
       const float cos_d = 1.0f - 0.5f * d * d;
       const float sin_d = d - d * d * d * (1.0f / 6.0f);
       const float cc = geo_.cos_el_cos_az[ch];

@@ -289,7 +289,7 @@ void stack_use() {
   report_stack("hmac_sha256 (1095 B)", stack_used([] { hmac_sha256({data, 32}, {data, sizeof data}, out); }));
   report_stack("hkdf_sha256 (42 B)", stack_used([] { (void)hkdf_sha256({data, 13}, {data, 22}, {data, 10}, out, 42); }));
   report_stack("hesai_session_key", stack_used([] { (void)hesai_session_key({data, 32}, data, data + 32, out); }));
-  // The constructor, rebuilding the QT128 decoder in place (no room for a fifth one).
+  // The constructor, rebuilding the QT128 decoder in place (no fifth decoder in RAM for it).
   decoders[3].~Decoder();
   report_stack("Decoder::Decoder QT128C2X", stack_used([] { ::new (&decoders[3]) Decoder(Model::qt128c2x); }));
 }

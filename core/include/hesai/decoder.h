@@ -95,7 +95,7 @@ struct PacketInfo {
 
 /// Decoder state for one sensor: per-channel geometry from the built-in tables or a
 /// calibration file, the per-spin-rate point constants, the session key, and the Pandar40 GPS
-/// time base. About 8 KiB.
+/// time base. About 6.7 KiB.
 class Decoder {
  public:
   /// A decoder for `model` using the manual's design angles and firing times.
@@ -137,8 +137,7 @@ class Decoder {
     std::array<float, kMaxChannels> sin_el{};
     std::array<float, kMaxChannels> elevation_deg{};
     std::array<float, kMaxChannels> azimuth_deg{};                   // azimuth offset
-    std::array<std::array<float, kMaxChannels>, 2> fire_us{};        // firing time offset, [loop][channel]
-    std::array<std::array<std::int32_t, kMaxChannels>, 2> fire_ns{};  // the same in ns
+    std::array<std::array<std::int32_t, kMaxChannels>, 2> fire_ns{};  // firing time offset, ns, [loop][channel]
   };
   // The part of each point that depends only on the channel, the firing loop and the spin rate,
   // computed once per rate: the beam direction b (azimuth offset + firing-time correction) as
