@@ -200,24 +200,25 @@ void BM_WritePoints(benchmark::State& state, hesai::Model model, bool xyzt) {
         soa.t[k] = static_cast<std::int32_t>(k);
       }
       benchmark::DoNotOptimize(soa);
+    } else {
+      for (std::size_t k = 0; k < n; ++k) {
+        hesai::Point& o = out.points[k];
+        o.x = f;
+        o.y = f;
+        o.z = f;
+        o.distance_m = f;
+        o.azimuth_deg = f;
+        o.elevation_deg = f;
+        o.time_ns = static_cast<std::int64_t>(k);
+        o.intensity = static_cast<std::uint8_t>(k);
+        o.channel = static_cast<std::uint8_t>(k);
+        o.return_index = 0;
+        o.confidence = 0;
+        o.block = static_cast<std::uint8_t>(i);
+      }
+      out.count = n;
+      benchmark::DoNotOptimize(out);
     }
-    for (std::size_t k = 0; !xyzt && k < n; ++k) {
-      hesai::Point& o = out.points[k];
-      o.x = f;
-      o.y = f;
-      o.z = f;
-      o.distance_m = f;
-      o.azimuth_deg = f;
-      o.elevation_deg = f;
-      o.time_ns = static_cast<std::int64_t>(k);
-      o.intensity = static_cast<std::uint8_t>(k);
-      o.channel = static_cast<std::uint8_t>(k);
-      o.return_index = 0;
-      o.confidence = 0;
-      o.block = static_cast<std::uint8_t>(i);
-    }
-    out.count = n;
-    benchmark::DoNotOptimize(out);
     benchmark::ClobberMemory();
     bytes += packets[i].size();
     points += n;
