@@ -14,6 +14,7 @@
 #include <cstdint>
 
 #include "hesai/bytes.h"
+#include "hesai/decimal.h"  // parse_decimal(), which the parsers use for every number
 #include "hesai/error.h"
 #include "hesai/model.h"
 
@@ -88,15 +89,5 @@ ParseResult parse_firetime_csv(ByteView text, std::size_t expected_channels, Fir
 /// (fewer than N channel rows, or any row after them but a single hash line). A hash line of more
 /// than 64 characters is calib_bad_row. On error `out.laser_num` is 0.
 ParseResult parse_channel_config_csv(ByteView text, ChannelConfig& out) noexcept;
-
-/// Parses the whole of [begin, end) as a decimal number: optional sign, digits with an optional
-/// fraction (at least one digit), optional exponent (`e`/`E`, optional sign, digits). No spaces,
-/// no hex, no inf/nan. False when the text is not such a number or its magnitude overflows a
-/// double; a magnitude below the smallest subnormal gives (signed) zero. The result is within 1 ulp
-/// of the decimal value, and is the nearest double (as strtod gives) unless the value has more than
-/// 19 significant digits (the rest are dropped), is subnormal (rounded twice), or lies within about
-/// 2^-100 (relative) of a tie between two doubles. Digits that form an integer up to 2^53, scaled
-/// by 10^k with |k| <= 22 (every calibration value), take one exact IEEE operation: always nearest.
-bool parse_decimal(const char* begin, const char* end, double& out) noexcept;
 
 }  // namespace hesai

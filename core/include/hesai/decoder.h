@@ -154,6 +154,11 @@ class Decoder {
   Error validate_pandar40(ByteView p, PacketInfo& info) noexcept;
   Error validate_pandar64(ByteView p, PacketInfo& info) noexcept;
   Error validate_qt128(ByteView p, PacketInfo& info) noexcept;
+  // Each sensor's block walk (in its file under core/src/sensors/), after validation.
+  void decode_pandar40(const std::uint8_t* p, const PacketInfo& info, PacketPoints& out) const noexcept;
+  void decode_pandar64(const std::uint8_t* p, const PacketInfo& info, PacketPoints& out) const noexcept;
+  void decode_qt128(const std::uint8_t* p, const PacketInfo& info, PacketPoints& out) const noexcept;
+  // The per-point arithmetic every sensor shares (core/src/sensors/block_points.h).
   template <std::size_t kPointBytes>
   void emit_block(const std::uint8_t* points, std::size_t channels, const PacketInfo& info, std::size_t block,
                   std::int64_t block_time_ns, std::size_t loop, PacketPoints& out) const noexcept;

@@ -1,14 +1,21 @@
-// Validation of QT128C2X protocol 3.2 packets: header and flags, the three CRCs, the signature,
-// then the fields.
+// QT128C2X, point cloud protocol 3.2: identification (header and the flags-implied length),
+// validation (the three CRCs, the signature, then the fields) and the walk over its two blocks
+// with their firing sequences. Layout: hesai/qt128_packet.h; tables: hesai/tables/qt128_tables.h.
 #include "hesai/crc32.h"
 #include "hesai/ct.h"
 #include "hesai/decoder.h"
 #include "hesai/qt128_packet.h"
+#include "hesai/tables/block_times.h"
+#include "block_points.h"
 #include "field_checks.h"
+#include "sensor_rules.h"
 
 namespace hesai {
 
 namespace {
+
+constexpr auto kBlockNs = detail::block_ns(tables::qt128_block_start_us_single, tables::qt128_block_start_us_dual);
+static_assert(kBlockNs[0][1] == 120110 && kBlockNs[1][1] == 9000);
 
 bool qt128_return_mode(std::uint8_t byte, std::uint8_t& returns) {
   switch (static_cast<ReturnMode>(byte)) {
@@ -32,6 +39,16 @@ bool all_zero(const std::uint8_t* p, std::size_t n) {
 }
 
 }  // namespace
+
+Error detail::identify_qt128(ByteView p, Model& model) noexcept {
+  using namespace qt128;
+  if (p[kVersionMajor] != 0x03 || p[kVersionMinor] != 0x02) return Error::unsupported_version;
+  if (p.size < kHeaderEnd) return Error::bad_length;
+  if (p[kLaserNum] != 0x80 || p[kBlockNum] != 0x02) return Error::unsupported_model;
+  if (p.size != Layout::from_flags(p[kFlags]).total) return Error::flags_length_mismatch;
+  model = Model::qt128c2x;
+  return Error::ok;
+}
 
 Error Decoder::validate_qt128(ByteView p, PacketInfo& info) noexcept {
   using namespace qt128;
@@ -102,6 +119,19 @@ Error Decoder::validate_qt128(ByteView p, PacketInfo& info) noexcept {
   if (const Error e = detail::block_azimuths(p.data + kBody, kBlockBytes, info); e != Error::ok) return e;
   // Date & Time: year - 1900 (>= 70); Timestamp: us, 0..1000000 (the manual's range).
   return detail::tail_time(tail + kTailDateTime, 1900, 1000000, info);
+}
+
+void Decoder::decode_qt128(const std::uint8_t* p, const PacketInfo& info, PacketPoints& out) const noexcept {
+  using namespace qt128;
+  const std::size_t dual = info.returns == 2 ? 1 : 0;
+  // Mode flag bit 0: block 1 uses firing sequence 1 (loop 0) when set, sequence 2 otherwise;
+  // in single return block 2 uses the other sequence, in dual return both blocks share one firing.
+  const std::size_t loop1 = (info.mode_flag & 1) ? 0 : 1;
+  for (std::size_t b = 0; b < kBlocks; ++b) {
+    const std::size_t loop = (dual || b == 0) ? loop1 : 1 - loop1;
+    emit_block<kPointBytes>(p + kBody + b * kBlockBytes + kBlockPoints, kChannels, info, b,
+                            info.time_ns + kBlockNs[dual][b], loop, out);
+  }
 }
 
 }  // namespace hesai

@@ -1,12 +1,27 @@
-// Validation of Pandar40 (1256 bytes) and Pandar40P (1262/1266 bytes) packets.
+// Pandar40 (1256-byte packets) and Pandar40P (1262, or 1266 with UDP sequence): identification,
+// validation (and the Pandar40's hour-relative time) and the walk over their ten blocks.
+// Layout: hesai/pandar40_packet.h; tables: hesai/tables/pandar40_tables.h.
 #include "hesai/decoder.h"
 #include "hesai/pandar40_packet.h"
+#include "hesai/tables/block_times.h"
+#include "block_points.h"
 #include "field_checks.h"
+#include "sensor_rules.h"
 
 namespace hesai {
 
 namespace {
 constexpr std::int64_t kUsPerHour = 3600LL * 1000000;
+constexpr auto kBlockNs = detail::block_ns(tables::pandar40_block_end_us_single, tables::pandar40_block_end_us_dual);
+}  // namespace
+
+Error detail::identify_pandar40(ByteView p, Model& model) noexcept {
+  switch (p.size) {
+    case pandar40::kPandar40Bytes: model = Model::pandar40; return Error::ok;
+    case pandar40::kPandar40PBytes:
+    case pandar40::kPandar40PSequenceBytes: model = Model::pandar40p; return Error::ok;
+    default: return Error::bad_length;
+  }
 }
 
 Error Decoder::validate_pandar40(ByteView p, PacketInfo& info) noexcept {
@@ -55,6 +70,14 @@ Error Decoder::validate_pandar40(ByteView p, PacketInfo& info) noexcept {
   info.date_time = gps_time_;
   info.time_ns = (hour_start_us + ts) * 1000;
   return Error::ok;
+}
+
+void Decoder::decode_pandar40(const std::uint8_t* p, const PacketInfo& info, PacketPoints& out) const noexcept {
+  using namespace pandar40;
+  const std::size_t dual = info.returns == 2 ? 1 : 0;
+  for (std::size_t b = 0; b < kBlocks; ++b)
+    emit_block<kPointBytes>(p + b * kBlockBytes + kBlockPoints, kChannels, info, b, info.time_ns + kBlockNs[dual][b],
+                            0, out);
 }
 
 }  // namespace hesai

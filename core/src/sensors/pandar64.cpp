@@ -1,0 +1,59 @@
+// Pandar64 (1194-byte packets, 1198 with UDP sequence): identification, validation and the
+// walk over its six blocks. Layout: hesai/pandar64_packet.h; tables: hesai/tables/pandar64_tables.h.
+#include "hesai/decoder.h"
+#include "hesai/pandar64_packet.h"
+#include "hesai/tables/block_times.h"
+#include "block_points.h"
+#include "field_checks.h"
+#include "sensor_rules.h"
+
+namespace hesai {
+
+namespace {
+constexpr auto kBlockNs = detail::block_ns(tables::pandar64_block_end_us_single, tables::pandar64_block_end_us_dual);
+// Pandar64 App. B.3: block 1 of 6 ends at t0 - 42.58 - 55.56 x 5 us, or x 2 in dual return.
+static_assert(kBlockNs[0][0] == -320380 && kBlockNs[1][0] == -153700);
+}  // namespace
+
+bool detail::is_pandar64_header(ByteView p) noexcept {
+  return p[pandar64::kLaserNum] == 0x40 && p[pandar64::kBlockNum] == 0x06;
+}
+
+Error detail::identify_pandar64(ByteView p, Model& model) noexcept {
+  if (p.size != pandar64::kPacketBytes && p.size != pandar64::kSequencePacketBytes) return Error::bad_length;
+  model = Model::pandar64;
+  return Error::ok;
+}
+
+Error Decoder::validate_pandar64(ByteView p, PacketInfo& info) noexcept {
+  using namespace pandar64;
+  info.blocks = kBlocks;
+  info.dis_unit_mm = p[kDisUnit];
+  if (info.dis_unit_mm == 0) return Error::bad_header;
+
+  info.high_temperature = p[kHighTemperature];
+  info.motor_rpm = load_le16(p.data + kMotorSpeed);
+  info.timestamp_us = load_le32(p.data + kTimestamp);
+  info.return_mode = p[kReturnMode];
+  info.factory_info = p[kFactoryInfo];
+  if (p.size == kSequencePacketBytes) {
+    info.has_sequence = true;
+    info.sequence = load_le32(p.data + kSequence);
+  }
+
+  if (const Error e = detail::pandar_return_mode(info); e != Error::ok) return e;
+  if (const Error e = detail::motor_speed(info); e != Error::ok) return e;
+  if (const Error e = detail::block_azimuths(p.data + kBody, kBlockBytes, info); e != Error::ok) return e;
+  // Date & Time: year - 2000 (section 3.1.2.3); Timestamp: us within the second, 0..999999.
+  return detail::tail_time(p.data + kDateTime, 2000, 999999, info);
+}
+
+void Decoder::decode_pandar64(const std::uint8_t* p, const PacketInfo& info, PacketPoints& out) const noexcept {
+  using namespace pandar64;
+  const std::size_t dual = info.returns == 2 ? 1 : 0;
+  for (std::size_t b = 0; b < kBlocks; ++b)
+    emit_block<kPointBytes>(p + kBody + b * kBlockBytes + kBlockPoints, kChannels, info, b,
+                            info.time_ns + kBlockNs[dual][b], 0, out);
+}
+
+}  // namespace hesai

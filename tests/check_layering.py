@@ -1,0 +1,75 @@
+#!/usr/bin/env python3
+"""The core's layering (core/src/README.md): every file of the core, source or public header,
+belongs to one concern, and includes only headers of its own concern or of the concerns below it.
+
+    base <- crc, crypto, calibration <- sensors <- streams
+
+A public header's concern is given below; a file under core/src/<folder>/ has that folder's.
+Exits 1 and names each include that reaches upward (or sideways) and each file of no concern.
+"""
+import os
+import re
+import sys
+
+BELOW = {  # concern -> the concerns it may include
+    'base': set(),
+    'crc': {'base'},
+    'crypto': {'base'},
+    'calibration': {'base'},
+    'sensors': {'base', 'crc', 'crypto', 'calibration'},
+    'streams': {'base', 'crc', 'crypto', 'calibration', 'sensors'},
+}
+HEADERS = {  # public header (under core/include/hesai/) -> concern
+    'config.h': 'base', 'bytes.h': 'base', 'error.h': 'base', 'model.h': 'base', 'math.h': 'base',
+    'civil_time.h': 'base',
+    'crc32.h': 'crc',
+    'sha256.h': 'crypto', 'hmac.h': 'crypto', 'hkdf.h': 'crypto', 'ct.h': 'crypto',
+    'calibration.h': 'calibration', 'decimal.h': 'calibration',
+    'decoder.h': 'sensors', 'point.h': 'sensors', 'gps.h': 'sensors', 'pandar40_packet.h': 'sensors',
+    'pandar64_packet.h': 'sensors', 'qt128_packet.h': 'sensors', 'tables/': 'sensors',
+    'frame.h': 'streams', 'sequence.h': 'streams', 'stats.h': 'streams',
+}
+INCLUDE = re.compile(r'^\s*#\s*include\s+"([^"]+)"')
+
+
+def header_concern(name):
+    for key, concern in HEADERS.items():
+        if name == key or (key.endswith('/') and name.startswith(key)):
+            return concern
+    return None
+
+
+def main(core):
+    problems, files = [], []
+    include_dir = os.path.join(core, 'include', 'hesai')
+    for root, _, names in os.walk(include_dir):
+        for n in names:
+            rel = os.path.relpath(os.path.join(root, n), include_dir)
+            files.append((os.path.join(root, n), 'hesai/' + rel, header_concern(rel)))
+    src = os.path.join(core, 'src')
+    for root, _, names in os.walk(src):
+        folder = os.path.relpath(root, src).split(os.sep)[0]
+        for n in names:
+            if n.endswith(('.cpp', '.h')):
+                files.append((os.path.join(root, n), 'src/%s/%s' % (folder, n), folder if folder in BELOW else None))
+    for path, name, concern in sorted(files):
+        if concern is None:
+            problems.append('%s belongs to no concern' % name)
+            continue
+        for line in open(path, encoding='utf-8'):
+            m = INCLUDE.match(line)
+            if not m or not m.group(1).startswith('hesai/'):
+                continue  # a header of the file's own folder, or a system header
+            target = header_concern(m.group(1)[len('hesai/'):])
+            if target is None:
+                problems.append('%s includes %s, which belongs to no concern' % (name, m.group(1)))
+            elif target != concern and target not in BELOW[concern]:
+                problems.append('%s (%s) includes %s (%s)' % (name, concern, m.group(1), target))
+    for p in problems:
+        print(p)
+    print('core layering: %d files, %d problems' % (len(files), len(problems)))
+    return 1 if problems else 0
+
+
+if __name__ == '__main__':
+    sys.exit(main(sys.argv[1] if len(sys.argv) > 1 else os.path.join(os.path.dirname(__file__), '..', 'core')))
