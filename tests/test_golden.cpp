@@ -69,36 +69,6 @@ hesai::FiretimeCorrection load_firetimes(const std::string& name, std::size_t ch
   return f;
 }
 
-// Reference calibration read with strtod by this test (not with the library's parser).
-struct Reference {
-  std::vector<double> elevation, azimuth;      // by channel - 1
-  std::vector<double> fire1, fire2;            // firing time offset per loop, us (0 if not firing)
-};
-
-Reference reference_for(const Layout& l, const std::string& angles) {
-  Reference ref;
-  ref.elevation.assign(l.channels, 0);
-  ref.azimuth.assign(l.channels, 0);
-  ref.fire1.assign(l.channels, 0);
-  ref.fire2.assign(l.channels, 0);
-  for (const auto& row : read_numeric_csv(angles).rows) {
-    if (row.size() < 3 || row[0] < 1) continue;
-    const std::size_t ch = static_cast<std::size_t>(row[0]) - 1;
-    ref.elevation.at(ch) = row[1];
-    ref.azimuth.at(ch) = row[2];
-  }
-  for (const auto& row : read_numeric_csv(l.firetimes).rows) {
-    if (row.size() >= 4) {  // QT128: loop1 channel, time, loop2 channel, time
-      if (row[0] >= 1) ref.fire1.at(static_cast<std::size_t>(row[0]) - 1) = row[1];
-      if (row[2] >= 1) ref.fire2.at(static_cast<std::size_t>(row[2]) - 1) = row[3];
-    } else if (row.size() == 2 && row[0] >= 1) {
-      ref.fire1.at(static_cast<std::size_t>(row[0]) - 1) = row[1];
-      ref.fire2.at(static_cast<std::size_t>(row[0]) - 1) = row[1];
-    }
-  }
-  return ref;
-}
-
 // t0 from the tail, by the manual's formula: date-time (whole seconds, UTC) + timestamp (us).
 std::int64_t packet_time_ns(const Layout& l, const std::vector<std::uint8_t>& p) {
   std::size_t date = 0, ts = 0;
@@ -159,7 +129,7 @@ TEST_P(Golden, CountsFromRawBytes) {
 TEST_P(Golden, EveryPointMatchesDoubleReference) {
   const Layout& l = GetParam();
   const auto packets = pcap_payloads(l.capture);
-  const Reference ref = reference_for(l, l.angles_a);
+  const ReferenceCalibration ref = read_reference_calibration(l.angles_a, l.firetimes, l.channels);
   Decoder dec(l.model);
   ASSERT_EQ(dec.set_angles(load_angles(l.angles_a, l.channels)), Error::ok);
   ASSERT_EQ(dec.set_firetimes(load_firetimes(l.firetimes, l.channels)), Error::ok);

@@ -83,4 +83,38 @@ inline CsvTable read_numeric_csv(const std::string& name) {
   return t;
 }
 
+/// A unit's calibration as the tests' own reader (strtod) sees it, not the library's parser.
+struct ReferenceCalibration {
+  std::vector<double> elevation, azimuth;  ///< degrees, by channel - 1
+  std::vector<double> fire1, fire2;        ///< firing time offset per loop, us (0 if not firing)
+};
+
+/// Reads an angle file (`channel,elevation,azimuth` rows) and a firetime file: `channel,time`
+/// rows (Pandar40P/64, the same time in both loops) or `loop1 channel,time,loop2 channel,time`
+/// rows (QT128, channel 0 for no entry).
+inline ReferenceCalibration read_reference_calibration(const std::string& angles, const std::string& firetimes,
+                                                       std::size_t channels) {
+  ReferenceCalibration ref;
+  ref.elevation.assign(channels, 0);
+  ref.azimuth.assign(channels, 0);
+  ref.fire1.assign(channels, 0);
+  ref.fire2.assign(channels, 0);
+  for (const auto& row : read_numeric_csv(angles).rows) {
+    if (row.size() < 3 || row[0] < 1) continue;
+    const std::size_t ch = static_cast<std::size_t>(row[0]) - 1;
+    ref.elevation.at(ch) = row[1];
+    ref.azimuth.at(ch) = row[2];
+  }
+  for (const auto& row : read_numeric_csv(firetimes).rows) {
+    if (row.size() >= 4) {
+      if (row[0] >= 1) ref.fire1.at(static_cast<std::size_t>(row[0]) - 1) = row[1];
+      if (row[2] >= 1) ref.fire2.at(static_cast<std::size_t>(row[2]) - 1) = row[3];
+    } else if (row.size() == 2 && row[0] >= 1) {
+      ref.fire1.at(static_cast<std::size_t>(row[0]) - 1) = row[1];
+      ref.fire2.at(static_cast<std::size_t>(row[0]) - 1) = row[1];
+    }
+  }
+  return ref;
+}
+
 }  // namespace hesai_test
