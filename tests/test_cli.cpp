@@ -214,6 +214,7 @@ TEST_P(CliCapture, PerFrameCsvEqualsDecoderApi) {
   const CaptureCase& c = GetParam();
   // Reference: the library directly.
   const auto packets = pcap_payloads(c.file);
+  ASSERT_FALSE(packets.empty());
   Decoder dec(c.model);
   FrameAssembler frames;
   PacketPoints pts;
@@ -265,6 +266,7 @@ TEST(Cli, PacketRangeAndRangeFilter) {
   ASSERT_EQ(r.status, 0);
   // Every row belongs to packet 10 or 11; the count equals the non-zero distances of those two.
   const auto packets = pcap_payloads("pandar64_dual.pcap");
+  ASSERT_GT(packets.size(), 11u);
   std::size_t expected = 0;
   for (std::size_t k : {10u, 11u})
     for (std::size_t b = 0; b < 6; ++b)
@@ -297,6 +299,7 @@ TEST(Cli, PacketRangeAndRangeFilter) {
 
 TEST(Cli, StatsCountsDropsDuplicatesLateAndCrcErrors) {
   const auto real = pcap_payloads("qt128c2x_dual.pcap");
+  ASSERT_FALSE(real.empty());
   const std::uint32_t base = load_le32(&real[0][1087]);
   // Sequence numbers 0..19 sent as: 0 1 2 4 5 3 6 6 7 [8 9 10 lost] 11 .. 19, with packet 15's body
   // corrupted; then 10019 10020, a jump beyond the tracker's 4096-number window: a restart.
@@ -332,6 +335,7 @@ TEST(Cli, StatsCountsDropsDuplicatesLateAndCrcErrors) {
 
 TEST(Cli, StatsCountsSignatures) {
   const auto real = pcap_payloads("qt128c2x_dual.pcap");
+  ASSERT_GT(real.size(), 10u);
   std::uint8_t lidar[32], client[32], key[32];
   for (int i = 0; i < 32; ++i) {
     lidar[i] = static_cast<std::uint8_t>(0x10 + i);
@@ -410,7 +414,9 @@ TEST(Cli, ListenReceivesEveryReplayedPacket) {
 // received is unaccounted for, and nothing is invented.
 // Sends one QT128 capture packet renumbered to `seq` (CRC3 covers the number) to 127.0.0.1:port.
 void send_renumbered_qt128(int port, std::uint32_t seq) {
-  std::vector<std::uint8_t> p = pcap_payloads("qt128c2x_dual.pcap").at(0);
+  const auto packets = pcap_payloads("qt128c2x_dual.pcap");
+  ASSERT_FALSE(packets.empty());
+  std::vector<std::uint8_t> p = packets[0];
   ASSERT_TRUE(p[11] & 1);  // flags bit 0: the tail has a UDP sequence
   store_le32(&p[qt128_offsets(p[11]).tail + 26], seq);
   qt128_seal(p);

@@ -324,7 +324,8 @@ TEST(Identify, ModelMismatchAndImu) {
 TEST(Reject, EveryTruncationOfRealPackets) {
   for (const char* name : {"pandar40p_dual.pcap", "pandar64_dual.pcap", "qt128c2x_dual.pcap"}) {
     const auto packets = pcap_payloads(name);
-    const auto& full = packets.at(0);
+    ASSERT_FALSE(packets.empty()) << name;
+    const auto& full = packets[0];
     Model m;
     PacketKind k;
     ASSERT_EQ(identify(view(full), m, k), Error::ok);
@@ -357,7 +358,8 @@ TEST(Reject, EveryTruncationOfRealPackets) {
 
 TEST(Reject, Qt128EveryByteOfCrcFieldsAndTail) {
   const auto packets = pcap_payloads("qt128c2x_dual.pcap");
-  const auto& good = packets.at(0);
+  ASSERT_FALSE(packets.empty());
+  const auto& good = packets[0];
   Decoder dec(Model::qt128c2x);
   PacketInfo info;
   PacketPoints pts;
@@ -384,7 +386,8 @@ TEST(Reject, Qt128EveryByteOfCrcFieldsAndTail) {
 
 TEST(Reject, Pandar64TailFields) {
   const auto packets = pcap_payloads("pandar64_dual.pcap");
-  const auto& good = packets.at(0);
+  ASSERT_FALSE(packets.empty());
+  const auto& good = packets[0];
   Decoder dec(Model::pandar64);
   PacketInfo info;
   PacketPoints pts;
@@ -411,15 +414,16 @@ TEST(Reject, Pandar64TailFields) {
 
 TEST(Reject, Pandar40PBlockPreamble) {
   const auto packets = pcap_payloads("pandar40p_dual.pcap");
+  ASSERT_FALSE(packets.empty());
   Decoder dec(Model::pandar40p);
   PacketInfo info;
   PacketPoints pts;
   for (std::size_t b = 1; b < 10; ++b) {
-    auto p = packets.at(0);
+    auto p = packets[0];
     p[124 * b + 1] = 0xEF;
     EXPECT_EQ(dec.decode(view(p), info, pts), Error::bad_magic) << b;
   }
-  auto p = packets.at(0);
+  auto p = packets[0];
   p[1254] = 0x33;  // QT128-only return mode
   EXPECT_EQ(dec.decode(view(p), info, pts), Error::bad_return_mode);
 }
@@ -439,11 +443,14 @@ class Signature : public ::testing::Test {
     ASSERT_EQ(hesai_session_key(ByteView{reinterpret_cast<const std::uint8_t*>(secret), sizeof secret - 1}, lidar,
                                 client, key),
               Error::ok);
-    packet = pcap_payloads("qt128c2x_dual.pcap").at(5);
+    real = pcap_payloads("qt128c2x_dual.pcap");
+    ASSERT_GT(real.size(), 5u);
+    packet = real[5];
     qt128_seal(packet, key);  // sign the real packet (its CRCs are unchanged)
   }
   std::uint8_t key[32];
-  std::vector<std::uint8_t> packet;
+  std::vector<std::vector<std::uint8_t>> real;  // the capture's packets
+  std::vector<std::uint8_t> packet;             // real[5], signed with key
   PacketInfo info;
   PacketPoints pts;
 };
@@ -471,7 +478,7 @@ TEST_F(Signature, ValidInvalidMissingUnverified) {
   EXPECT_EQ(dec.decode(view(p), info, pts), Error::signature_invalid);
 
   // Downgrade: the all-zero signature of an unsigned packet, with a key set.
-  const auto unsigned_packet = pcap_payloads("qt128c2x_dual.pcap").at(5);
+  const auto& unsigned_packet = real[5];
   EXPECT_EQ(dec.decode(view(unsigned_packet), info, pts), Error::signature_missing);
   dec.set_allow_unsigned(true);
   EXPECT_EQ(dec.decode(view(unsigned_packet), info, pts), Error::ok);

@@ -10,7 +10,6 @@
 
 #include "hesai/calibration.h"
 #include "hesai/decoder.h"
-#include "hesai/tables/qt128_tables.h"
 #include "test_support.h"
 
 using hesai::ByteView;
@@ -23,14 +22,19 @@ using namespace hesai_test;
 
 namespace {
 
-// The model-specific facts the reference needs, typed from the manuals.
+// The model-specific facts the reference needs, typed from the manuals, and each capture's totals:
+// its packets and points (non-zero distances; for the QT128 neither 0 nor the marker 1). The
+// totals are counted twice without the library: by CountsFromRawBytes's own loops below, and by
+// tests/golden/count_points.py (plain Python over the pcap bytes, ctest `golden_counts`), which
+// reads them from these initializers: keep each initializer's opening {"capture", packets, points.
 struct Layout {
-  Model model;
   const char* capture;
+  std::size_t packets;
+  std::size_t points;
+  Model model;
   const char* angles_a;
   const char* angles_b;
   const char* firetimes;
-  std::size_t packets;
   std::size_t payload;
   std::size_t blocks;
   std::size_t channels;
@@ -39,17 +43,18 @@ struct Layout {
   std::size_t block_bytes;
   std::size_t azimuth_in_block;
   std::size_t points_in_block;
+  std::uint16_t min_distance;  // 1, or 2 where the manual reserves distance 1 as a marker
 };
 
-const Layout kPandar40P{Model::pandar40p, "pandar40p_dual.pcap", "calibration/pandar40p_unit_a_angles.csv",
-                        "calibration/pandar40p_unit_b_angles.csv", "calibration/pandar40p_firetimes.csv",
-                        1439, 1262, 10, 40, 3, 0, 124, 2, 4};
-const Layout kPandar64{Model::pandar64, "pandar64_dual.pcap", "calibration/pandar64_unit_a_angles.csv",
-                       "calibration/pandar64_unit_b_angles.csv", "calibration/pandar64_firetimes.csv",
-                       2400, 1198, 6, 64, 3, 8, 194, 0, 2};
-const Layout kQt128{Model::qt128c2x, "qt128c2x_dual.pcap", "calibration/qt128c2x_unit_a_angles.csv",
-                    "calibration/qt128c2x_unit_a_angles.csv", "calibration/qt128c2x_firetimes.csv",
-                    1800, 1127, 2, 128, 4, 12, 514, 0, 2};
+const Layout kPandar40P{"pandar40p_dual.pcap", 1439, 434934, Model::pandar40p,
+                        "calibration/pandar40p_unit_a_angles.csv", "calibration/pandar40p_unit_b_angles.csv",
+                        "calibration/pandar40p_firetimes.csv", 1262, 10, 40, 3, 0, 124, 2, 4, 1};
+const Layout kPandar64{"pandar64_dual.pcap", 2400, 716622, Model::pandar64,
+                       "calibration/pandar64_unit_a_angles.csv", "calibration/pandar64_unit_b_angles.csv",
+                       "calibration/pandar64_firetimes.csv", 1198, 6, 64, 3, 8, 194, 0, 2, 1};
+const Layout kQt128{"qt128c2x_dual.pcap", 1800, 337108, Model::qt128c2x,
+                    "calibration/qt128c2x_unit_a_angles.csv", "calibration/qt128c2x_unit_a_angles.csv",
+                    "calibration/qt128c2x_firetimes.csv", 1127, 2, 128, 4, 12, 514, 0, 2, 2};
 
 std::vector<std::uint8_t> file_bytes(const std::string& name) { return read_file(data_path(name)); }
 
@@ -98,7 +103,7 @@ void PrintTo(const Layout& l, std::ostream* os) { *os << hesai::model_name(l.mod
 
 class Golden : public ::testing::TestWithParam<Layout> {};
 
-// Packets, non-zero distances, return mode and spin rate, counted from the raw bytes.
+// Packets, points, return mode and spin rate, counted from the raw bytes by this test's loops.
 TEST_P(Golden, CountsFromRawBytes) {
   const Layout& l = GetParam();
   const auto packets = pcap_payloads(l.capture);
@@ -106,12 +111,13 @@ TEST_P(Golden, CountsFromRawBytes) {
   Decoder dec(l.model);
   PacketPoints pts;
   PacketInfo info;
-  std::size_t raw_nonzero = 0, decoded = 0;
+  std::size_t raw_points = 0, decoded = 0;
   for (const auto& p : packets) {
     ASSERT_EQ(p.size(), l.payload);
     for (std::size_t b = 0; b < l.blocks; ++b)
       for (std::size_t c = 0; c < l.channels; ++c)
-        raw_nonzero += hesai::load_le16(&p[l.body + b * l.block_bytes + l.points_in_block + c * l.point_bytes]) != 0;
+        raw_points += hesai::load_le16(&p[l.body + b * l.block_bytes + l.points_in_block + c * l.point_bytes]) >=
+                      l.min_distance;
     ASSERT_EQ(dec.decode(view(p), info, pts), Error::ok);
     decoded += pts.count;
     EXPECT_EQ(info.return_mode, 0x39);  // every capture is dual return (last + strongest)
@@ -119,16 +125,15 @@ TEST_P(Golden, CountsFromRawBytes) {
     EXPECT_GE(info.motor_rpm, 590);  // about 600 rpm
     EXPECT_LE(info.motor_rpm, 610);
   }
-  EXPECT_EQ(decoded, raw_nonzero);
-  // Totals from an independent count (python over the same files, see the note in README).
-  const std::size_t expected = l.model == Model::pandar40p ? 434934u : l.model == Model::pandar64 ? 716622u : 337108u;
-  EXPECT_EQ(raw_nonzero, expected);
+  EXPECT_EQ(decoded, raw_points);
+  EXPECT_EQ(raw_points, l.points);  // also counted by tests/golden/count_points.py
 }
 
 // Every point against the reference computation, with the unit's own angle and firing-time files.
 TEST_P(Golden, EveryPointMatchesDoubleReference) {
   const Layout& l = GetParam();
   const auto packets = pcap_payloads(l.capture);
+  ASSERT_EQ(packets.size(), l.packets);
   const ReferenceCalibration ref = read_reference_calibration(l.angles_a, l.firetimes, l.channels);
   Decoder dec(l.model);
   ASSERT_EQ(dec.set_angles(load_angles(l.angles_a, l.channels)), Error::ok);
@@ -189,6 +194,7 @@ TEST_P(Golden, CalibrationFileIsApplied) {
   const Layout& l = GetParam();
   const bool has_b = l.model != Model::qt128c2x;
   const auto packets = pcap_payloads(l.capture);
+  ASSERT_EQ(packets.size(), l.packets);
   Decoder a(l.model), b(l.model);
   ASSERT_EQ(a.set_angles(load_angles(l.angles_a, l.channels)), Error::ok);
   if (has_b) {
@@ -215,7 +221,8 @@ INSTANTIATE_TEST_SUITE_P(Captures, Golden, ::testing::Values(kPandar40P, kPandar
 
 TEST(GoldenHeader, Pandar64FirstPacket) {
   const auto packets = pcap_payloads("pandar64_dual.pcap");
-  const auto& p = packets.at(0);
+  ASSERT_FALSE(packets.empty());
+  const auto& p = packets[0];
   // Header: ee ff 40 06 00 04 00 00 -> 64 lasers, 6 blocks, distance unit 4 mm.
   EXPECT_EQ(p[0], 0xEE); EXPECT_EQ(p[1], 0xFF); EXPECT_EQ(p[2], 0x40); EXPECT_EQ(p[3], 0x06); EXPECT_EQ(p[5], 0x04);
   Decoder dec(Model::pandar64);
@@ -243,7 +250,8 @@ TEST(GoldenHeader, Pandar64FirstPacket) {
 
 TEST(GoldenHeader, Pandar40PFirstPacket) {
   const auto packets = pcap_payloads("pandar40p_dual.pcap");
-  const auto& p = packets.at(0);
+  ASSERT_FALSE(packets.empty());
+  const auto& p = packets[0];
   EXPECT_EQ(p[0], 0xFF); EXPECT_EQ(p[1], 0xEE);  // block preamble, 0xFF first
   Decoder dec(Model::pandar40p);
   PacketInfo info;
@@ -263,7 +271,8 @@ TEST(GoldenHeader, Pandar40PFirstPacket) {
 
 TEST(GoldenHeader, Qt128FirstPacket) {
   const auto packets = pcap_payloads("qt128c2x_dual.pcap");
-  const auto& p = packets.at(0);
+  ASSERT_FALSE(packets.empty());
+  const auto& p = packets[0];
   // Pre-header + header: ee ff 03 02 03 00 | 80 02 01 04 02 1d
   EXPECT_EQ(p[2], 0x03); EXPECT_EQ(p[3], 0x02); EXPECT_EQ(p[6], 0x80); EXPECT_EQ(p[7], 0x02);
   EXPECT_EQ(p[10], 0x02); EXPECT_EQ(p[11], 0x1D);
@@ -292,30 +301,46 @@ TEST(GoldenHeader, Qt128FirstPacket) {
   EXPECT_EQ(info.signature, hesai::SignatureStatus::not_signed);
 }
 
-}  // namespace
+// QT128C2X manual, Appendix II, "Firing Sequences": Firing Sequence 1 fires Banks C, D and B
+// while Bank A rests; Firing Sequence 2 fires Banks C, D and A while Bank B rests. Appendix I,
+// "Division of Channels into Banks": Bank A is Channels 1 to 32, Bank B Channels 33 to 64.
+bool rests_in_sequence(bool sequence1, std::size_t channel) {
+  return sequence1 ? channel <= 32 : channel >= 33 && channel <= 64;
+}
 
-namespace {
+// The bundled firetime file agrees with the rule: a channel rests in a loop exactly when the
+// loop's column lists no firing time for it (Appendix II, "Firetime Correction File").
+TEST(GoldenQt128, FiretimeFileRestsTheBanksOfTheRule) {
+  const ReferenceCalibration ref = read_reference_calibration(
+      "calibration/qt128c2x_unit_a_angles.csv", "calibration/qt128c2x_firetimes.csv", 128);
+  for (std::size_t c = 1; c <= 128; ++c) {
+    EXPECT_EQ(ref.fire1[c - 1] == 0, rests_in_sequence(true, c)) << c;
+    EXPECT_EQ(ref.fire2[c - 1] == 0, rests_in_sequence(false, c)) << c;
+  }
+}
 
-// QT128 App. II: the tail's mode flag names the firing sequence of block 1, and a channel that
-// does not fire in a sequence has all four bytes zero. On the real capture, every channel
-// outside the named sequence is zero, and each sequence leaves one bank of 32 channels dark.
+// Section 3.1.2, Tail: the mode flag names the firing sequence of block 1 (1 = sequence 1,
+// 0 = sequence 2); Body: "If a channel does not fire in the current firing sequence, its
+// corresponding four bytes are filled with 0." On every packet of the real capture, every
+// resting channel is zero, and the sequence alternates packet to packet (dual return).
 TEST(GoldenQt128, ModeFlagNamesTheFiringSequence) {
   const auto packets = pcap_payloads("qt128c2x_dual.pcap");
+  ASSERT_EQ(packets.size(), kQt128.packets);
   std::size_t zero_outside = 0, outside = 0, flag_set = 0;
   for (const auto& p : packets) {
+    ASSERT_EQ(p.size(), kQt128.payload);
     const bool seq1 = p[1066] & 1;
     flag_set += seq1;
     for (std::size_t b = 0; b < 2; ++b)
-      for (std::size_t c = 0; c < 128; ++c) {
-        const bool fires = seq1 ? hesai::tables::qt128_fires_in_loop1[c] : hesai::tables::qt128_fires_in_loop2[c];
-        if (fires) continue;
+      for (std::size_t c = 1; c <= 128; ++c) {
+        if (!rests_in_sequence(seq1, c)) continue;
         ++outside;
-        zero_outside += hesai::load_le32(&p[12 + b * 514 + 2 + c * 4]) == 0;
+        zero_outside += hesai::load_le32(&p[12 + b * 514 + 2 + (c - 1) * 4]) == 0;
       }
   }
-  EXPECT_EQ(outside, packets.size() * 2 * 32);  // 32 dark channels per block
+  EXPECT_EQ(outside, packets.size() * 2 * 32);  // 32 resting channels per block
   EXPECT_EQ(zero_outside, outside);
-  EXPECT_EQ(flag_set, packets.size() / 2);  // dual return: the sequence alternates packet to packet
+  EXPECT_EQ(flag_set, packets.size() / 2);
 }
 
 }  // namespace

@@ -2,6 +2,8 @@
 // so that golden tests do not depend on the code they check.
 #pragma once
 
+#include <gtest/gtest.h>
+
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
@@ -20,8 +22,10 @@ namespace hesai_test {
 
 inline std::string data_path(const std::string& name) { return std::string(HESAI_DATA_DIR) + "/" + name; }
 
+/// The bytes of a file; a file that cannot be opened is a test failure (and gives no bytes).
 inline std::vector<std::uint8_t> read_file(const std::string& path) {
   std::ifstream f(path, std::ios::binary);
+  if (!f) ADD_FAILURE() << "cannot open " << path;
   return std::vector<std::uint8_t>(std::istreambuf_iterator<char>(f), std::istreambuf_iterator<char>());
 }
 
@@ -61,6 +65,7 @@ struct CsvTable {
 };
 inline CsvTable read_numeric_csv(const std::string& name) {
   std::ifstream f(data_path(name));
+  if (!f) ADD_FAILURE() << "cannot open " << data_path(name);
   CsvTable t;
   std::string line;
   while (std::getline(f, line)) {

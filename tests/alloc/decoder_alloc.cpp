@@ -35,6 +35,7 @@ TEST(ZeroAllocation, DecodeQt128) { decode_all_without_allocating("qt128c2x_dual
 
 TEST(ZeroAllocation, SignedQt128WithKey) {
   const auto packets = hesai_test::pcap_payloads("qt128c2x_dual.pcap");
+  ASSERT_FALSE(packets.empty());
   static PacketPoints pts;
   PacketInfo info;
   std::uint8_t key[32] = {1, 2, 3};
