@@ -211,6 +211,45 @@ TEST(ManualExample, Qt128BlockStartAndFiringSequences) {
   EXPECT_EQ(pts.points[1].return_index, 1);
 }
 
+// ---- QT128: distance 1 is a marker, not a point ----
+
+// QT128C2X manual, Chinese edition, Section 3.1.2 (UDP data), the notes on the Distance field below
+// the Body table: Distance = 0 means no return, and Distance = 1 is reserved as a marker, not a
+// measurement of 1 x 4 mm. The smallest measured distance is therefore 2 x 4 mm = 8 mm. No bundled
+// capture holds a 1: a real packet is edited and its CRCs sealed again.
+TEST(Qt128Distance, OneIsAMarkerTwoIsAPoint) {
+  const auto packets = pcap_payloads("qt128c2x_dual.pcap");
+  ASSERT_FALSE(packets.empty());
+  auto p = packets[0];
+  ASSERT_EQ(p[9], 4);  // dis unit: 4 mm
+  const int ones[] = {65, 80, 97, 128};
+  const int twos[] = {66, 81, 98, 127};
+  for (int b = 1; b <= 2; ++b) {
+    for (int c : ones) qt128_point(p, b, c, 1, 7);
+    for (int c : twos) qt128_point(p, b, c, 2, 7);
+  }
+  qt128_seal(p);
+  // Points by the manual's rule, from the edited bytes: distances other than 0 and 1.
+  std::size_t expected = 0;
+  for (std::size_t b = 0; b < 2; ++b)
+    for (std::size_t c = 0; c < 128; ++c) expected += load_le16(&p[12 + 514 * b + 2 + 4 * c]) >= 2;
+
+  Decoder dec(Model::qt128c2x);
+  PacketInfo info;
+  PacketPoints pts;
+  ASSERT_EQ(dec.decode(view(p), info, pts), Error::ok);
+  EXPECT_EQ(pts.count, expected);
+  for (int b = 1; b <= 2; ++b) {
+    for (int c : ones) EXPECT_EQ(find_point(pts, b, c), nullptr) << "block " << b << " channel " << c;
+    for (int c : twos) {
+      const Point* q = find_point(pts, b, c);
+      ASSERT_NE(q, nullptr) << "block " << b << " channel " << c;
+      EXPECT_NEAR(q->distance_m, 0.008, 1e-7);
+      EXPECT_NEAR(std::sqrt(q->x * q->x + q->y * q->y + q->z * q->z), 0.008, 1e-6);
+    }
+  }
+}
+
 // ---- Accuracy: every channel at 200 m within 1 mm of a double evaluation ----
 
 // The reference comes from the test's inputs only, never from the decoder's outputs: the unit's
