@@ -4,7 +4,7 @@
 // Both layouts share the header, the date-time digits, the end of the 0xDF filler and the last six
 // bytes; they differ in bytes 14..17 (Pandar40 "us time", Pandar64 reserved) and in the length of
 // the NMEA field (77 bytes vs 84), so the filler starts at 95 (Pandar40) or at 102 (Pandar64).
-// Sources: Pandar40 manual (seeds/002) Table 3.6 and its example; Pandar64 manual (seeds/000)
+// Sources: Pandar40 manual, Section 3.2.2, Table 3.6 and its example; Pandar64 manual,
 // Section 3.2.2 "GPS UDP data" and Section 3.2.4 (Figure 18).
 #pragma once
 
@@ -51,7 +51,7 @@ inline constexpr std::size_t kNmeaSize40 = 77;
 inline constexpr std::size_t kFill40 = kNmea + kNmeaSize40;  ///< 95
 inline constexpr std::size_t kFillSize40 = 411;
 
-// Pandar64 (seeds/000 Section 3.2.2): 18-byte time data (2 + 6 + 6 + 4 reserved), NMEA 84, filler 404.
+// Pandar64 (manual Section 3.2.2): 18-byte time data (2 + 6 + 6 + 4 reserved), NMEA 84, filler 404.
 inline constexpr std::size_t kNmeaSize64 = 84;
 inline constexpr std::size_t kFill64 = kNmea + kNmeaSize64;  ///< 102
 inline constexpr std::size_t kFillSize64 = 404;

@@ -1,5 +1,6 @@
 // Wire layout of Pandar40 and Pandar40P point cloud packets.
-// Sources: seed 002 (Pandar40 manual) section 3.1.2, tables 3.3 and 3.4; seed 003 (Pandar40P).
+// Sources: Pandar40 manual, Section 3.1.2, Tables 3.3 and 3.4; the Pandar40P packet document
+// ("Hesai Pandar40P LiDAR Packet Structure Analysis", "LiDAR UDP Payload Structure").
 #pragma once
 
 #include <cstddef>

@@ -1,5 +1,5 @@
 // Wire layout of Pandar64 point cloud packets.
-// Source: seed 000 (Pandar64 manual) section 3.1.2: header 3.1.2.1, body 3.1.2.2, tail 3.1.2.3.
+// Source: Pandar64 manual, Section 3.1.2: header 3.1.2.1, body 3.1.2.2, tail 3.1.2.3.
 #pragma once
 
 #include <cstddef>

@@ -1,5 +1,5 @@
 // Wire layout of QT128C2X point cloud packets, protocol 3.2.
-// Source: seed 001 (QT128C2X manual) section 3.1.2; offsets verified on every packet of the
+// Source: QT128C2X manual, Section 3.1.2 (UDP Data); offsets verified on every packet of the
 // bundled capture (protocol notes). Optional sections are present per the header flags, so the
 // offsets after the body are computed by qt128::Layout.
 #pragma once

@@ -6,7 +6,8 @@ using namespace gps_wire;
 
 namespace {
 
-/// Pandar40 us time at a PPS is (minute * 60 + second) * 1e6 (seeds/002 line 439): below one hour.
+/// Pandar40 us time at a PPS is (minute * 60 + second) * 1e6 (Pandar40 manual, Section 3.2.2,
+/// "Example of GPS Data Packet UDP Data Analysis", us Time): below one hour.
 constexpr std::uint32_t kUsPerHour = 3600000000u;
 
 bool all_fill(const std::uint8_t* p, std::size_t n) {
@@ -61,7 +62,7 @@ bool nmea_checksum_matches(const char* s, std::size_t len) {
 bool valid_status(std::uint8_t c, GpsLayout layout) {
   if (c == 'A' || c == 'V' || c == 0) return true;
   // Pandar64 with GPGGA selected: the status comes from the sentence, whose only status field is
-  // the fix quality 0..9 (seeds/000 Section 3.2.2.2).
+  // the fix quality 0..9 (Pandar64 manual, Section 3.2.2.2).
   return layout == GpsLayout::pandar64 && is_digit(c);
 }
 

@@ -14,12 +14,12 @@
 namespace hesai::tables {
 
 // ---- Pandar40 / Pandar40P: 10 blocks ---------------------------------------------------------
-// Source: seeds/002_5dc504035fd3c2f7.txt Appendix II section 2 "Laser Firing Time Calculation".
-// Single return (lines 770..778): end of block N = t0 - 28.58 - 55.56 * (10 - N).
-// Dual return (lines 783..826): blocks (1, 2), (3, 4), ... (9, 10) hold one firing each and share
+// Source: Pandar40 manual, Appendix II, 2 "Laser Firing Time Calculation".
+// Single return: end of block N = t0 - 28.58 - 55.56 * (10 - N).
+// Dual return: blocks (1, 2), (3, 4), ... (9, 10) hold one firing each and share
 // its end time: blocks 10 & 9 = t0 - 28.58, 8 & 7 = t0 - 28.58 - 55.56 * 1, 6 & 5 = ... * 2,
 // 4 & 3 = ... * 3, 2 & 1 = ... * 4. (The OCR splits this list around the firing-time list.)
-// The Pandar40P document (seeds/003) gives no block times; the Pandar40 ones serve it.
+// The Pandar40P document gives no block times; the Pandar40 ones serve it.
 
 /// End of the last block before t0, in us (Pandar40/40P).
 inline constexpr double pandar40_last_block_end_us = -28.58;
@@ -36,9 +36,9 @@ constexpr double pandar40_block_end_us(std::size_t block, bool dual) {
 }
 
 // ---- Pandar64: 6 blocks ------------------------------------------------------------------------
-// Source: seeds/000_fb05a4a0cc47b403.txt Appendix B.3 "End time of each block".
-// Single return (lines 1447..1454): end of block N = t0 - 42.58 - 55.56 * (6 - N).
-// Dual return (lines 1456..1461): blocks 6 & 5 = t0 - 42.58, 4 & 3 = t0 - 42.58 - 55.56 * 1,
+// Source: Pandar64 manual, Appendix B.3 "End time of each block".
+// Single return: end of block N = t0 - 42.58 - 55.56 * (6 - N).
+// Dual return: blocks 6 & 5 = t0 - 42.58, 4 & 3 = t0 - 42.58 - 55.56 * 1,
 // 2 & 1 = t0 - 42.58 - 55.56 * 2.
 
 /// End of the last block before t0, in us (Pandar64).
@@ -55,14 +55,15 @@ constexpr double pandar64_block_end_us(std::size_t block, bool dual) {
 }
 
 // ---- QT128C2X: 2 blocks ------------------------------------------------------------------------
-// Source: seeds/001_dd40206548f9db46.txt Appendix II "Start Time of Each Block" (lines
-// 1574..1587; the same in seeds/004 lines 1862..1879). Single return: block 1 starts at
-// t0 + 9, block 2 at t0 + 9 + 111.11. Dual return: blocks 1 and 2 both start at t0 + 9.
-// t0 is the time the lidar commands the firing stored in the first block (line 1568).
+// Source: QT128C2X manual, Appendix II "Start Time of Each Block" (the same in the Chinese
+// edition). Single return: block 1 starts at t0 + 9, block 2 at t0 + 9 + 111.11. Dual return:
+// blocks 1 and 2 both start at t0 + 9. t0 is the time the lidar commands the firing stored in
+// the first block (Appendix II, "Absolute Time of Point Cloud Data Packets", Definition).
 
 /// Start of block 1 after t0, in us (QT128C2X).
 inline constexpr double qt128_first_block_start_us = 9.0;
-/// Time between two firings (time-based trigger: "lasers fire every 111.11 us", line 899), in us.
+/// Time between two firings (Section 4.2.2, Trigger Method, time-based: "lasers fire every
+/// 111.11 us"), in us.
 inline constexpr double qt128_firing_period_us = 111.11;
 inline constexpr std::size_t qt128_block_count = 2;
 
