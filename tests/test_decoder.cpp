@@ -255,8 +255,9 @@ TEST(Qt128Distance, OneIsAMarkerTwoIsAPoint) {
 // The reference comes from the test's inputs only, never from the decoder's outputs: the unit's
 // angle and firetime files as the test's own reader sees them (fed to the decoder as they are),
 // the block azimuths written into the packet and the spin rate in its tail. Pandar64 manual,
-// Section 3.1.3 and Appendix B: a = block azimuth + channel azimuth offset + firing time x spin
-// rate, x = r cos(e) sin(a), y = r cos(e) cos(a), z = r sin(e).
+// Section 3.1.4 (Point cloud data analysis method) and Appendix B.4: a = block azimuth + channel
+// azimuth offset + firing time x spin rate; with the axes of Section 1.3 (Y at 0 deg, clockwise
+// positive from above): x = r cos(e) sin(a), y = r cos(e) cos(a), z = r sin(e).
 TEST(Accuracy, AllChannelsAt200mWithin1mm) {
   const ReferenceCalibration ref = read_reference_calibration(
       "calibration/pandar64_unit_a_angles.csv", "calibration/pandar64_firetimes.csv", 64);

@@ -1,8 +1,8 @@
 // GPS packet tests. The captures hold no GPS packets, so every packet here is built by hand from
 // the manuals' tables, with offsets typed in from them (not taken from hesai/gps.h):
-//   Pandar40 (seeds/002 Table 3.6, lines 400-425): FF EE | date 6 @2 | time 6 @8 | us time u32 @14 |
+//   Pandar40 (manual Section 3.2.2, Table 3.6): FF EE | date 6 @2 | time 6 @8 | us time u32 @14 |
 //     GPRMC 77 @18 | 411 x 0xDF @95 | location valid @506 | PPS lock @507 | reserved 4 @508
-//   Pandar64 (seeds/000 Section 3.2.2, lines 886-899): FF EE | date 6 @2 | time 6 @8 | reserved 4 @14 |
+//   Pandar64 (manual Section 3.2.2 "GPS UDP data"): FF EE | date 6 @2 | time 6 @8 | reserved 4 @14 |
 //     NMEA 84 @18 | 404 x 0xDF @102 | positioning status @506 | PPS lock @507 | reserved 4 @508
 // Date/time digits are "lower byte first": the units digit comes first on the wire.
 #include <gtest/gtest.h>
@@ -22,7 +22,7 @@ using hesai::GpsLayout;
 using hesai::GpsPacket;
 using Packet = std::array<std::uint8_t, 512>;
 
-// The manuals' example sentences (seeds/000 lines 915, 934, 935), as printed.
+// The manuals' example sentences (Pandar64 manual, Sections 3.2.2.1 and 3.2.2.2), as printed.
 const char* const kRmc67 = "$GPRMC,072242,A,3027.3680,N,11423.6975,E,000.0,316.7,160617,004.1,W*67";
 const char* const kRmc74Hash = "$GPRMC,065829.00,A,3121.86377,N,12114.68322,E,0.027,,#160617#,,,A*74";
 const char* const kGga47 = "$GPGGA,123519,4807.038,N,01131.000,E,1,08,0.9,545.4,M,46.9,M,,*47";
@@ -94,7 +94,7 @@ void expect_time(const hesai::DateTime& t, int y, int mo, int d, int h, int mi, 
 // ---------------------------------------------------------------------------------------------
 // The manuals' examples
 
-// seeds/000 Figure 18 (lines 946-960): 0x30 0x32 = 20, 0x34 0x30 = 04, 0x37 0x30 = 07,
+// Pandar64 manual, Section 3.2.4, Figure 18: 0x30 0x32 = 20, 0x34 0x30 = 04, 0x37 0x30 = 07,
 // 0x38 0x35 = 58, 0x37 0x30 = 07, 0x34 0x30 = 04 -> 2020-04-07 04:07:58.
 TEST(GpsPandar64, ManualFigure18) {
   Packet p = base64();
@@ -112,9 +112,10 @@ TEST(GpsPandar64, ManualFigure18) {
   EXPECT_FALSE(g.pps_locked);
 }
 
-// seeds/002 lines 430-436: year 0x37 0x31 = 17, month 0x32 0x31 = 12, day 0x30 0x32 = 20,
-// second 0x32 0x35 = 52, minute 0x35 0x34 = 45, hour 0x32 0x31 = 12 -> 2017-12-20 12:45:52.
-// us time (line 439): (45 * 60 + 52) * 1e6 = 2 752 000 000 = 0xA408_3000.
+// Pandar40 manual, Section 3.2.2, "Example of GPS Data Packet UDP Data Analysis": year 0x37 0x31
+// = 17, month 0x32 0x31 = 12, day 0x30 0x32 = 20, second 0x32 0x35 = 52, minute 0x35 0x34 = 45,
+// hour 0x32 0x31 = 12 -> 2017-12-20 12:45:52. us time (same example, "us Time"):
+// (45 * 60 + 52) * 1e6 = 2 752 000 000 = 0xA408_3000.
 TEST(GpsPandar40, ManualExample) {
   Packet p = base40();
   const std::uint8_t wire[12] = {0x37, 0x31, 0x32, 0x31, 0x30, 0x32, 0x32, 0x35, 0x35, 0x34, 0x32, 0x31};

@@ -1,5 +1,5 @@
-// Spot checks of the built-in calibration tables against values read by hand from the manuals.
-// "000 line N" etc. name the seed file (/work/shared/seeds/<nnn>_*.txt) and its line number.
+// Spot checks of the built-in calibration tables against values read by hand from the manuals;
+// each test names the manual's section and table it reads.
 // The vendor-file tests compare whole tables against the files the lidars ship
 // (data/calibration/), which are independent of the manual text.
 #include <gtest/gtest.h>
@@ -74,7 +74,7 @@ TEST(Tables, Sizes) {
   EXPECT_EQ(hesai::tables::pandar40_fire_rows.size(), 40u);
   EXPECT_EQ(hesai::tables::pandar40_firetime_us.size(), 40u);
   EXPECT_EQ(hesai::tables::qt128_channel_angles.size(), 128u);
-  EXPECT_EQ(hesai::tables::qt128_fire_rows.size(), 96u);  // 001 line 1609: 96 channel rows
+  EXPECT_EQ(hesai::tables::qt128_fire_rows.size(), 96u);  // QT128C2X App. II: "96 channel rows"
   EXPECT_EQ(hesai::tables::qt128_firetime_us_loop1.size(), 128u);
   EXPECT_EQ(hesai::tables::qt128_firetime_us_loop2.size(), 128u);
   EXPECT_EQ(hesai::tables::qt128_fires_in_loop1.size(), 128u);
@@ -86,66 +86,69 @@ TEST(Tables, Sizes) {
 
 // ---- Pandar64 ----------------------------------------------------------------------------------
 
+// Pandar64 manual, Appendix A "Channel distribution data".
 TEST(Pandar64Tables, ChannelAngles) {
   expect_angles(hesai::tables::pandar64_channel_angles, {
-      {1, 14.882, -1.042},    // 000 line 1314
-      {5, 3.040, -1.042},     // 000 line 1318 (and the worked example, lines 825 and 843)
-      {7, 1.860, 1.042},      // 000 line 1320
-      {10, 1.351, -5.208},    // 000 line 1323
-      {18, 0.000, -1.042},    // 000 line 1331
-      {23, -0.845, -3.125},   // 000 line 1338
-      {33, -2.536, 5.208},    // 000 line 1348
-      {39, -3.548, 5.208},    // 000 line 1354
-      {41, -3.884, -3.125},   // 000 line 1358
-      {53, -5.898, -3.125},   // 000 line 1370
-      {58, -9.885, -1.042},   // 000 line 1375 (doubtful value, kept as printed)
-      {62, -13.930, -1.042},  // 000 line 1381
-      {64, -24.897, -1.042},  // 000 line 1383
+      {1, 14.882, -1.042},
+      {5, 3.040, -1.042},     // and the worked example, Section 3.1.4
+      {7, 1.860, 1.042},
+      {10, 1.351, -5.208},
+      {18, 0.000, -1.042},
+      {23, -0.845, -3.125},
+      {33, -2.536, 5.208},
+      {39, -3.548, 5.208},
+      {41, -3.884, -3.125},
+      {53, -5.898, -3.125},
+      {58, -9.885, -1.042},   // doubtful value, kept as printed
+      {62, -13.930, -1.042},
+      {64, -24.897, -1.042},
   });
 }
 
+// Pandar64 manual, Appendix B.4 "Laser firing time of each channel".
 TEST(Pandar64Tables, FireTimes) {
   expect_times(hesai::tables::pandar64_firetime_us, {
-      {12, -54.668},  // 000 line 1472
-      {40, -54.668},  // 000 line 1473
-      {26, -50.732},  // 000 line 1477
-      {37, -33.02},   // 000 line 1497
-      {33, -25.148},  // 000 line 1505
-      {1, -23.18},    // 000 line 1506
-      {52, -20.572},  // 000 line 1513
-      {5, -17.964},   // 000 line 1516 (and the worked example, line 851)
-      {64, -12.748},  // 000 line 1525
-      {9, -7.532},    // 000 line 1532
-      {51, -3.62},    // 000 line 1540
-      {61, -3.62},    // 000 line 1541
+      {12, -54.668},
+      {40, -54.668},
+      {26, -50.732},
+      {37, -33.02},
+      {33, -25.148},
+      {1, -23.18},
+      {52, -20.572},
+      {5, -17.964},   // and the worked example, Section 3.1.4.2
+      {64, -12.748},
+      {9, -7.532},
+      {51, -3.62},
+      {61, -3.62},
   });
   // The printed rows: {firing sequence, channel, dt}.
-  EXPECT_EQ(hesai::tables::pandar64_fire_rows[0].order, 1);        // 000 line 1472
-  EXPECT_EQ(hesai::tables::pandar64_fire_rows[0].channel, 12);     // 000 line 1472
-  EXPECT_EQ(hesai::tables::pandar64_fire_rows[63].order, 32);      // 000 line 1541
-  EXPECT_EQ(hesai::tables::pandar64_fire_rows[63].channel, 61);    // 000 line 1541
+  EXPECT_EQ(hesai::tables::pandar64_fire_rows[0].order, 1);        // the first row
+  EXPECT_EQ(hesai::tables::pandar64_fire_rows[0].channel, 12);
+  EXPECT_EQ(hesai::tables::pandar64_fire_rows[63].order, 32);      // the last row
+  EXPECT_EQ(hesai::tables::pandar64_fire_rows[63].channel, 61);
   for (double t : hesai::tables::pandar64_firetime_us) {
     EXPECT_LT(t, 0.0);  // relative to the block END time
   }
 }
 
+// Pandar64 manual, Appendix D "Nonlinear reflectivity mapping".
 TEST(Pandar64Tables, NonlinearReflectivity) {
   const auto& r = hesai::tables::pandar64_nonlinear_reflectivity_pct;
-  EXPECT_DOUBLE_EQ(r[0], 0.0);      // 000 line 1587
-  EXPECT_DOUBLE_EQ(r[6], 0.08);     // 000 line 1588
-  EXPECT_DOUBLE_EQ(r[17], 0.5);     // 000 line 1591
-  EXPECT_DOUBLE_EQ(r[75], 9.1);     // 000 line 1605
-  EXPECT_DOUBLE_EQ(r[76], 9.3);     // 000 line 1608
-  EXPECT_DOUBLE_EQ(r[113], 20.25);  // 000 line 1617
-  EXPECT_DOUBLE_EQ(r[155], 38.25);  // 000 line 1627
-  EXPECT_DOUBLE_EQ(r[160], 40.5);   // 000 line 1631
-  EXPECT_DOUBLE_EQ(r[199], 62.5);   // 000 line 1640
-  EXPECT_DOUBLE_EQ(r[235], 87.25);  // 000 line 1649
-  EXPECT_DOUBLE_EQ(r[236], 87.75);  // 000 line 1654
-  EXPECT_DOUBLE_EQ(r[251], 99.5);   // 000 line 1657
-  EXPECT_DOUBLE_EQ(r[252], 132.0);  // 000 line 1658
-  EXPECT_DOUBLE_EQ(r[254], 242.0);  // 000 line 1658
-  // 255: the manual prints "- -" (000 line 1658).
+  EXPECT_DOUBLE_EQ(r[0], 0.0);
+  EXPECT_DOUBLE_EQ(r[6], 0.08);
+  EXPECT_DOUBLE_EQ(r[17], 0.5);
+  EXPECT_DOUBLE_EQ(r[75], 9.1);
+  EXPECT_DOUBLE_EQ(r[76], 9.3);
+  EXPECT_DOUBLE_EQ(r[113], 20.25);
+  EXPECT_DOUBLE_EQ(r[155], 38.25);
+  EXPECT_DOUBLE_EQ(r[160], 40.5);
+  EXPECT_DOUBLE_EQ(r[199], 62.5);
+  EXPECT_DOUBLE_EQ(r[235], 87.25);
+  EXPECT_DOUBLE_EQ(r[236], 87.75);
+  EXPECT_DOUBLE_EQ(r[251], 99.5);
+  EXPECT_DOUBLE_EQ(r[252], 132.0);
+  EXPECT_DOUBLE_EQ(r[254], 242.0);
+  // 255: the manual prints "- -".
   EXPECT_DOUBLE_EQ(r[255], hesai::tables::pandar64_reflectivity_undefined);
 }
 
@@ -188,47 +191,49 @@ TEST(Pandar64Tables, MatchesUnitFiles) {
 
 // ---- Pandar40 / Pandar40P ----------------------------------------------------------------------
 
+// Pandar40 manual, Appendix I, Table I.1 "Pandar40 Channel Distribution".
 TEST(Pandar40Tables, ChannelAngles) {
   expect_angles(hesai::tables::pandar40_channel_angles, {
-      {1, 15.00, -1.042},    // 002 lines 523 (el), 516 (az)
-      {5, 3.00, -1.042},     // 002 lines 565, 552
-      {7, 1.67, 3.125},      // 002 lines 567, 554
-      {12, 0.00, -1.042},    // 002 lines 572, 559 ("Horizontal Line", line 546)
-      {14, -0.67, -5.208},   // 002 lines 574, 561
-      {15, -1.00, -1.042},   // 002 lines 608, 605
-      {16, -1.33, 3.125},    // 002 lines 651, 633
-      {29, -5.67, -5.208},   // 002 line 646, glued "-5.208-5.67" (OCR repair)
-      {30, -6.00, -1.042},   // 002 line 647, glued "-1.042-6.00" (OCR repair)
-      {31, -7.00, -1.042},   // 002 line 648, glued "-1.042-7.00" (OCR repair)
-      {32, -8.00, -1.042},   // 002 lines 664, 649
-      {34, -10.00, -1.042},  // 002 lines 692, 689
-      {39, -19.00, -1.042},  // 002 lines 715, 709
-      {40, -25.00, -1.042},  // 002 lines 716, 710
+      {1, 15.00, -1.042},    // "Top Line"
+      {5, 3.00, -1.042},
+      {7, 1.67, 3.125},
+      {12, 0.00, -1.042},    // "Horizontal Line"
+      {14, -0.67, -5.208},
+      {15, -1.00, -1.042},
+      {16, -1.33, 3.125},
+      {29, -5.67, -5.208},   // OCR glued "-5.208-5.67" (repaired)
+      {30, -6.00, -1.042},   // OCR glued "-1.042-6.00" (repaired)
+      {31, -7.00, -1.042},   // OCR glued "-1.042-7.00" (repaired)
+      {32, -8.00, -1.042},
+      {34, -10.00, -1.042},
+      {39, -19.00, -1.042},
+      {40, -25.00, -1.042},  // "Bottom Line"
   });
-  // Section 1.1.3 (002 lines 128..129): 1/3 deg steps between channels 6 and 30, 1 deg steps
-  // between channels 30 and 38.
+  // Section 1.1.3 "Pandar40 Channel Vertical Distribution": 1/3 deg steps between channels 6 and
+  // 30, 1 deg steps between channels 30 and 38.
   const auto& a = hesai::tables::pandar40_channel_angles;
   for (std::size_t i = 6; i < 30; ++i) EXPECT_NEAR(a[i - 1].elevation_deg - a[i].elevation_deg, 1.0 / 3.0, 0.011) << i;
   for (std::size_t i = 30; i < 38; ++i) EXPECT_DOUBLE_EQ(a[i - 1].elevation_deg - a[i].elevation_deg, 1.0) << i;
 }
 
+// Pandar40 manual, Appendix II, 2 "Laser Firing Time Calculation".
 TEST(Pandar40Tables, FireTimes) {
   // The manual prints (t6 - x); the table stores -x.
   expect_times(hesai::tables::pandar40_firetime_us, {
-      {4, -3.62},    // 002 line 799
-      {40, -3.62},   // 002 line 801
-      {12, -8.19},   // 002 line 807
-      {17, -14.74},  // 002 line 817
-      {3, -16.04},   // 002 line 829
-      {14, -27.16},  // 002 line 847
-      {2, -28.47},   // 002 line 850
-      {11, -40.91},  // 002 line 868
-      {1, -42.22},   // 002 line 870
-      {27, -48.76},  // 002 line 882
-      {20, -52.7},   // 002 line 886
-      {8, -54.67},   // 002 line 888
+      {4, -3.62},
+      {40, -3.62},
+      {12, -8.19},
+      {17, -14.74},
+      {3, -16.04},
+      {14, -27.16},
+      {2, -28.47},
+      {11, -40.91},
+      {1, -42.22},
+      {27, -48.76},
+      {20, -52.7},
+      {8, -54.67},
   });
-  EXPECT_DOUBLE_EQ(hesai::tables::pandar40_fire_rows[0].time_us, 3.62);  // 002 line 799, as printed
+  EXPECT_DOUBLE_EQ(hesai::tables::pandar40_fire_rows[0].time_us, 3.62);  // the first item, as printed
 }
 
 TEST(Pandar40Tables, MatchesPandar40PVendorFiles) {
@@ -256,20 +261,21 @@ TEST(Pandar40Tables, MatchesPandar40PVendorFiles) {
 
 // ---- QT128C2X ----------------------------------------------------------------------------------
 
+// QT128C2X manual, Appendix I "Channel Distribution".
 TEST(Qt128Tables, ChannelAngles) {
   expect_angles(hesai::tables::qt128_channel_angles, {
-      {1, -52.627, 10.108},   // 001 line 1388
-      {5, -46.695, 8.833},    // 001 line 1392 (and the worked example, lines 749 and 772)
-      {32, -19.191, 6.250},   // 001 line 1422
-      {33, -18.331, -6.217},  // 001 line 1423
-      {47, -6.688, -5.927},   // 001 line 1440
-      {56, 0.606, -5.891},    // 001 line 1449
-      {64, 7.094, -5.938},    // 001 line 1460
-      {65, 7.910, 5.949},     // 001 line 1461
-      {96, 35.549, 7.327},    // 001 line 1495
-      {97, 19.191, -6.250},   // 001 line 1496
-      {114, 35.030, -7.277},  // 001 line 1516
-      {128, 52.627, -10.108}, // 001 line 1533
+      {1, -52.627, 10.108},
+      {5, -46.695, 8.833},    // and the worked example, Section 3.1.3
+      {32, -19.191, 6.250},
+      {33, -18.331, -6.217},
+      {47, -6.688, -5.927},
+      {56, 0.606, -5.891},
+      {64, 7.094, -5.938},
+      {65, 7.910, 5.949},
+      {96, 35.549, 7.327},
+      {97, 19.191, -6.250},
+      {114, 35.030, -7.277},
+      {128, 52.627, -10.108},
   });
 }
 
@@ -293,21 +299,24 @@ void expect_row(std::size_t index, int l1, double t1, int l2, double t2) {
   EXPECT_DOUBLE_EQ(r.loop2_time_us, t2);
 }
 
+// QT128C2X manual, Appendix II, "Firetime Correction File" (row index 0 = the first channel row);
+// where the English edition's OCR text lost the Loop1 column, the Chinese edition's copy.
 TEST(Qt128Tables, FireRows) {
-  expect_row(0, 99, 0.6, 65, 0.6);              // 001 line 1623
-  expect_row(2, 35, 2.312, 1, 2.312);           // 001 line 1625
-  expect_row(20, 59, 21.32, 25, 21.32);         // 001 line 1643
-  expect_row(21, 126, 22.776, 96, 22.776);      // 001 line 1645
-  expect_row(46, 94, 48.976, 128, 48.976);      // 001 line 1670
-  expect_row(47, 64, 49.832, 30, 49.832);       // 001 line 1672 + Loop1 from 004 line 1951
-  expect_row(50, 34, 53.0, 4, 53.0);            // 001 line 1675 + Loop1 from 004 line 1954
-  expect_row(57, 111, 60.792, 77, 60.792);      // 001 line 1682 + Loop1 from 004 line 1962
-  expect_row(58, 77, 61.648, 111, 61.648);      // 001 line 1683 + 004 line 1963 ("7", repaired)
-  expect_row(72, 100, 76.632, 66, 76.632);      // 001 line 1697 + Loop1 from 004 line 1977
-  expect_row(73, 66, 77.488, 100, 77.488);      // 001 line 1700
-  expect_row(95, 61, 100.52, 31, 100.52);       // 001 line 1722
+  expect_row(0, 99, 0.6, 65, 0.6);
+  expect_row(2, 35, 2.312, 1, 2.312);
+  expect_row(20, 59, 21.32, 25, 21.32);
+  expect_row(21, 126, 22.776, 96, 22.776);
+  expect_row(46, 94, 48.976, 128, 48.976);
+  expect_row(47, 64, 49.832, 30, 49.832);       // Loop1 from the Chinese edition
+  expect_row(50, 34, 53.0, 4, 53.0);            // Loop1 from the Chinese edition
+  expect_row(57, 111, 60.792, 77, 60.792);      // Loop1 from the Chinese edition
+  expect_row(58, 77, 61.648, 111, 61.648);      // Loop1 from the Chinese edition ("7", repaired)
+  expect_row(72, 100, 76.632, 66, 76.632);      // Loop1 from the Chinese edition
+  expect_row(73, 66, 77.488, 100, 77.488);
+  expect_row(95, 61, 100.52, 31, 100.52);
 }
 
+// QT128C2X manual, Appendix II: "Firing Sequences" and "Firetime Correction File".
 TEST(Qt128Tables, PerLoopArrays) {
   using hesai::tables::qt128_fires_in_loop1;
   using hesai::tables::qt128_fires_in_loop2;
@@ -317,16 +326,16 @@ TEST(Qt128Tables, PerLoopArrays) {
   EXPECT_EQ(hesai::tables::qt128_loop2_channel_count, 96u);
 
   // Banks C and D fire in both sequences, at different times.
-  EXPECT_DOUBLE_EQ(qt128_firetime_us_loop1[99 - 1], 0.6);     // 001 line 1623
-  EXPECT_DOUBLE_EQ(qt128_firetime_us_loop2[99 - 1], 1.456);   // 001 line 1624
-  EXPECT_DOUBLE_EQ(qt128_firetime_us_loop1[128 - 1], 48.12);  // 001 line 1669
-  EXPECT_DOUBLE_EQ(qt128_firetime_us_loop2[128 - 1], 48.976); // 001 line 1670
-  EXPECT_DOUBLE_EQ(qt128_firetime_us_loop1[77 - 1], 61.648);  // 004 line 1963 (repaired)
-  EXPECT_DOUBLE_EQ(qt128_firetime_us_loop2[77 - 1], 60.792);  // 001 line 1682
+  EXPECT_DOUBLE_EQ(qt128_firetime_us_loop1[99 - 1], 0.6);
+  EXPECT_DOUBLE_EQ(qt128_firetime_us_loop2[99 - 1], 1.456);
+  EXPECT_DOUBLE_EQ(qt128_firetime_us_loop1[128 - 1], 48.12);
+  EXPECT_DOUBLE_EQ(qt128_firetime_us_loop2[128 - 1], 48.976);
+  EXPECT_DOUBLE_EQ(qt128_firetime_us_loop1[77 - 1], 61.648);  // Chinese edition (repaired)
+  EXPECT_DOUBLE_EQ(qt128_firetime_us_loop2[77 - 1], 60.792);
   EXPECT_TRUE(qt128_fires_in_loop1[65 - 1] && qt128_fires_in_loop2[65 - 1]);
   EXPECT_TRUE(qt128_fires_in_loop1[77 - 1] && qt128_fires_in_loop2[77 - 1]);
 
-  // Bank B (33..64) fires only in sequence 1, bank A (1..32) only in sequence 2 (001 line 1594).
+  // Bank B (33..64) fires only in sequence 1, bank A (1..32) only in sequence 2 ("Firing Sequences").
   for (int ch : {33, 48, 64}) {
     EXPECT_TRUE(qt128_fires_in_loop1[static_cast<std::size_t>(ch - 1)]) << ch;
     EXPECT_FALSE(qt128_fires_in_loop2[static_cast<std::size_t>(ch - 1)]) << ch;
@@ -335,12 +344,12 @@ TEST(Qt128Tables, PerLoopArrays) {
     EXPECT_FALSE(qt128_fires_in_loop1[static_cast<std::size_t>(ch - 1)]) << ch;
     EXPECT_TRUE(qt128_fires_in_loop2[static_cast<std::size_t>(ch - 1)]) << ch;
   }
-  EXPECT_DOUBLE_EQ(qt128_firetime_us_loop1[33 - 1], 27.656);  // 001 line 1650
-  EXPECT_DOUBLE_EQ(qt128_firetime_us_loop1[64 - 1], 49.832);  // 004 line 1951
-  EXPECT_DOUBLE_EQ(qt128_firetime_us_loop1[61 - 1], 100.52);  // 001 line 1722
-  EXPECT_DOUBLE_EQ(qt128_firetime_us_loop2[1 - 1], 2.312);    // 001 line 1625
-  EXPECT_DOUBLE_EQ(qt128_firetime_us_loop2[7 - 1], 81.512);   // 001 line 1704
-  EXPECT_DOUBLE_EQ(qt128_firetime_us_loop2[31 - 1], 100.52);  // 001 line 1722
+  EXPECT_DOUBLE_EQ(qt128_firetime_us_loop1[33 - 1], 27.656);
+  EXPECT_DOUBLE_EQ(qt128_firetime_us_loop1[64 - 1], 49.832);  // Chinese edition
+  EXPECT_DOUBLE_EQ(qt128_firetime_us_loop1[61 - 1], 100.52);
+  EXPECT_DOUBLE_EQ(qt128_firetime_us_loop2[1 - 1], 2.312);
+  EXPECT_DOUBLE_EQ(qt128_firetime_us_loop2[7 - 1], 81.512);
+  EXPECT_DOUBLE_EQ(qt128_firetime_us_loop2[31 - 1], 100.52);
 
   int only1 = 0;
   int only2 = 0;
@@ -372,51 +381,55 @@ TEST(Qt128Tables, MatchesVendorFiretimeFile) {
 
 // ---- Block times -------------------------------------------------------------------------------
 
+// Pandar40 manual, Appendix II, 2 "Laser Firing Time Calculation": end of block N in single
+// return = t0 - 28.58 - 55.56 x (10 - N); in dual return blocks (9, 10), (7, 8), ... share one.
 TEST(BlockTimes, Pandar40) {
   using hesai::tables::pandar40_block_end_us_dual;
   using hesai::tables::pandar40_block_end_us_single;
-  EXPECT_NEAR(pandar40_block_end_us_single[10 - 1], -28.58, 1e-9);              // 002 line 770
-  EXPECT_NEAR(pandar40_block_end_us_single[3 - 1], -28.58 - 55.56 * 7, 1e-9);   // 002 line 774
-  EXPECT_NEAR(pandar40_block_end_us_single[2 - 1], -28.58 - 55.56 * 8, 1e-9);   // 002 line 776
-  EXPECT_NEAR(pandar40_block_end_us_single[1 - 1], -28.58 - 55.56 * 9, 1e-9);   // 002 line 778
-  EXPECT_NEAR(pandar40_block_end_us_dual[10 - 1], -28.58, 1e-9);                // 002 line 787
-  EXPECT_NEAR(pandar40_block_end_us_dual[9 - 1], -28.58, 1e-9);                 // 002 line 789
-  EXPECT_NEAR(pandar40_block_end_us_dual[8 - 1], -28.58 - 55.56 * 1, 1e-9);     // 002 line 791
-  EXPECT_NEAR(pandar40_block_end_us_dual[7 - 1], -28.58 - 55.56 * 1, 1e-9);     // 002 line 793
-  EXPECT_NEAR(pandar40_block_end_us_dual[6 - 1], -28.58 - 55.56 * 2, 1e-9);     // 002 line 795
-  EXPECT_NEAR(pandar40_block_end_us_dual[5 - 1], -28.58 - 55.56 * 2, 1e-9);     // 002 line 818
-  EXPECT_NEAR(pandar40_block_end_us_dual[4 - 1], -28.58 - 55.56 * 3, 1e-9);     // 002 line 820
-  EXPECT_NEAR(pandar40_block_end_us_dual[3 - 1], -28.58 - 55.56 * 3, 1e-9);     // 002 line 822
-  EXPECT_NEAR(pandar40_block_end_us_dual[2 - 1], -28.58 - 55.56 * 4, 1e-9);     // 002 line 824
-  EXPECT_NEAR(pandar40_block_end_us_dual[1 - 1], -28.58 - 55.56 * 4, 1e-9);     // 002 line 826
-  for (std::size_t n = 1; n <= 10; ++n) {  // end of block N = t0 - 28.58 - 55.56 * (10 - N), line 772
+  EXPECT_NEAR(pandar40_block_end_us_single[10 - 1], -28.58, 1e-9);
+  EXPECT_NEAR(pandar40_block_end_us_single[3 - 1], -28.58 - 55.56 * 7, 1e-9);
+  EXPECT_NEAR(pandar40_block_end_us_single[2 - 1], -28.58 - 55.56 * 8, 1e-9);
+  EXPECT_NEAR(pandar40_block_end_us_single[1 - 1], -28.58 - 55.56 * 9, 1e-9);
+  EXPECT_NEAR(pandar40_block_end_us_dual[10 - 1], -28.58, 1e-9);
+  EXPECT_NEAR(pandar40_block_end_us_dual[9 - 1], -28.58, 1e-9);
+  EXPECT_NEAR(pandar40_block_end_us_dual[8 - 1], -28.58 - 55.56 * 1, 1e-9);
+  EXPECT_NEAR(pandar40_block_end_us_dual[7 - 1], -28.58 - 55.56 * 1, 1e-9);
+  EXPECT_NEAR(pandar40_block_end_us_dual[6 - 1], -28.58 - 55.56 * 2, 1e-9);
+  EXPECT_NEAR(pandar40_block_end_us_dual[5 - 1], -28.58 - 55.56 * 2, 1e-9);
+  EXPECT_NEAR(pandar40_block_end_us_dual[4 - 1], -28.58 - 55.56 * 3, 1e-9);
+  EXPECT_NEAR(pandar40_block_end_us_dual[3 - 1], -28.58 - 55.56 * 3, 1e-9);
+  EXPECT_NEAR(pandar40_block_end_us_dual[2 - 1], -28.58 - 55.56 * 4, 1e-9);
+  EXPECT_NEAR(pandar40_block_end_us_dual[1 - 1], -28.58 - 55.56 * 4, 1e-9);
+  for (std::size_t n = 1; n <= 10; ++n) {  // end of block N = t0 - 28.58 - 55.56 * (10 - N)
     EXPECT_NEAR(hesai::tables::pandar40_block_end_us(n, false), -28.58 - 55.56 * static_cast<double>(10 - n), 1e-9);
   }
 }
 
+// Pandar64 manual, Appendix B.3 "End time of each block".
 TEST(BlockTimes, Pandar64) {
   using hesai::tables::pandar64_block_end_us_dual;
   using hesai::tables::pandar64_block_end_us_single;
-  EXPECT_NEAR(pandar64_block_end_us_single[6 - 1], -42.58, 1e-9);             // 000 line 1450
-  EXPECT_NEAR(pandar64_block_end_us_single[3 - 1], -42.58 - 55.56 * 3, 1e-9); // 000 line 1452
-  EXPECT_NEAR(pandar64_block_end_us_single[2 - 1], -42.58 - 55.56 * 4, 1e-9); // 000 line 1453
-  EXPECT_NEAR(pandar64_block_end_us_single[1 - 1], -42.58 - 55.56 * 5, 1e-9); // 000 line 1454
-  EXPECT_NEAR(pandar64_block_end_us_dual[6 - 1], -42.58, 1e-9);               // 000 line 1459
-  EXPECT_NEAR(pandar64_block_end_us_dual[5 - 1], -42.58, 1e-9);               // 000 line 1459
-  EXPECT_NEAR(pandar64_block_end_us_dual[4 - 1], -42.58 - 55.56 * 1, 1e-9);   // 000 line 1460
-  EXPECT_NEAR(pandar64_block_end_us_dual[3 - 1], -42.58 - 55.56 * 1, 1e-9);   // 000 line 1460
-  EXPECT_NEAR(pandar64_block_end_us_dual[2 - 1], -42.58 - 55.56 * 2, 1e-9);   // 000 line 1461
-  EXPECT_NEAR(pandar64_block_end_us_dual[1 - 1], -42.58 - 55.56 * 2, 1e-9);   // 000 line 1461
-  // Worked example (000 lines 821, 851): channel 5 in block 3 fires 17.964 us before block 3 ends.
+  EXPECT_NEAR(pandar64_block_end_us_single[6 - 1], -42.58, 1e-9);
+  EXPECT_NEAR(pandar64_block_end_us_single[3 - 1], -42.58 - 55.56 * 3, 1e-9);
+  EXPECT_NEAR(pandar64_block_end_us_single[2 - 1], -42.58 - 55.56 * 4, 1e-9);
+  EXPECT_NEAR(pandar64_block_end_us_single[1 - 1], -42.58 - 55.56 * 5, 1e-9);
+  EXPECT_NEAR(pandar64_block_end_us_dual[6 - 1], -42.58, 1e-9);
+  EXPECT_NEAR(pandar64_block_end_us_dual[5 - 1], -42.58, 1e-9);
+  EXPECT_NEAR(pandar64_block_end_us_dual[4 - 1], -42.58 - 55.56 * 1, 1e-9);
+  EXPECT_NEAR(pandar64_block_end_us_dual[3 - 1], -42.58 - 55.56 * 1, 1e-9);
+  EXPECT_NEAR(pandar64_block_end_us_dual[2 - 1], -42.58 - 55.56 * 2, 1e-9);
+  EXPECT_NEAR(pandar64_block_end_us_dual[1 - 1], -42.58 - 55.56 * 2, 1e-9);
+  // Worked example (Section 3.1.4): channel 5 in block 3 fires 17.964 us before block 3 ends.
   EXPECT_NEAR(hesai::tables::pandar64_block_end_us(3, false) + hesai::tables::pandar64_firetime_us[5 - 1],
               -42.58 - 55.56 * 3 - 17.964, 1e-9);
 }
 
+// QT128C2X manual, Appendix II, "Start Time of Each Block".
 TEST(BlockTimes, Qt128) {
-  EXPECT_DOUBLE_EQ(hesai::tables::qt128_block_start_us_single[0], 9.0);            // 001 line 1581
-  EXPECT_NEAR(hesai::tables::qt128_block_start_us_single[1], 9.0 + 111.11, 1e-9);  // 001 line 1582
-  EXPECT_DOUBLE_EQ(hesai::tables::qt128_block_start_us_dual[0], 9.0);              // 001 line 1587
-  EXPECT_DOUBLE_EQ(hesai::tables::qt128_block_start_us_dual[1], 9.0);              // 001 line 1587
+  EXPECT_DOUBLE_EQ(hesai::tables::qt128_block_start_us_single[0], 9.0);
+  EXPECT_NEAR(hesai::tables::qt128_block_start_us_single[1], 9.0 + 111.11, 1e-9);
+  EXPECT_DOUBLE_EQ(hesai::tables::qt128_block_start_us_dual[0], 9.0);
+  EXPECT_DOUBLE_EQ(hesai::tables::qt128_block_start_us_dual[1], 9.0);
 }
 
 }  // namespace

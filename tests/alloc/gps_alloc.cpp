@@ -9,7 +9,7 @@
 #include "hesai/gps.h"
 
 TEST(ZeroAllocation, GpsPacket) {
-  // A Pandar64 GPS packet (seeds/000 Section 3.2.2): FF EE, 2017-06-16 07:22:42, the manual's GPRMC,
+  // A Pandar64 GPS packet (Pandar64 manual, Section 3.2.2): FF EE, 2017-06-16 07:22:42, the manual's GPRMC,
   // 404 x 0xDF from byte 102, status 'A', PPS locked.
   std::array<std::uint8_t, 512> p{};
   p[0] = 0xFF;

@@ -2,7 +2,7 @@
 """Derives, from the manuals alone, the points the firmware image checks (tests/firmware/main.cpp).
 
 Every input below is read off a packet's bytes (data/*.pcap, packet index 7, the packet that
-fuzz/seed_packets.inc holds) or off a manual's table, with the line of the OCR text it comes from.
+fuzz/seed_packets.inc holds) or off a manual's table, named by model, section and table.
 Formulas (README, "How a point is computed"): r = raw x unit; a = block azimuth + channel azimuth
 offset + firing time x spin rate; x = r cos(e) sin(a), y = r cos(e) cos(a), z = r sin(e);
 time = t0 + block time + the channel's firing time. Run it to print the expected values.
@@ -26,42 +26,44 @@ def t0(y, mo, d, h, mi, s, us):
     return (calendar.timegm((y, mo, d, h, mi, s)) * 1000000 + us) * 1000
 
 
-# Pandar40P (seeds/003 layout, seeds/002 tables): tail rpm 0x0258 = 600, date 17-09-06 16:19:46,
-# timestamp 0x000D7B38 = 883512 us, return mode 0x39 (dual). Block 1 azimuth 0x034E = 846 -> 8.46 deg.
-# Dual-return block 1 ends at t0 - 28.58 - 55.56 x 4 us (002 lines 783..826).
-# Channel 1: bytes 93 04 06 -> raw 1171, reflectivity 6; elevation 15.00 (002 line 523), azimuth
-#   -1.042 (line 516), fires at block end - 42.22 us (line 870).
-# Channel 2: bytes BD 04 0D -> raw 1213, reflectivity 13; elevation 11.00 (line 562), azimuth
-#   -1.042 (line 549), fires at block end - 28.47 us (line 850).
+# Pandar40P (layout: the Pandar40P packet document; tables: the Pandar40 manual): tail rpm 0x0258
+# = 600, date 17-09-06 16:19:46, timestamp 0x000D7B38 = 883512 us, return mode 0x39 (dual).
+# Block 1 azimuth 0x034E = 846 -> 8.46 deg. Dual-return block 1 ends at t0 - 28.58 - 55.56 x 4 us
+# (Pandar40 manual, Appendix II, 2 "Laser Firing Time Calculation").
+# Channel 1: bytes 93 04 06 -> raw 1171, reflectivity 6; elevation 15.00, azimuth -1.042 (Appendix
+#   I, Table I.1), fires at block end - 42.22 us (Appendix II, 2).
+# Channel 2: bytes BD 04 0D -> raw 1213, reflectivity 13; elevation 11.00, azimuth -1.042
+#   (Table I.1), fires at block end - 28.47 us (Appendix II, 2).
 P40P_T0 = t0(2017, 9, 6, 16, 19, 46, 883512)
 P40_BLOCK1 = -28.58 - 55.56 * 4
 pts = {
     'pandar40p ch1': point(1171, 4, 8.46, -1.042, 15.00, -42.22, 600, P40P_T0, P40_BLOCK1),
     'pandar40p ch2': point(1213, 4, 8.46, -1.042, 11.00, -28.47, 600, P40P_T0, P40_BLOCK1),
     # Pandar40: the same blocks with the 16-byte tail; without a GPS packet t0 is the timestamp
-    # alone, microseconds since the top of the hour (002 Appendix II).
+    # alone, microseconds since the top of the hour (Pandar40 manual, Appendix II, 1).
     'pandar40 ch1': point(1171, 4, 8.46, -1.042, 15.00, -42.22, 600, 883512 * 1000, P40_BLOCK1),
 }
-# Pandar64 (seeds/000): header dis unit 4 mm, tail rpm 0x0257 = 599, date 120-06-25 12:02:09
+# Pandar64 (Pandar64 manual): header dis unit 4 mm, tail rpm 0x0257 = 599, date 120-06-25 12:02:09
 # (year - 2000 by the manual), timestamp 0x000EEE4C = 978508 us, return mode 0x39 (dual).
 # Block 1 azimuth 0x01EC = 492 -> 4.92 deg; dual block 1 ends at t0 - 42.58 - 55.56 x 2 us
-# (000 lines 1456..1461).
+# (Appendix B.3).
 # Channel 1: bytes 2B 02 2C -> raw 555, reflectivity 44; elevation 14.882, azimuth -1.042
-#   (000 line 1314); firing time -23.18 us (line 1506).
+#   (Appendix A); firing time -23.18 us (Appendix B.4).
 # Channel 5: bytes 19 02 08 -> raw 537, reflectivity 8; elevation 3.040, azimuth -1.042
-#   (line 1318); firing time -17.964 us (line 1516).
+#   (Appendix A); firing time -17.964 us (Appendix B.4).
 P64_T0 = t0(2120, 6, 25, 12, 2, 9, 978508)
 P64_BLOCK1 = -42.58 - 55.56 * 2
 pts['pandar64 ch1'] = point(555, 4, 4.92, -1.042, 14.882, -23.18, 599, P64_T0, P64_BLOCK1)
 pts['pandar64 ch5'] = point(537, 4, 4.92, -1.042, 3.040, -17.964, 599, P64_T0, P64_BLOCK1)
-# QT128C2X (seeds/001): dis unit 4 mm, flags 0x1D; tail mode flag 0x01 (block 1 fires sequence
-# Loop1), return mode 0x39 (dual: both blocks start at t0 + 9 us, lines 1574..1587), rpm 0x0258
-# = 600, date 120-10-09 12:03:29 (year - 1900), timestamp 0x00062954 = 403796 us.
+# QT128C2X (QT128C2X manual): dis unit 4 mm, flags 0x1D; tail mode flag 0x01 (block 1 fires
+# sequence Loop1), return mode 0x39 (dual: both blocks start at t0 + 9 us, Appendix II "Start Time
+# of Each Block"), rpm 0x0258 = 600, date 120-10-09 12:03:29 (year - 1900), timestamp
+# 0x00062954 = 403796 us.
 # Block 1 azimuth 0x0550 = 1360 -> 13.60 deg.
 # Channel 35: bytes 57 00 01 00 -> raw 87, reflectivity 1; azimuth -6.157, elevation -16.627
-#   (001 line 1424); Loop1 firing time 2.312 us (line 1625).
+#   (Appendix I); Loop1 firing time 2.312 us (Appendix II, "Firetime Correction File").
 # Channel 38: bytes 52 00 0F 00 -> raw 82, reflectivity 15; azimuth -6.080, elevation -14.102
-#   (line 1428); Loop1 firing time 5.48 us (line 1628).
+#   (Appendix I); Loop1 firing time 5.48 us (Appendix II, "Firetime Correction File").
 QT_T0 = t0(2020, 10, 9, 12, 3, 29, 403796)
 pts['qt128 ch35'] = point(87, 4, 13.60, -6.157, -16.627, 2.312, 600, QT_T0, 9.0)
 pts['qt128 ch38'] = point(82, 4, 13.60, -6.080, -14.102, 5.48, 600, QT_T0, 9.0)

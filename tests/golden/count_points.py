@@ -3,13 +3,15 @@
 
 Plain Python over the pcap bytes: the pcap record headers, then each frame's Ethernet, IPv4 and UDP
 headers (the IPv4 header length read from the packet), then the point-cloud layouts of the manuals:
-  Pandar40P (Pandar40P manual, Section 3.1.2): 10 blocks of 124 bytes from offset 0, each
-    0xFFEE, azimuth u16, 40 x {distance u16, reflectivity u8}; payload 1262 (1266 with sequence).
-  Pandar64 (Pandar64 manual, Section 3.1.2): 8-byte header, 6 blocks of 194 bytes, each azimuth
-    u16, 64 x {distance u16, reflectivity u8}; payload 1194 (1198 with sequence).
-  QT128C2X (QT128C2X manual, Section 3.1.2): 12-byte header, 2 blocks of 514 bytes, each azimuth
-    u16, 128 x {distance u16, reflectivity u8, reserved u8}; the payload length follows the
-    header's flags (bit 0 UDP sequence +4, bit 2 functional safety +17, bit 3 signature +32).
+  Pandar40P (Pandar40 manual, Section 3.1.2, Tables 3.2 and 3.3; the Pandar40P packet document,
+    "LiDAR UDP Payload Structure"): 10 blocks of 124 bytes from offset 0, each 0xFFEE, azimuth
+    u16, 40 x {distance u16, reflectivity u8}; payload 1262 (1266 with sequence).
+  Pandar64 (Pandar64 manual, Sections 3.1.2.1 Header and 3.1.2.2 Body): 8-byte header, 6 blocks
+    of 194 bytes, each azimuth u16, 64 x {distance u16, reflectivity u8}; payload 1194 (1198 with
+    sequence).
+  QT128C2X (QT128C2X manual, Section 3.1.2 UDP Data): 12-byte header, 2 blocks of 514 bytes, each
+    azimuth u16, 128 x {distance u16, reflectivity u8, reserved u8}; the payload length follows
+    the header's flags (bit 0 UDP sequence +4, bit 2 functional safety +17, bit 3 signature +32).
 A point is a distance that is not 0 (no return); for the QT128 not 1 either (the Chinese QT128C2X
 manual, Section 3.1.2, notes on the Distance field: 1 is a reserved marker, not a measurement).
 
