@@ -46,7 +46,7 @@ inline constexpr std::size_t kPpsLock = 507;    ///< 1 byte: 1 locked, 0 unlocke
 inline constexpr std::size_t kReserved = 508;   ///< 4 bytes, ignored
 inline constexpr std::size_t kReservedSize = 4;
 
-// Pandar40 (seeds/002 Table 3.6): 18-byte time data (2 + 6 + 6 + 4), GPRMC 77, filler 411.
+// Pandar40 (manual Section 3.2.2, Table 3.6): 18-byte time data (2 + 6 + 6 + 4), GPRMC 77, filler 411.
 inline constexpr std::size_t kNmeaSize40 = 77;
 inline constexpr std::size_t kFill40 = kNmea + kNmeaSize40;  ///< 95
 inline constexpr std::size_t kFillSize40 = 411;
