@@ -1,7 +1,9 @@
 // Test-only builders of synthetic packets, field by field from the manuals' layouts.
 #pragma once
 
+#include <array>
 #include <cstdint>
+#include <cstring>
 #include <vector>
 
 #include "hesai/bytes.h"
@@ -121,6 +123,65 @@ inline void qt128_seal(std::vector<std::uint8_t>& p, const std::uint8_t* key = n
   if (o.fs) hesai::store_le32(&p[o.fs + 13], hesai::crc32_mpeg2(hesai::ByteView{&p[o.fs + 1], 12}));
   hesai::store_le32(&p[o.crc3], hesai::crc32_mpeg2(hesai::ByteView{&p[o.tail], o.crc3 - o.tail}));
   if (o.sig && key) hesai::hmac_sha256(hesai::ByteView{key, 32}, hesai::ByteView{p.data(), o.sig}, &p[o.sig]);
+}
+
+// ---- GPS packets, both layouts (offsets typed in from the manuals, not from hesai/gps.h) ----
+//   Pandar40 (manual Section 3.2.2, Table 3.6): FF EE | date 6 @2 | time 6 @8 | us time u32 @14 | GPRMC 77 @18 |
+//     411 x 0xDF @95 | location valid @506 | PPS lock @507 | reserved 4 @508
+//   Pandar64 (manual Section 3.2.2 "GPS UDP data"): FF EE | date 6 @2 | time 6 @8 | reserved 4 @14 | NMEA 84 @18 |
+//     404 x 0xDF @102 | positioning status @506 | PPS lock @507 | reserved 4 @508
+using GpsBytes = std::array<std::uint8_t, 512>;
+
+/// The Pandar64 manual's GPRMC example sentence (Section 3.2.2.1), as printed.
+inline const char* const kGpsRmc67 = "$GPRMC,072242,A,3027.3680,N,11423.6975,E,000.0,316.7,160617,004.1,W*67";
+/// 2017-06-16 07:22:42 (the date and time of kGpsRmc67): year "17", month "06", day "16",
+/// second "42", minute "22", hour "07", each units digit first ("lower byte first").
+inline constexpr char kGpsTime20170616[13] = "716061242270";
+
+/// Header and filler of a Pandar40 GPS packet; everything else 0.
+inline GpsBytes gps_base40() {
+  GpsBytes p{};
+  p[0] = 0xFF;
+  p[1] = 0xEE;
+  for (std::size_t i = 95; i < 506; ++i) p[i] = 0xDF;
+  return p;
+}
+/// Header and filler of a Pandar64 GPS packet; everything else 0.
+inline GpsBytes gps_base64() {
+  GpsBytes p{};
+  p[0] = 0xFF;
+  p[1] = 0xEE;
+  for (std::size_t i = 102; i < 506; ++i) p[i] = 0xDF;
+  return p;
+}
+/// 12 date/time bytes at offset 2, exactly as they appear on the wire.
+inline void gps_put_time(GpsBytes& p, const char (&wire)[13]) {
+  for (std::size_t i = 0; i < 12; ++i) p[2 + i] = static_cast<std::uint8_t>(wire[i]);
+}
+inline void gps_put_sentence(GpsBytes& p, const char* s) { std::memcpy(p.data() + 18, s, std::strlen(s)); }
+
+/// A Pandar64 GPS packet with kGpsRmc67, status 'A', PPS locked.
+inline GpsBytes gps_rmc64() {
+  GpsBytes p = gps_base64();
+  gps_put_time(p, kGpsTime20170616);
+  gps_put_sentence(p, kGpsRmc67);
+  p[506] = 'A';
+  p[507] = 1;
+  return p;
+}
+/// A Pandar40 GPS packet with kGpsRmc67, status 'A', PPS locked.
+inline GpsBytes gps_rmc40() {
+  GpsBytes p = gps_base40();
+  gps_put_time(p, kGpsTime20170616);
+  // us time (22 * 60 + 42) * 1e6 = 1 362 000 000 = 0x512E_7880, little-endian.
+  p[14] = 0x80;
+  p[15] = 0x78;
+  p[16] = 0x2E;
+  p[17] = 0x51;
+  gps_put_sentence(p, kGpsRmc67);
+  p[506] = 'A';
+  p[507] = 1;
+  return p;
 }
 
 }  // namespace hesai_test

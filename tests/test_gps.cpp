@@ -1,5 +1,6 @@
 // GPS packet tests. The captures hold no GPS packets, so every packet here is built by hand from
-// the manuals' tables, with offsets typed in from them (not taken from hesai/gps.h):
+// the manuals' tables (here and in packet_builder.h), with offsets typed in from them (not taken
+// from hesai/gps.h):
 //   Pandar40 (manual Section 3.2.2, Table 3.6): FF EE | date 6 @2 | time 6 @8 | us time u32 @14 |
 //     GPRMC 77 @18 | 411 x 0xDF @95 | location valid @506 | PPS lock @507 | reserved 4 @508
 //   Pandar64 (manual Section 3.2.2 "GPS UDP data"): FF EE | date 6 @2 | time 6 @8 | reserved 4 @14 |
@@ -13,6 +14,7 @@
 #include <string>
 
 #include "hesai/gps.h"
+#include "packet_builder.h"
 
 namespace {
 
@@ -20,65 +22,14 @@ using hesai::ByteView;
 using hesai::Error;
 using hesai::GpsLayout;
 using hesai::GpsPacket;
-using Packet = std::array<std::uint8_t, 512>;
+using Packet = hesai_test::GpsBytes;
+using namespace hesai_test;
 
-// The manuals' example sentences (Pandar64 manual, Sections 3.2.2.1 and 3.2.2.2), as printed.
-const char* const kRmc67 = "$GPRMC,072242,A,3027.3680,N,11423.6975,E,000.0,316.7,160617,004.1,W*67";
+// The manuals' example sentences (Pandar64 manual, Sections 3.2.2.1 and 3.2.2.2), as printed;
+// kGpsRmc67 and the packet builders are in packet_builder.h.
 const char* const kRmc74Hash = "$GPRMC,065829.00,A,3121.86377,N,12114.68322,E,0.027,,#160617#,,,A*74";
 const char* const kGga47 = "$GPGGA,123519,4807.038,N,01131.000,E,1,08,0.9,545.4,M,46.9,M,,*47";
 const char* const kGga60Printed = "$GPGGA,134658.00,5106.9792,N,11402.3003,W,2,09,1.0,1048.47,M,-6.27,M,08,AAAA*60";
-
-Packet base40() {
-  Packet p{};
-  p[0] = 0xFF;
-  p[1] = 0xEE;
-  for (std::size_t i = 95; i < 506; ++i) p[i] = 0xDF;
-  return p;
-}
-
-Packet base64() {
-  Packet p{};
-  p[0] = 0xFF;
-  p[1] = 0xEE;
-  for (std::size_t i = 102; i < 506; ++i) p[i] = 0xDF;
-  return p;
-}
-
-// 12 date/time bytes at offset 2, exactly as they appear on the wire.
-void put_time(Packet& p, const char (&wire)[13]) {
-  for (std::size_t i = 0; i < 12; ++i) p[2 + i] = static_cast<std::uint8_t>(wire[i]);
-}
-
-void put_sentence(Packet& p, const char* s) {
-  std::memcpy(p.data() + 18, s, std::strlen(s));
-}
-
-// 2017-06-16 07:22:42 (the date and time of kRmc67): year "17", month "06", day "16",
-// second "42", minute "22", hour "07", each units digit first.
-constexpr char kTime20170616[13] = "716061242270";
-
-Packet rmc64() {
-  Packet p = base64();
-  put_time(p, kTime20170616);
-  put_sentence(p, kRmc67);
-  p[506] = 'A';
-  p[507] = 1;
-  return p;
-}
-
-Packet rmc40() {
-  Packet p = base40();
-  put_time(p, kTime20170616);
-  // us time (22 * 60 + 42) * 1e6 = 1 362 000 000 = 0x512E_7880, little-endian.
-  p[14] = 0x80;
-  p[15] = 0x78;
-  p[16] = 0x2E;
-  p[17] = 0x51;
-  put_sentence(p, kRmc67);
-  p[506] = 'A';
-  p[507] = 1;
-  return p;
-}
 
 Error parse(const Packet& p, GpsPacket& out) { return hesai::parse_gps_packet(ByteView{p.data(), p.size()}, out); }
 
@@ -97,7 +48,7 @@ void expect_time(const hesai::DateTime& t, int y, int mo, int d, int h, int mi, 
 // Pandar64 manual, Section 3.2.4, Figure 18: 0x30 0x32 = 20, 0x34 0x30 = 04, 0x37 0x30 = 07,
 // 0x38 0x35 = 58, 0x37 0x30 = 07, 0x34 0x30 = 04 -> 2020-04-07 04:07:58.
 TEST(GpsPandar64, ManualFigure18) {
-  Packet p = base64();
+  Packet p = gps_base64();
   const std::uint8_t wire[12] = {0x30, 0x32, 0x34, 0x30, 0x37, 0x30, 0x38, 0x35, 0x37, 0x30, 0x34, 0x30};
   std::memcpy(p.data() + 2, wire, sizeof wire);
   GpsPacket g;
@@ -117,14 +68,14 @@ TEST(GpsPandar64, ManualFigure18) {
 // hour 0x32 0x31 = 12 -> 2017-12-20 12:45:52. us time (same example, "us Time"):
 // (45 * 60 + 52) * 1e6 = 2 752 000 000 = 0xA408_3000.
 TEST(GpsPandar40, ManualExample) {
-  Packet p = base40();
+  Packet p = gps_base40();
   const std::uint8_t wire[12] = {0x37, 0x31, 0x32, 0x31, 0x30, 0x32, 0x32, 0x35, 0x35, 0x34, 0x32, 0x31};
   std::memcpy(p.data() + 2, wire, sizeof wire);
   p[14] = 0x00;
   p[15] = 0x30;
   p[16] = 0x08;
   p[17] = 0xA4;
-  put_sentence(p, kRmc67);
+  gps_put_sentence(p, kGpsRmc67);
   p[506] = 'V';
   p[507] = 0;
   GpsPacket g;
@@ -132,7 +83,7 @@ TEST(GpsPandar40, ManualExample) {
   EXPECT_EQ(g.layout, GpsLayout::pandar40);
   expect_time(g.time, 2017, 12, 20, 12, 45, 52);
   EXPECT_EQ(g.us_time, 2752000000u);
-  EXPECT_STREQ(g.nmea, kRmc67);
+  EXPECT_STREQ(g.nmea, kGpsRmc67);
   EXPECT_EQ(g.nmea_length, 70u);
   EXPECT_TRUE(g.nmea_checksum_ok);
   EXPECT_EQ(g.location_status, 'V');
@@ -144,7 +95,7 @@ TEST(GpsPandar40, ManualExample) {
 // so the manual's "*67" is right.
 TEST(GpsPandar64, ManualGprmcExample) {
   GpsPacket g;
-  ASSERT_EQ(parse(rmc64(), g), Error::ok);
+  ASSERT_EQ(parse(gps_rmc64(), g), Error::ok);
   EXPECT_EQ(g.layout, GpsLayout::pandar64);
   expect_time(g.time, 2017, 6, 16, 7, 22, 42);
   EXPECT_EQ(g.us_time, 0u);
@@ -157,11 +108,11 @@ TEST(GpsPandar64, ManualGprmcExample) {
 
 TEST(GpsPandar40, SameSentenceAndTime) {
   GpsPacket g;
-  ASSERT_EQ(parse(rmc40(), g), Error::ok);
+  ASSERT_EQ(parse(gps_rmc40(), g), Error::ok);
   EXPECT_EQ(g.layout, GpsLayout::pandar40);
   expect_time(g.time, 2017, 6, 16, 7, 22, 42);
   EXPECT_EQ(g.us_time, 1362000000u);
-  EXPECT_STREQ(g.nmea, kRmc67);
+  EXPECT_STREQ(g.nmea, kGpsRmc67);
   EXPECT_EQ(g.nmea_length, 70u);
   EXPECT_TRUE(g.nmea_checksum_ok);
   EXPECT_EQ(g.location_status, 'A');
@@ -179,7 +130,7 @@ struct SentenceCase {
 
 // Expected results worked out by hand (XOR of the characters between '$' and '*').
 const SentenceCase kSentences[] = {
-    {kRmc67, true, "manual GPRMC example 1"},
+    {kGpsRmc67, true, "manual GPRMC example 1"},
     // The '#' marks look like OCR artefacts; '#' ^ '#' = 0, so the checksum holds either way.
     {kRmc74Hash, true, "manual GPRMC example 2 as printed"},
     {"$GPRMC,065829.00,A,3121.86377,N,12114.68322,E,0.027,,160617,,,A*74", true, "example 2 without '#'"},
@@ -207,9 +158,9 @@ TEST(GpsNmea, ChecksumInBothLayouts) {
     const std::size_t len = std::strlen(c.sentence);
     for (const bool p40 : {false, true}) {
       if (p40 && len > 77) continue;  // does not fit the Pandar40 GPRMC field
-      Packet p = p40 ? rmc40() : rmc64();
+      Packet p = p40 ? gps_rmc40() : gps_rmc64();
       for (std::size_t i = 18; i < (p40 ? 95u : 102u); ++i) p[i] = 0;
-      put_sentence(p, c.sentence);
+      gps_put_sentence(p, c.sentence);
       GpsPacket g;
       ASSERT_EQ(parse(p, g), Error::ok);
       EXPECT_EQ(g.layout, p40 ? GpsLayout::pandar40 : GpsLayout::pandar64);
@@ -224,8 +175,8 @@ TEST(GpsNmea, LongestSentences) {
   // 77 characters fill the Pandar40 field: seven more '0's in field 10 (7 x 0x30 = 0x30, 0x67 ^ 0x30 = 0x57).
   const char* s77 = "$GPRMC,072242,A,3027.3680,N,11423.6975,E,000.0,316.7,160617,0000000004.1,W*57";
   ASSERT_EQ(std::strlen(s77), 77u);
-  Packet p = rmc40();
-  put_sentence(p, s77);
+  Packet p = gps_rmc40();
+  gps_put_sentence(p, s77);
   GpsPacket g;
   ASSERT_EQ(parse(p, g), Error::ok);
   EXPECT_EQ(g.layout, GpsLayout::pandar40);
@@ -236,8 +187,8 @@ TEST(GpsNmea, LongestSentences) {
   // 84 characters fill the Pandar64 field: fourteen more '0's cancel out (still 0x67).
   const char* s84 = "$GPRMC,072242,A,3027.3680,N,11423.6975,E,000.0,316.7,160617,00000000000000004.1,W*67";
   ASSERT_EQ(std::strlen(s84), 84u);
-  p = rmc64();
-  put_sentence(p, s84);
+  p = gps_rmc64();
+  gps_put_sentence(p, s84);
   ASSERT_EQ(parse(p, g), Error::ok);
   EXPECT_EQ(g.layout, GpsLayout::pandar64);
   EXPECT_EQ(g.nmea_length, 84u);
@@ -247,13 +198,13 @@ TEST(GpsNmea, LongestSentences) {
 }
 
 TEST(GpsNmea, SentenceStopsTwoBytesAfterStar) {
-  Packet p = rmc64();
+  Packet p = gps_rmc64();
   // CR LF and junk after the checksum stay out of the sentence.
   const char tail[] = "\r\nXYZ*12";
   std::memcpy(p.data() + 18 + 70, tail, sizeof tail - 1);
   GpsPacket g;
   ASSERT_EQ(parse(p, g), Error::ok);
-  EXPECT_STREQ(g.nmea, kRmc67);
+  EXPECT_STREQ(g.nmea, kGpsRmc67);
   EXPECT_EQ(g.nmea_length, 70u);
   EXPECT_TRUE(g.nmea_checksum_ok);
 }
@@ -274,9 +225,9 @@ TEST(GpsNmea, NoSentence) {
   for (const Case& c : cases) {
     SCOPED_TRACE(c.why);
     for (const bool p40 : {false, true}) {
-      Packet p = p40 ? rmc40() : rmc64();
+      Packet p = p40 ? gps_rmc40() : gps_rmc64();
       for (std::size_t i = 18; i < (p40 ? 95u : 102u); ++i) p[i] = 0;
-      put_sentence(p, c.field);
+      gps_put_sentence(p, c.field);
       GpsPacket g;
       ASSERT_EQ(parse(p, g), Error::ok);  // the date and time still count
       EXPECT_EQ(g.nmea_length, 0u);
@@ -291,7 +242,7 @@ TEST(GpsNmea, StarAtTheEndOfTheField) {
   // Pandar40: printable bytes fill the 77-byte field, '*' at field index 75 or 76: the two bytes after
   // it would be in the 0xDF filler, so there is no sentence.
   for (const std::size_t star : {75u, 76u}) {
-    Packet p = rmc40();
+    Packet p = gps_rmc40();
     p[18] = '$';
     for (std::size_t i = 19; i < 95; ++i) p[i] = 'A';
     p[18 + star] = '*';
@@ -302,7 +253,7 @@ TEST(GpsNmea, StarAtTheEndOfTheField) {
   }
   // Pandar64 likewise at field index 82 or 83.
   for (const std::size_t star : {82u, 83u}) {
-    Packet p = rmc64();
+    Packet p = gps_rmc64();
     p[18] = '$';
     for (std::size_t i = 19; i < 102; ++i) p[i] = 'A';
     p[18 + star] = '*';
@@ -312,7 +263,7 @@ TEST(GpsNmea, StarAtTheEndOfTheField) {
     EXPECT_EQ(g.nmea_length, 0u);
   }
   // '*' at index 81 leaves exactly two bytes: an 84-byte sentence.
-  Packet p = rmc64();
+  Packet p = gps_rmc64();
   p[18] = '$';
   for (std::size_t i = 19; i < 102; ++i) p[i] = 'A';
   p[18 + 81] = '*';
@@ -326,8 +277,8 @@ TEST(GpsNmea, StarAtTheEndOfTheField) {
 // Recognition: length, magic, filler
 
 TEST(GpsRecognition, IsGpsPacket) {
-  const Packet p40 = rmc40();
-  const Packet p64 = rmc64();
+  const Packet p40 = gps_rmc40();
+  const Packet p64 = gps_rmc64();
   EXPECT_TRUE(hesai::is_gps_packet(ByteView{p40.data(), 512}));
   EXPECT_TRUE(hesai::is_gps_packet(ByteView{p64.data(), 512}));
   Packet bad = p64;
@@ -339,7 +290,7 @@ TEST(GpsRecognition, IsGpsPacket) {
 
 TEST(GpsRecognition, EveryWrongLength) {
   std::array<std::uint8_t, 1024> buf{};
-  const Packet p = rmc64();
+  const Packet p = gps_rmc64();
   std::memcpy(buf.data(), p.data(), p.size());
   for (std::size_t i = 512; i < buf.size(); ++i) buf[i] = 0xDF;
   GpsPacket g;
@@ -358,7 +309,7 @@ TEST(GpsRecognition, EveryMagicCorruption) {
   for (const bool p40 : {false, true}) {
     for (std::size_t at = 0; at < 2; ++at) {
       for (unsigned v = 0; v < 256; ++v) {
-        Packet p = p40 ? rmc40() : rmc64();
+        Packet p = p40 ? gps_rmc40() : gps_rmc64();
         const std::uint8_t good = p[at];
         if (v == good) continue;
         p[at] = static_cast<std::uint8_t>(v);
@@ -375,7 +326,7 @@ TEST(GpsRecognition, SharedFillerMustBeDF) {
   for (const bool p40 : {false, true}) {
     for (std::size_t i = 102; i < 506; ++i) {
       for (const std::uint8_t v : {std::uint8_t{0x00}, std::uint8_t{0xDE}, std::uint8_t{0x5F}}) {
-        Packet p = p40 ? rmc40() : rmc64();
+        Packet p = p40 ? gps_rmc40() : gps_rmc64();
         p[i] = v;
         GpsPacket g;
         EXPECT_EQ(parse(p, g), Error::bad_magic) << (p40 ? "Pandar40 " : "Pandar64 ") << i;
@@ -388,24 +339,24 @@ TEST(GpsRecognition, SharedFillerMustBeDF) {
 // NMEA field in a Pandar64 packet. Bytes 14..17 are then the us time or reserved.
 TEST(GpsRecognition, FillerStartTellsTheLayouts) {
   GpsPacket g;
-  ASSERT_EQ(parse(rmc40(), g), Error::ok);
+  ASSERT_EQ(parse(gps_rmc40(), g), Error::ok);
   EXPECT_EQ(g.layout, GpsLayout::pandar40);
   EXPECT_EQ(g.us_time, 1362000000u);
   for (std::size_t i = 95; i < 102; ++i) {
     SCOPED_TRACE(i);
-    Packet p = rmc40();  // bytes 14..17 hold 1 362 000 000
+    Packet p = gps_rmc40();  // bytes 14..17 hold 1 362 000 000
     p[i] = 0x00;
     ASSERT_EQ(parse(p, g), Error::ok);
     EXPECT_EQ(g.layout, GpsLayout::pandar64);
     EXPECT_EQ(g.us_time, 0u);  // reserved in a Pandar64 packet
-    EXPECT_STREQ(g.nmea, kRmc67);
+    EXPECT_STREQ(g.nmea, kGpsRmc67);
   }
   // A Pandar64 packet whose NMEA field ends in zero bytes (a short sentence) is Pandar64.
-  ASSERT_EQ(parse(rmc64(), g), Error::ok);
+  ASSERT_EQ(parse(gps_rmc64(), g), Error::ok);
   EXPECT_EQ(g.layout, GpsLayout::pandar64);
   // A sentence longer than 77 bytes can only be Pandar64.
-  Packet p = rmc64();
-  put_sentence(p, "$GPGGA,134658.00,5106.9792,N,11402.3003,W,2,09,1.0,1048.47,M,-16.27,M,08,AAAA*60");
+  Packet p = gps_rmc64();
+  gps_put_sentence(p, "$GPGGA,134658.00,5106.9792,N,11402.3003,W,2,09,1.0,1048.47,M,-16.27,M,08,AAAA*60");
   ASSERT_EQ(parse(p, g), Error::ok);
   EXPECT_EQ(g.layout, GpsLayout::pandar64);
   EXPECT_EQ(g.nmea_length, 80u);
@@ -422,7 +373,7 @@ TEST(GpsDigits, EveryNonDigitIsRejected) {
     for (std::size_t at = 2; at < 14; ++at) {
       for (unsigned v = 0; v < 256; ++v) {
         if (is_ascii_digit(v)) continue;
-        Packet p = p40 ? rmc40() : rmc64();
+        Packet p = p40 ? gps_rmc40() : gps_rmc64();
         p[at] = static_cast<std::uint8_t>(v);
         GpsPacket g;
         g.us_time = 777;
@@ -454,7 +405,7 @@ TEST(GpsDigits, EveryDigitSubstitution) {
       for (int d = 0; d < 10; ++d) {
         const Field& fl = fields[f];
         const int value = which == 0 ? fl.tens * 10 + d : d * 10 + fl.units;
-        Packet p = rmc64();
+        Packet p = gps_rmc64();
         p[fl.offset + static_cast<std::size_t>(which)] = static_cast<std::uint8_t>('0' + d);
         GpsPacket g;
         const Error e = parse(p, g);
@@ -497,15 +448,15 @@ TEST(GpsDigits, CalendarEdges) {
   for (const Case& c : cases) {
     SCOPED_TRACE(c.why);
     for (const bool p40 : {false, true}) {
-      Packet p = p40 ? rmc40() : rmc64();
+      Packet p = p40 ? gps_rmc40() : gps_rmc64();
       p[14] = p[15] = p[16] = p[17] = 0;
-      put_time(p, c.wire);
+      gps_put_time(p, c.wire);
       GpsPacket g;
       EXPECT_EQ(parse(p, g), c.ok ? Error::ok : Error::bad_gps_field);
     }
   }
-  Packet p = rmc64();
-  put_time(p, cases[1].wire);
+  Packet p = gps_rmc64();
+  gps_put_time(p, cases[1].wire);
   GpsPacket g;
   ASSERT_EQ(parse(p, g), Error::ok);
   expect_time(g.time, 2099, 12, 31, 23, 59, 59);
@@ -526,7 +477,7 @@ TEST(GpsFields, LocationStatus) {
   };
   for (const Case& c : cases) {
     for (const bool p40 : {false, true}) {
-      Packet p = p40 ? rmc40() : rmc64();
+      Packet p = p40 ? gps_rmc40() : gps_rmc64();
       p[506] = c.byte;
       GpsPacket g;
       const bool ok = p40 ? c.ok40 : c.ok64;
@@ -540,7 +491,7 @@ TEST(GpsFields, LocationStatus) {
 
 TEST(GpsFields, PpsLock) {
   for (const bool p40 : {false, true}) {
-    Packet p = p40 ? rmc40() : rmc64();
+    Packet p = p40 ? gps_rmc40() : gps_rmc64();
     GpsPacket g;
     p[507] = 1;
     ASSERT_EQ(parse(p, g), Error::ok);
@@ -556,7 +507,7 @@ TEST(GpsFields, PpsLock) {
 }
 
 TEST(GpsFields, Pandar40UsTimeBelowOneHour) {
-  Packet p = rmc40();
+  Packet p = gps_rmc40();
   GpsPacket g;
   // 3 599 999 999 = 0xD693_A3FF: the last microsecond of the hour.
   p[14] = 0xFF;
@@ -572,7 +523,7 @@ TEST(GpsFields, Pandar40UsTimeBelowOneHour) {
   p[14] = p[15] = p[16] = p[17] = 0xFF;
   EXPECT_EQ(parse(p, g), Error::bad_gps_field);
   // The same bytes are reserved in a Pandar64 packet: ignored.
-  Packet q = rmc64();
+  Packet q = gps_rmc64();
   q[14] = q[15] = q[16] = q[17] = 0xFF;
   ASSERT_EQ(parse(q, g), Error::ok);
   EXPECT_EQ(g.us_time, 0u);
@@ -580,7 +531,7 @@ TEST(GpsFields, Pandar40UsTimeBelowOneHour) {
 
 TEST(GpsFields, ReservedTailIgnored) {
   for (const bool p40 : {false, true}) {
-    Packet p = p40 ? rmc40() : rmc64();
+    Packet p = p40 ? gps_rmc40() : gps_rmc64();
     p[508] = 0x12;
     p[509] = 0xDF;
     p[510] = 0xFF;
@@ -593,12 +544,12 @@ TEST(GpsFields, ReservedTailIgnored) {
 
 TEST(GpsFields, OutputUntouchedOnError) {
   GpsPacket g;
-  ASSERT_EQ(parse(rmc64(), g), Error::ok);
-  Packet p = rmc40();
+  ASSERT_EQ(parse(gps_rmc64(), g), Error::ok);
+  Packet p = gps_rmc40();
   p[507] = 7;
   ASSERT_EQ(parse(p, g), Error::bad_gps_field);
   EXPECT_EQ(g.layout, GpsLayout::pandar64);
-  EXPECT_EQ(std::string(g.nmea), kRmc67);
+  EXPECT_EQ(std::string(g.nmea), kGpsRmc67);
 }
 
 }  // namespace

@@ -4,8 +4,11 @@
 #include <array>
 #include <cstdint>
 
+#include "hesai/decoder.h"
 #include "hesai/error.h"
+#include "hesai/gps.h"
 #include "hesai/model.h"
+#include "hesai/safety.h"
 
 namespace hesai {
 
@@ -32,6 +35,11 @@ struct Stats {
   std::array<std::uint64_t, kModelCount> models{};  ///< point-cloud packets per hesai::Model
   std::uint16_t spin_rpm_last = 0;         ///< motor speed of the last packet, rpm
   std::uint8_t return_mode_last = 0;       ///< return-mode byte of the last packet
+  // What the sensors report about themselves (count_status, count_gps, count_safety).
+  std::uint64_t high_temperature = 0;      ///< Pandar40/40P/64 packets with the high-temperature shutdown flag set
+  std::uint64_t gps_unlocked = 0;          ///< GPS packets with PPS unlocked or NMEA unlocked (gps_unlocked())
+  std::uint64_t gps_position_invalid = 0;  ///< GPS packets whose positioning status says no valid position
+  SafetyCounts safety;                     ///< QT128 functional safety, every sensor's sections summed
 };
 
 /// Adds one to the counter of a rejection: crc_body, crc_functional_safety, crc_tail ->
@@ -39,6 +47,25 @@ struct Stats {
 /// unsupported_version, unsupported_model, unsupported_section -> unsupported; any other code
 /// -> malformed. Error::ok counts nothing. Touches no other counter (not `packets`).
 void count_error(Stats& stats, Error error) noexcept;
+
+/// The status fields of a decoded point-cloud packet: high_temperature + 1 when its
+/// high-temperature shutdown flag is set (any non-zero byte; the manuals define 0x01).
+void count_status(Stats& stats, const PacketInfo& info) noexcept;
+
+/// True when a GPS packet says its time source is not locked: the PPS lock flag is 0, or the
+/// positioning status byte is NUL, which the Pandar64 manual (Section 3.2.2.1, GPRMC field <02>)
+/// defines as "GPS unlocked". 'V' (void position) and a GPGGA fix quality of '0' describe the
+/// position, not the lock: NMEA is locked once a valid sentence arrives (Pandar64 manual, 4.1).
+bool gps_unlocked(const GpsPacket& gps) noexcept;
+
+/// True when the positioning status byte says the position is not valid: 'V' (GPRMC "Void",
+/// Pandar40 manual Table 3.6 "V=invalid", Pandar64 manual 3.2.2.1) or '0' (GPGGA fix quality
+/// "Invalid", Pandar64 manual 3.2.2.2).
+bool gps_position_invalid(const GpsPacket& gps) noexcept;
+
+/// A parsed GPS packet: gps_packets + 1; gps_unlocked + 1 when gps_unlocked(gps);
+/// gps_position_invalid + 1 when gps_position_invalid(gps).
+void count_gps(Stats& stats, const GpsPacket& gps) noexcept;
 
 /// Adds one to models[model]; a value outside hesai::Model counts as Model::unknown.
 void count_model(Stats& stats, Model model) noexcept;

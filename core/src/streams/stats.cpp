@@ -30,6 +30,22 @@ void count_error(Stats& stats, Error error) noexcept {
   }
 }
 
+void count_status(Stats& stats, const PacketInfo& info) noexcept {
+  if (info.high_temperature != 0) ++stats.high_temperature;
+}
+
+bool gps_unlocked(const GpsPacket& gps) noexcept { return !gps.pps_locked || gps.location_status == 0; }
+
+bool gps_position_invalid(const GpsPacket& gps) noexcept {
+  return gps.location_status == 'V' || gps.location_status == '0';
+}
+
+void count_gps(Stats& stats, const GpsPacket& gps) noexcept {
+  ++stats.gps_packets;
+  if (gps_unlocked(gps)) ++stats.gps_unlocked;
+  if (gps_position_invalid(gps)) ++stats.gps_position_invalid;
+}
+
 void count_model(Stats& stats, Model model) noexcept {
   std::size_t i = static_cast<std::size_t>(model);
   if (i >= stats.models.size()) i = static_cast<std::size_t>(Model::unknown);
