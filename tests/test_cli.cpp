@@ -10,6 +10,7 @@
 #include <chrono>
 #include <cstdio>
 #include <fstream>
+#include <iterator>
 #include <map>
 #include <cctype>
 #include <string>
@@ -21,6 +22,7 @@
 #include "hesai/hkdf.h"
 #include "hesai_port/udp.h"
 #include "packet_builder.h"
+#include "safety_stream.h"
 #include "test_support.h"
 
 using namespace hesai;
@@ -67,6 +69,13 @@ std::map<std::string, long long> json_numbers(const std::string& json) {
     q = end;
   }
   return m;
+}
+
+// The number printed after `key` on its line of the text summary ("  key      value"); -1 if absent.
+long long text_number(const std::string& text, const std::string& key) {
+  const std::size_t at = text.find("  " + key + " ");
+  if (at == std::string::npos) return -1;
+  return std::stoll(text.substr(text.find_first_not_of(' ', at + 2 + key.size())));
 }
 
 // A UDP port that is free on 127.0.0.1 now (the kernel picks it).
@@ -195,8 +204,15 @@ TEST_P(CliCapture, StatsJsonOnRealCapture) {
   for (const char* key : {"packets", "points", "frames", "crc_errors", "signature_valid", "signature_invalid",
                           "signature_missing", "signature_unverified", "malformed", "unsupported", "lost",
                           "duplicates", "reordered", "sequence_resyncs", "gps_packets", "first_time_ns",
-                          "last_time_ns"})
+                          "last_time_ns", "high_temperature", "gps_unlocked", "gps_position_invalid", "fs_packets",
+                          "fs_current_fault", "fs_past_fault", "fs_reserved_fault_type", "fs_last_fault_code",
+                          "fs_last_fault_id", "fs_last_fault_total", "fs_counter_stalls"})
     EXPECT_TRUE(j.count(key)) << key;
+  // fs_states: an object with the eight lidar states of the QT128 manual, in code order.
+  EXPECT_NE(r.out.find("\"fs_states\":{\"init\":"), std::string::npos) << r.out;
+  for (const char* state : {"init", "normal", "report_fault", "pre_performance_degradation", "performance_degradation",
+                            "pre_shutdown", "shutdown", "standby"})
+    EXPECT_TRUE(j.count(state)) << state;
   EXPECT_NE(r.out.find("\"models\":{\"" + std::string(model_name(c.model)) + "\":" + std::to_string(c.packets) + "}"),
             std::string::npos) << r.out;
   EXPECT_EQ(j["packets"], c.packets);
@@ -207,6 +223,13 @@ TEST_P(CliCapture, StatsJsonOnRealCapture) {
   EXPECT_EQ(j["duplicates"], 0);
   EXPECT_EQ(j["reordered"], 0);
   EXPECT_GE(j["frames"], 2);
+  EXPECT_EQ(j["high_temperature"], 0);  // the Pandar captures' flag bytes are 0
+  EXPECT_EQ(j["gps_unlocked"], 0);      // no GPS packets
+  // Functional safety: QT128 only; the capture is in state Init throughout, without a stall.
+  const long long fs = c.model == Model::qt128c2x ? c.packets : 0;
+  EXPECT_EQ(j["fs_packets"], fs);
+  EXPECT_EQ(j["init"], fs);
+  EXPECT_EQ(j["fs_counter_stalls"], 0);
 }
 
 // The frames of `decode --per-frame` hold exactly the points the decoder API gives per frame.
@@ -383,6 +406,84 @@ TEST(Cli, StatsCountsSignatures) {
   EXPECT_EQ(j["signature_invalid"], 0);
 }
 
+// The functional-safety stream of safety_stream.h (each lidar state, faults, one stall), as a
+// capture: stats --json and the text summary report what the test built.
+TEST(Cli, StatsReportsFunctionalSafety) {
+  const SafetyStream s = build_safety_stream();
+  const SafetyExpect& e = s.expect;
+  const std::string dir = temp_dir();
+  write_pcap(dir + "/safety.pcap", s.packets);
+  const CmdResult r = run("stats " + dir + "/safety.pcap --json");
+  ASSERT_EQ(r.status, 0);
+  auto j = json_numbers(r.out);
+  EXPECT_EQ(j["packets"], static_cast<long long>(s.packets.size()));
+  EXPECT_EQ(j["crc_errors"], 0);  // CRC2 re-sealed
+  EXPECT_EQ(j["fs_packets"], static_cast<long long>(e.packets));
+  const char* const states[8] = {"init", "normal", "report_fault", "pre_performance_degradation",
+                                 "performance_degradation", "pre_shutdown", "shutdown", "standby"};
+  for (std::size_t st = 0; st < 8; ++st) EXPECT_EQ(j[states[st]], static_cast<long long>(e.states[st])) << states[st];
+  EXPECT_EQ(j["fs_current_fault"], static_cast<long long>(e.current));
+  EXPECT_EQ(j["fs_past_fault"], static_cast<long long>(e.past));
+  EXPECT_EQ(j["fs_reserved_fault_type"], static_cast<long long>(e.reserved));
+  EXPECT_EQ(j["fs_last_fault_code"], e.last_code);
+  EXPECT_EQ(j["fs_last_fault_id"], e.last_id);
+  EXPECT_EQ(j["fs_last_fault_total"], e.last_total);
+  EXPECT_EQ(j["fs_counter_stalls"], static_cast<long long>(e.stalls));
+  EXPECT_EQ(e.stalls, 1u);
+
+  const CmdResult t = run("stats " + dir + "/safety.pcap");
+  ASSERT_EQ(t.status, 0);
+  EXPECT_EQ(text_number(t.out, "fs_packets"), static_cast<long long>(e.packets)) << t.out;
+  for (std::size_t st = 0; st < 8; ++st) EXPECT_EQ(text_number(t.out, states[st]), static_cast<long long>(e.states[st])) << t.out;
+  EXPECT_EQ(text_number(t.out, "fs_current_fault"), static_cast<long long>(e.current));
+  EXPECT_EQ(text_number(t.out, "fs_past_fault"), static_cast<long long>(e.past));
+  EXPECT_EQ(text_number(t.out, "fs_counter_stalls"), static_cast<long long>(e.stalls));
+  EXPECT_NE(t.out.find("fs_last_fault         code " + std::to_string(e.last_code) + ", " + std::to_string(e.last_id) +
+                       " of " + std::to_string(e.last_total) + "\n"),
+            std::string::npos) << t.out;
+}
+
+// Pandar64 packets with the high-temperature shutdown flag set in some, and GPS packets of both
+// layouts: locked, PPS unlocked, NMEA unlocked (status NUL), void position.
+TEST(Cli, StatsReportsHighTemperatureAndGpsLock) {
+  auto p64 = pcap_payloads("pandar64_dual.pcap");
+  const std::size_t flag = 8 + 6 * 194 + 5;  // Pandar64 manual 3.1.2.3: tail after 5 reserved bytes
+  std::vector<std::vector<std::uint8_t>> out;
+  long long hot = 0;
+  for (std::size_t i = 0; i < 200; ++i) {
+    if (i % 9 == 4) {
+      p64[i][flag] = 0x01;
+      ++hot;
+    }
+    out.push_back(p64[i]);
+  }
+  struct Gps {
+    bool p40;
+    std::uint8_t status, pps;
+  };
+  // unlocked: PPS 0 or status NUL; position invalid: 'V' (or GPGGA '0').
+  const Gps gps[] = {{false, 'A', 1}, {false, 'A', 0}, {false, 0, 1}, {false, 'V', 1}, {true, 'A', 1}, {true, 'V', 0}};
+  for (std::size_t k = 0; k < std::size(gps); ++k) {  // one GPS packet after every 30 point-cloud packets
+    GpsBytes b = gps[k].p40 ? gps_rmc40() : gps_rmc64();
+    b[506] = gps[k].status;
+    b[507] = gps[k].pps;
+    out.insert(out.begin() + static_cast<long>(31 * k + 30), std::vector<std::uint8_t>(b.begin(), b.end()));
+  }
+  const std::string dir = temp_dir();
+  write_pcap(dir + "/status.pcap", out);
+  auto j = json_numbers(run("stats " + dir + "/status.pcap --json").out);
+  EXPECT_EQ(j["packets"], 206);
+  EXPECT_EQ(j["gps_packets"], 6);
+  EXPECT_EQ(j["high_temperature"], hot);
+  EXPECT_EQ(j["gps_unlocked"], 3);          // {'A', 0}, {0, 1}, {'V', 0}
+  EXPECT_EQ(j["gps_position_invalid"], 2);  // the two 'V'
+  EXPECT_EQ(j["fs_packets"], 0);
+  const CmdResult t = run("stats " + dir + "/status.pcap");
+  EXPECT_EQ(text_number(t.out, "high_temperature"), hot) << t.out;
+  EXPECT_EQ(text_number(t.out, "gps_unlocked"), 3) << t.out;
+  EXPECT_EQ(text_number(t.out, "gps_position_invalid"), 2) << t.out;
+}
+
 // ---- Live: replay into listen on 127.0.0.1 ----
 
 TEST(Cli, ListenReceivesEveryReplayedPacket) {
@@ -407,6 +508,10 @@ TEST(Cli, ListenReceivesEveryReplayedPacket) {
   EXPECT_EQ(live["frames"], file["frames"]);
   EXPECT_EQ(live["lost"], 0);
   EXPECT_EQ(live["crc_errors"], 0);
+  // The functional-safety counters travel with the packets' own times: the same as from the file.
+  for (const char* key : {"fs_packets", "init", "fs_counter_stalls", "fs_current_fault", "high_temperature", "gps_unlocked"})
+    EXPECT_EQ(live[key], file[key]) << key;
+  EXPECT_EQ(live["init"], 1800);
 }
 
 // A bounded load test: 100 800 packets at full rate (56 loops of the QT128 capture, sequence

@@ -145,12 +145,17 @@ int cmd_stats(Args& args) {
     const std::string a = args.peek();
     if (a == "--help" || a == "-h") {
       std::printf("usage: hesai stats CAPTURE [--json] [options]\n\n"
-                  "Counts packets per model, points, frames, integrity failures and sequence losses.\n\n"
+                  "Counts packets per model, points, frames, integrity failures, sequence losses and what the\n"
+                  "sensors report about themselves (temperature, GPS lock, QT128 functional safety).\n\n"
                   "  --json                  one JSON object: packets, models, points, frames, crc_errors,\n"
                   "                          signature_valid, signature_invalid, signature_missing,\n"
                   "                          signature_unverified, malformed, unsupported, lost, duplicates,\n"
                   "                          reordered, sequence_resyncs, gps_packets, first_time_ns,\n"
-                  "                          last_time_ns\n"
+                  "                          last_time_ns, high_temperature, gps_unlocked,\n"
+                  "                          gps_position_invalid, fs_packets, fs_states (per lidar state),\n"
+                  "                          fs_current_fault, fs_past_fault, fs_reserved_fault_type,\n"
+                  "                          fs_last_fault_code, fs_last_fault_id, fs_last_fault_total,\n"
+                  "                          fs_counter_stalls\n"
                   "  --quiet                 no progress line\n%s%s",
                   kDecodeOptionsHelp, kKeyOptionsHelp);
       return kExitOk;

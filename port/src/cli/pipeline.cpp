@@ -102,7 +102,7 @@ bool Pipeline::feed(ByteView payload, std::uint64_t source_key) {
       ++rejections_[e];
       return true;
     }
-    ++stats_.gps_packets;
+    count_gps(stats_, gps);
     last_gps_ = gps;
     have_gps_ = true;
     for (auto& [key, s] : sources_) s.decoder->update_gps(gps);
@@ -135,6 +135,9 @@ bool Pipeline::feed(ByteView payload, std::uint64_t source_key) {
   stats_.last_time_ns = info.time_ns;
   stats_.spin_rpm_last = info.motor_rpm;
   stats_.return_mode_last = info.return_mode;
+  count_status(stats_, info);
+  // The sensor's own monitor finds its stalls; the run's counters sum every sensor's sections.
+  count_safety(stats_.safety, info.safety, src->safety.observe(info.safety, info.time_ns));
 
   std::uint32_t lost_before = 0;
   if (info.has_sequence) {

@@ -12,6 +12,7 @@
 
 #include "hesai/decoder.h"
 #include "hesai/frame.h"
+#include "hesai/safety.h"
 #include "hesai/sequence.h"
 #include "hesai/stats.h"
 
@@ -51,8 +52,8 @@ class Sink {
   virtual void frame_closed(const FrameInfo& frame) = 0;
 };
 
-/// Decodes datagrams. One decoder, sequence tracker and frame assembler per source (the
-/// sensor's address and port), created on its first packet.
+/// Decodes datagrams. One decoder, sequence tracker, frame assembler and functional-safety
+/// monitor per source (the sensor's address and port), created on its first packet.
 class Pipeline {
  public:
   Pipeline(const DecodeOptions& options, Sink* sink);
@@ -77,6 +78,7 @@ class Pipeline {
     std::unique_ptr<Decoder> decoder;
     SequenceTracker sequence;
     FrameAssembler frames;
+    SafetyMonitor safety;
     std::uint64_t last_frame_id = 0;
   };
   Source* source_for(std::uint64_t key, Model model);

@@ -3,6 +3,7 @@
 #include <ctime>
 
 #include "hesai/decoder.h"
+#include "hesai/safety.h"
 
 namespace hesai::cli {
 
@@ -41,8 +42,24 @@ std::string stats_json(const Stats& s) {
   add(out, "sequence_resyncs", s.sequence_resyncs);
   add(out, "gps_packets", s.gps_packets);
   out += "\"first_time_ns\":" + std::to_string(s.first_time_ns) + ",";
-  out += "\"last_time_ns\":" + std::to_string(s.last_time_ns) + "}";
-  return out;
+  out += "\"last_time_ns\":" + std::to_string(s.last_time_ns) + ",";
+  add(out, "high_temperature", s.high_temperature);
+  add(out, "gps_unlocked", s.gps_unlocked);
+  add(out, "gps_position_invalid", s.gps_position_invalid);
+  const SafetyCounts& fs = s.safety;
+  add(out, "fs_packets", fs.packets);
+  out += "\"fs_states\":{";
+  for (std::size_t st = 0; st < kLidarStateCount; ++st)
+    add(out, lidar_state_name(static_cast<std::uint8_t>(st)), fs.states[st], st + 1 < kLidarStateCount);
+  out += "},";
+  add(out, "fs_current_fault", fs.current_fault);
+  add(out, "fs_past_fault", fs.past_fault);
+  add(out, "fs_reserved_fault_type", fs.reserved_fault_type);
+  add(out, "fs_last_fault_code", fs.last_fault_code);
+  add(out, "fs_last_fault_id", fs.last_fault_id);
+  add(out, "fs_last_fault_total", fs.last_fault_total);
+  add(out, "fs_counter_stalls", fs.counter_stalls, false);
+  return out + "}";
 }
 
 std::string utc_string(std::int64_t ns) {
@@ -58,7 +75,10 @@ std::string utc_string(std::int64_t ns) {
 std::string stats_text(const Pipeline& p) {
   const Stats& s = p.stats();
   std::string out;
-  auto line = [&](const std::string& k, const std::string& v) { out += "  " + k + std::string(22 - k.size(), ' ') + v + "\n"; };
+  // The value at column 24, or one space after a longer key.
+  auto line = [&](const std::string& k, const std::string& v) {
+    out += "  " + k + std::string(k.size() < 22 ? 22 - k.size() : 1, ' ') + v + "\n";
+  };
   line("packets", std::to_string(s.packets));
   for (std::size_t m = 1; m < kModelCount; ++m)
     if (s.models[m]) line(std::string("  ") + model_name(static_cast<Model>(m)), std::to_string(s.models[m]));
@@ -82,6 +102,22 @@ std::string stats_text(const Pipeline& p) {
   line("duplicates", std::to_string(s.duplicates));
   line("reordered", std::to_string(s.reordered));
   if (s.sequence_resyncs) line("sequence_resyncs", std::to_string(s.sequence_resyncs));
+  line("high_temperature", std::to_string(s.high_temperature));
+  line("gps_unlocked", std::to_string(s.gps_unlocked));
+  if (s.gps_position_invalid) line("gps_position_invalid", std::to_string(s.gps_position_invalid));
+  const SafetyCounts& fs = s.safety;
+  if (fs.packets) {
+    line("fs_packets", std::to_string(fs.packets));
+    for (std::size_t st = 0; st < kLidarStateCount; ++st)
+      if (fs.states[st]) line(std::string("  ") + lidar_state_name(static_cast<std::uint8_t>(st)), std::to_string(fs.states[st]));
+    line("fs_current_fault", std::to_string(fs.current_fault));
+    line("fs_past_fault", std::to_string(fs.past_fault));
+    if (fs.reserved_fault_type) line("fs_reserved_fault_type", std::to_string(fs.reserved_fault_type));
+    if (fs.last_fault_id)
+      line("fs_last_fault", "code " + std::to_string(fs.last_fault_code) + ", " + std::to_string(fs.last_fault_id) +
+                                " of " + std::to_string(fs.last_fault_total));
+    line("fs_counter_stalls", std::to_string(fs.counter_stalls));
+  }
   for (const auto& [e, n] : p.rejections()) line(std::string("  rejected ") + error_name(e), std::to_string(n));
   return out;
 }
