@@ -1,13 +1,14 @@
 // libFuzzer harness: a stream of packets. Input: one byte of cut angle, then records of a u16
 // little-endian length and that many payload bytes (a short last record takes what is left).
 // Each record goes through identify(), the decoder of its model (GPS packets update the
-// Pandar40 decoder), the SequenceTracker and the FrameAssembler.
+// Pandar40 decoder), the SequenceTracker, the FrameAssembler and the QT128 SafetyMonitor.
 #include <cstddef>
 #include <cstdint>
 
 #include "fuzz_common.h"
 #include "hesai/bytes.h"
 #include "hesai/frame.h"
+#include "hesai/safety.h"
 #include "hesai/sequence.h"
 
 namespace {
@@ -16,6 +17,7 @@ struct Totals {
   std::uint64_t packets = 0, decoded = 0, points = 0, frames = 0, frame_points = 0, frame_blocks = 0;
   std::uint64_t last_id = 0;
   hesai::SequenceCounts seq;
+  hesai::SafetyCounts safety;
 };
 
 void close_frame(const hesai::FrameInfo& f, Totals& t) {
@@ -38,6 +40,8 @@ Totals run(hesai::ByteView in) {
                                hesai::Decoder(hesai::Model::pandar64), hesai::Decoder(hesai::Model::qt128c2x)};
   static hesai::SequenceTracker tracker;
   tracker.reset();
+  hesai::SafetyMonitor monitor;
+  hesai::SafetyCounts summed;  // count_safety with the monitor's answers: must equal its own counts
   hesai::FrameAssembler frames;
   check(frames.set_cut_deg(static_cast<float>(in[0]) * 360.0f / 256.0f) == hesai::Error::ok);
   std::uint64_t blocks_given = 0;
@@ -73,6 +77,9 @@ Totals run(hesai::ByteView in) {
     check(d.decode(p, info, points) == hesai::Error::ok);
     ++t.decoded;
     t.points += points.count;
+    const bool stall = monitor.observe(info.safety, info.time_ns);
+    check(!stall || monitor.stalled());
+    hesai::count_safety(summed, info.safety, stall);
     const std::uint32_t lost = info.has_sequence ? tracker.observe(info.sequence) : 0;
     frames.begin_packet(t.packets, lost);
     for (std::size_t b = 0; b < info.blocks; ++b) {
@@ -90,6 +97,15 @@ Totals run(hesai::ByteView in) {
   check(t.frame_blocks == blocks_given);
   t.seq = tracker.counts();
   check(t.seq.stale <= t.seq.reordered && t.seq.packets <= t.decoded);
+  t.safety = monitor.counts();
+  std::uint64_t in_states = 0;
+  for (std::uint64_t n : t.safety.states) in_states += n;
+  check(in_states == t.safety.packets && t.safety.packets <= t.decoded);
+  check(t.safety.current_fault + t.safety.past_fault + t.safety.reserved_fault_type <= t.safety.packets);
+  check(t.safety.counter_stalls <= t.safety.packets && (t.safety.counter_stalls > 0 || !monitor.stalled()));
+  check(t.safety.last_fault_id <= 15 && t.safety.last_fault_total <= 15);
+  check(summed.packets == t.safety.packets && summed.states == t.safety.states &&
+        summed.counter_stalls == t.safety.counter_stalls && summed.last_fault_code == t.safety.last_fault_code);
   return t;
 }
 
@@ -101,6 +117,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   const Totals b = run(in.view());
   hesai_fuzz::check(a.packets == b.packets && a.decoded == b.decoded && a.points == b.points &&
                     a.frames == b.frames && a.seq.lost == b.seq.lost && a.seq.duplicates == b.seq.duplicates &&
-                    a.seq.reordered == b.seq.reordered && a.seq.resyncs == b.seq.resyncs);
+                    a.seq.reordered == b.seq.reordered && a.seq.resyncs == b.seq.resyncs &&
+                    a.safety.packets == b.safety.packets && a.safety.counter_stalls == b.safety.counter_stalls &&
+                    a.safety.states == b.safety.states);
   return 0;
 }
