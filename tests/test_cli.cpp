@@ -410,6 +410,7 @@ TEST(Cli, StatsCountsSignatures) {
 // capture: stats --json and the text summary report what the test built.
 TEST(Cli, StatsReportsFunctionalSafety) {
   const SafetyStream s = build_safety_stream();
+  ASSERT_FALSE(s.packets.empty());
   const SafetyExpect& e = s.expect;
   const std::string dir = temp_dir();
   write_pcap(dir + "/safety.pcap", s.packets);
@@ -447,6 +448,7 @@ TEST(Cli, StatsReportsFunctionalSafety) {
 // layouts: locked, PPS unlocked, NMEA unlocked (status NUL), void position.
 TEST(Cli, StatsReportsHighTemperatureAndGpsLock) {
   auto p64 = pcap_payloads("pandar64_dual.pcap");
+  ASSERT_GE(p64.size(), 200u);
   const std::size_t flag = 8 + 6 * 194 + 5;  // Pandar64 manual 3.1.2.3: tail after 5 reserved bytes
   std::vector<std::vector<std::uint8_t>> out;
   long long hot = 0;

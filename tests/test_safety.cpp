@@ -56,6 +56,7 @@ TEST(Safety, StateNames) {
 // bits of byte 1 of the functional-safety section at 1044), no fault, and no stall.
 TEST(Safety, BundledCaptureIsInitWithoutStall) {
   const auto packets = pcap_payloads("qt128c2x_dual.pcap");
+  ASSERT_FALSE(packets.empty());
   std::uint64_t init = 0, with_fault = 0;
   for (const auto& p : packets) {
     ASSERT_EQ(p[11] & 4, 4);  // flags bit 2: the section is present
@@ -83,6 +84,7 @@ TEST(Safety, BundledCaptureIsInitWithoutStall) {
 // exactly the longest span that is not a stall, decoded (CRC2 re-sealed) and monitored.
 TEST(Safety, BuiltStreamCountsStatesFaultsAndOneStall) {
   const SafetyStream s = build_safety_stream();
+  ASSERT_FALSE(s.packets.empty());
   const SafetyExpect& e = s.expect;
   // The construction: a hold of more than 20 ms and one of at most 20 ms (about 180 packets of
   // 111 us); expected one stall, and every state present.
@@ -275,6 +277,7 @@ TEST(SensorStatus, HighTemperatureFlag) {
   for (const Case& k : {Case{"pandar64_dual.pcap", Model::pandar64, 8 + 6 * 194 + 5},
                         Case{"pandar40p_dual.pcap", Model::pandar40p, 10 * 124 + 5}}) {
     auto packets = pcap_payloads(k.file);
+    ASSERT_FALSE(packets.empty()) << k.file;
     std::uint64_t set = 0;
     for (std::size_t i = 0; i < packets.size(); ++i) {
       ASSERT_EQ(packets[i][k.flag], 0) << k.file;  // normal operation in the capture
