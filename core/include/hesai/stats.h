@@ -55,7 +55,7 @@ void count_status(Stats& stats, const PacketInfo& info) noexcept;
 /// True when a GPS packet says its time source is not locked: the PPS lock flag is 0, or the
 /// positioning status byte is NUL, which the Pandar64 manual (Section 3.2.2.1, GPRMC field <02>)
 /// defines as "GPS unlocked". 'V' (void position) and a GPGGA fix quality of '0' describe the
-/// position, not the lock: NMEA is locked once a valid sentence arrives (Pandar64 manual, 4.1).
+/// position, not the lock: NMEA is locked once a valid sentence arrives (Pandar64 manual Section 4.1).
 bool gps_unlocked(const GpsPacket& gps) noexcept;
 
 /// True when the positioning status byte says the position is not valid: 'V' (GPRMC "Void",
