@@ -309,6 +309,70 @@ TEST(Accuracy, AllChannelsAt200mWithin1mm) {
   }
 }
 
+// ---- Caller-owned point storage sized for the model ----
+
+// A packet of the model with every channel of every block at 10 m: the most points it can carry,
+// blocks x channels by the manuals' layouts (Pandar40/40P 10 x 40, Pandar64 6 x 64, QT128 2 x 128).
+std::vector<std::uint8_t> full_packet(Model m) {
+  const Stamp s;
+  std::vector<std::uint8_t> p;
+  if (m == Model::pandar64) {
+    p = pandar64_packet(0x37, s);
+    for (int b = 1; b <= 6; ++b)
+      for (int c = 1; c <= 64; ++c) pandar64_point(p, b, c, 2500, 9);
+  } else if (m == Model::qt128c2x) {
+    p = qt128_packet(0x05, 0x37, 1, s);
+    for (int b = 1; b <= 2; ++b)
+      for (int c = 1; c <= 128; ++c) qt128_point(p, b, c, 2500, 9);
+    qt128_seal(p);
+  } else {
+    p = pandar40_packet(m == Model::pandar40p, 0x37, s, 0);
+    for (int b = 1; b <= 10; ++b)
+      for (int c = 1; c <= 40; ++c) pandar40_point(p, b, c, 2500, 9);
+  }
+  return p;
+}
+
+TEST(CallerStorage, WorstCaseFitsOneLessIsRefused) {
+  const struct {
+    Model model;
+    std::size_t most;  // blocks x channels, from the manuals
+  } cases[] = {{Model::pandar40, 400}, {Model::pandar40p, 400}, {Model::pandar64, 384}, {Model::qt128c2x, 256}};
+  for (const auto& c : cases) {
+    const auto p = full_packet(c.model);
+    Decoder dec(c.model);
+    EXPECT_EQ(max_points(c.model), c.most);
+    PacketInfo info;
+    PacketPoints whole;
+    ASSERT_EQ(dec.decode(view(p), info, whole), Error::ok) << model_name(c.model);
+    ASSERT_EQ(whole.count, c.most);
+
+    // Storage of exactly the worst case: the same points as PacketPoints.
+    std::vector<Point> mine(c.most);
+    std::size_t count = 99;
+    ASSERT_EQ(dec.decode(view(p), info, mine.data(), mine.size(), count), Error::ok);
+    ASSERT_EQ(count, c.most);
+    for (std::size_t i = 0; i < count; ++i) {
+      EXPECT_EQ(mine[i].x, whole.points[i].x);
+      EXPECT_EQ(mine[i].time_ns, whole.points[i].time_ns);
+      EXPECT_EQ(mine[i].channel, whole.points[i].channel);
+      EXPECT_EQ(mine[i].block, whole.points[i].block);
+    }
+
+    // One point less: refused before anything is written, whatever the packet holds.
+    std::vector<Point> small(c.most - 1);
+    for (Point& q : small) q.distance_m = -1;
+    count = 99;
+    info.motor_rpm = 4321;
+    EXPECT_EQ(dec.decode(view(p), info, small.data(), small.size(), count), Error::buffer_too_small);
+    EXPECT_EQ(count, 0u);
+    EXPECT_EQ(info.motor_rpm, 4321) << "info untouched";
+    for (const Point& q : small) EXPECT_EQ(q.distance_m, -1);
+    EXPECT_EQ(dec.decode(ByteView{}, info, small.data(), small.size(), count), Error::buffer_too_small);
+  }
+  EXPECT_STREQ(error_name(Error::buffer_too_small), "buffer_too_small");
+}
+
 // ---- Identification ----
 
 TEST(Identify, ByLengthMagicAndHeader) {

@@ -128,6 +128,11 @@ class Decoder {
   Error validate(ByteView payload, PacketInfo& info) noexcept;
   /// validate(), then the points: distance 0 yields no point. On error out.count is 0.
   Error decode(ByteView payload, PacketInfo& info, PacketPoints& out) noexcept;
+  /// decode() into caller-owned storage for `capacity` points, sized for this decoder's model
+  /// (max_points(model()): 400, 384 or 256). Error::buffer_too_small, before the packet is read,
+  /// when capacity is below that. `count` gets the number of points, 0 on error; the entries from
+  /// `count` up to max_points(model()) may be overwritten too.
+  Error decode(ByteView payload, PacketInfo& info, Point* points, std::size_t capacity, std::size_t& count) noexcept;
 
  private:
   // Per-channel geometry from the tables or calibration files, one array per quantity.
@@ -154,14 +159,15 @@ class Decoder {
   Error validate_pandar40(ByteView p, PacketInfo& info) noexcept;
   Error validate_pandar64(ByteView p, PacketInfo& info) noexcept;
   Error validate_qt128(ByteView p, PacketInfo& info) noexcept;
-  // Each sensor's block walk (in its file under core/src/sensors/), after validation.
-  void decode_pandar40(const std::uint8_t* p, const PacketInfo& info, PacketPoints& out) const noexcept;
-  void decode_pandar64(const std::uint8_t* p, const PacketInfo& info, PacketPoints& out) const noexcept;
-  void decode_qt128(const std::uint8_t* p, const PacketInfo& info, PacketPoints& out) const noexcept;
+  // Each sensor's block walk (in its file under core/src/sensors/), after validation: appends to
+  // out[count...], at most max_points(model_) points in all.
+  void decode_pandar40(const std::uint8_t* p, const PacketInfo& info, Point* out, std::size_t& count) const noexcept;
+  void decode_pandar64(const std::uint8_t* p, const PacketInfo& info, Point* out, std::size_t& count) const noexcept;
+  void decode_qt128(const std::uint8_t* p, const PacketInfo& info, Point* out, std::size_t& count) const noexcept;
   // The per-point arithmetic every sensor shares (core/src/sensors/block_points.h).
   template <std::size_t kPointBytes>
   void emit_block(const std::uint8_t* points, std::size_t channels, const PacketInfo& info, std::size_t block,
-                  std::int64_t block_time_ns, std::size_t loop, PacketPoints& out) const noexcept;
+                  std::int64_t block_time_ns, std::size_t loop, Point* out, std::size_t& count) const noexcept;
 
   Model model_;
   bool firetime_correction_ = true;

@@ -54,9 +54,14 @@ constexpr std::size_t block_count(Model m) {
   return 0;
 }
 
+/// The most points one packet of the model can hold: blocks x channels (400, 384, 256; 0 for
+/// unknown). Storage for this many points suffices for any packet the model sends.
+constexpr std::size_t max_points(Model m) { return block_count(m) * channel_count(m); }
+
 /// The most channels of any model, and the most points one packet can hold (10 x 40).
 inline constexpr std::size_t kMaxChannels = 128;
 inline constexpr std::size_t kMaxPointsPerPacket = 400;
-static_assert(10 * 40 <= kMaxPointsPerPacket && 6 * 64 <= kMaxPointsPerPacket && 2 * 128 <= kMaxPointsPerPacket);
+static_assert(max_points(Model::pandar40) <= kMaxPointsPerPacket && max_points(Model::pandar40p) <= kMaxPointsPerPacket &&
+              max_points(Model::pandar64) <= kMaxPointsPerPacket && max_points(Model::qt128c2x) <= kMaxPointsPerPacket);
 
 }  // namespace hesai

@@ -16,7 +16,7 @@ namespace hesai {
 template <std::size_t kPointBytes>
 void Decoder::emit_block(const std::uint8_t* points, std::size_t channels, const PacketInfo& info,
                          std::size_t block, std::int64_t block_time_ns, std::size_t loop,
-                         PacketPoints& out) const noexcept {
+                         Point* out, std::size_t& count) const noexcept {
   const std::uint16_t block_azimuth = info.block_azimuth[block];
   const float block_deg = static_cast<float>(block_azimuth) * 0.01f;
   const SinCos ab = sin_cos_deg(static_cast<double>(block_azimuth) * 0.01);
@@ -33,11 +33,11 @@ void Decoder::emit_block(const std::uint8_t* points, std::size_t channels, const
   const float* const elevation_deg = geo_.elevation_deg.data();
   const std::int32_t* const fire_ns = geo_.fire_ns[loop].data();
 
-  // Every channel's point is written at out.points[n] and kept (n advanced) only when its
-  // distance is valid: no branch to mispredict. n <= the channels before this one, so the
-  // write stays below blocks x channels <= kMaxPointsPerPacket.
-  Point* const pts = out.points.data();
-  std::size_t n = out.count;
+  // Every channel's point is written at out[n] and kept (n advanced) only when its distance is
+  // valid: no branch to mispredict. n <= the channels before this one, so the write stays below
+  // blocks x channels = max_points(model_), the capacity decode() checked.
+  Point* const pts = out;
+  std::size_t n = count;
   for (std::size_t ch = 0; ch < channels; ++ch) {
     const std::uint8_t* p = points + ch * kPointBytes;
     const std::uint16_t raw = load_le16(p);
@@ -65,7 +65,7 @@ void Decoder::emit_block(const std::uint8_t* points, std::size_t channels, const
     o.block = block_index;
     n += static_cast<std::size_t>(raw >= min_distance);
   }
-  out.count = n;
+  count = n;
 }
 
 }  // namespace hesai

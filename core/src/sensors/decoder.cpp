@@ -194,16 +194,22 @@ Error Decoder::validate(ByteView payload, PacketInfo& info) noexcept {
 }
 
 Error Decoder::decode(ByteView payload, PacketInfo& info, PacketPoints& out) noexcept {
-  out.count = 0;
+  return decode(payload, info, out.points.data(), out.points.size(), out.count);
+}
+
+Error Decoder::decode(ByteView payload, PacketInfo& info, Point* points, std::size_t capacity,
+                      std::size_t& count) noexcept {
+  count = 0;
+  if (capacity < max_points(model_)) return Error::buffer_too_small;
   const Error e = validate(payload, info);
   if (e != Error::ok) return e;
   const std::uint16_t rpm = firetime_correction_ ? info.motor_rpm : 0;
   if (rpm != spin_.rpm) update_spin(rpm);
   switch (model_) {
     case Model::pandar40:
-    case Model::pandar40p: decode_pandar40(payload.data, info, out); break;
-    case Model::pandar64: decode_pandar64(payload.data, info, out); break;
-    case Model::qt128c2x: decode_qt128(payload.data, info, out); break;
+    case Model::pandar40p: decode_pandar40(payload.data, info, points, count); break;
+    case Model::pandar64: decode_pandar64(payload.data, info, points, count); break;
+    case Model::qt128c2x: decode_qt128(payload.data, info, points, count); break;
     case Model::unknown: break;
   }
   return Error::ok;

@@ -48,12 +48,12 @@ Error Decoder::validate_pandar64(ByteView p, PacketInfo& info) noexcept {
   return detail::tail_time(p.data + kDateTime, 2000, 999999, info);
 }
 
-void Decoder::decode_pandar64(const std::uint8_t* p, const PacketInfo& info, PacketPoints& out) const noexcept {
+void Decoder::decode_pandar64(const std::uint8_t* p, const PacketInfo& info, Point* out, std::size_t& count) const noexcept {
   using namespace pandar64;
   const std::size_t dual = info.returns == 2 ? 1 : 0;
   for (std::size_t b = 0; b < kBlocks; ++b)
     emit_block<kPointBytes>(p + kBody + b * kBlockBytes + kBlockPoints, kChannels, info, b,
-                            info.time_ns + kBlockNs[dual][b], 0, out);
+                            info.time_ns + kBlockNs[dual][b], 0, out, count);
 }
 
 }  // namespace hesai

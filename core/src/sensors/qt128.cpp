@@ -121,7 +121,7 @@ Error Decoder::validate_qt128(ByteView p, PacketInfo& info) noexcept {
   return detail::tail_time(tail + kTailDateTime, 1900, 1000000, info);
 }
 
-void Decoder::decode_qt128(const std::uint8_t* p, const PacketInfo& info, PacketPoints& out) const noexcept {
+void Decoder::decode_qt128(const std::uint8_t* p, const PacketInfo& info, Point* out, std::size_t& count) const noexcept {
   using namespace qt128;
   const std::size_t dual = info.returns == 2 ? 1 : 0;
   // Mode flag bit 0: block 1 uses firing sequence 1 (loop 0) when set, sequence 2 otherwise;
@@ -130,7 +130,7 @@ void Decoder::decode_qt128(const std::uint8_t* p, const PacketInfo& info, Packet
   for (std::size_t b = 0; b < kBlocks; ++b) {
     const std::size_t loop = (dual || b == 0) ? loop1 : 1 - loop1;
     emit_block<kPointBytes>(p + kBody + b * kBlockBytes + kBlockPoints, kChannels, info, b,
-                            info.time_ns + kBlockNs[dual][b], loop, out);
+                            info.time_ns + kBlockNs[dual][b], loop, out, count);
   }
 }
 
