@@ -2,7 +2,7 @@
 """The core's layering (core/src/README.md): every file of the core, source or public header,
 belongs to one concern, and includes only headers of its own concern or of the concerns below it.
 
-    base <- crc, crypto, calibration <- sensors <- streams
+    base <- crc, crypto, calibration <- sensors <- streams <- capi
 
 A public header's concern is given below; a file under core/src/<folder>/ has that folder's.
 Exits 1 and names each include that reaches upward (or sideways) and each file of no concern.
@@ -18,6 +18,7 @@ BELOW = {  # concern -> the concerns it may include
     'calibration': {'base'},
     'sensors': {'base', 'crc', 'crypto', 'calibration'},
     'streams': {'base', 'crc', 'crypto', 'calibration', 'sensors'},
+    'capi': {'base', 'crc', 'crypto', 'calibration', 'sensors', 'streams'},
 }
 HEADERS = {  # public header (under core/include/hesai/) -> concern
     'config.h': 'base', 'bytes.h': 'base', 'error.h': 'base', 'error_list.h': 'base', 'model.h': 'base', 'math.h': 'base',
@@ -28,6 +29,7 @@ HEADERS = {  # public header (under core/include/hesai/) -> concern
     'decoder.h': 'sensors', 'point.h': 'sensors', 'gps.h': 'sensors', 'pandar40_packet.h': 'sensors',
     'pandar64_packet.h': 'sensors', 'qt128_packet.h': 'sensors', 'tables/': 'sensors',
     'frame.h': 'streams', 'sequence.h': 'streams', 'stats.h': 'streams', 'safety.h': 'streams',
+    'hesai.h': 'capi',
 }
 INCLUDE = re.compile(r'^\s*#\s*include\s+"([^"]+)"')
 

@@ -1,0 +1,251 @@
+/* The decoder from C (C99; the same declarations, extern "C", from C++).
+ *
+ * The contract:
+ * - Memory: all of it is the caller's. A decoder is a hesai_decoder of HESAI_DECODER_SIZE bytes
+ *   (static, on the stack or in a struct: it needs no release); the points of a packet go into the
+ *   caller's hesai_point array; calibration calls work in a caller's hesai_calibration_scratch of
+ *   HESAI_CALIBRATION_SCRATCH_SIZE bytes (the parsed file, too big for a small stack). The library
+ *   never allocates and holds no pointer to caller memory after a call returns.
+ * - Stack: no call uses more than 1 KiB on a Cortex-M (tests/firmware measures each).
+ * - Errors: every call that can fail returns a hesai_error; HESAI_ERROR_ok is 0. A NULL pointer
+ *   where one is needed is HESAI_ERROR_invalid_argument. Nothing throws, asserts or aborts.
+ * - Threads: calls on different decoders are independent; one decoder must not be used by two
+ *   threads at once. The only shared state is the x86 CPU-feature flags, cached atomically.
+ *
+ *     static hesai_decoder decoder;
+ *     static hesai_point points[HESAI_MAX_POINTS_PER_PACKET];
+ *     size_t count;
+ *     hesai_packet_info info;
+ *     hesai_decoder_init(&decoder, HESAI_MODEL_qt128c2x);
+ *     hesai_error e = hesai_decoder_decode(&decoder, payload, size, &info, points, 256, &count);
+ *     if (e != HESAI_ERROR_ok) log(hesai_error_name(e));
+ */
+#ifndef HESAI_HESAI_H
+#define HESAI_HESAI_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "hesai/error_list.h"
+
+#ifdef __cplusplus
+#define HESAI_NOEXCEPT noexcept
+extern "C" {
+#else
+#define HESAI_NOEXCEPT
+#endif
+
+/* ---- Codes ------------------------------------------------------------------------------- */
+
+/* Outcome of a call: HESAI_ERROR_<name> has the value of hesai::Error::<name>, and
+ * hesai_error_name() gives "<name>". The codes and their meaning: hesai/error_list.h. */
+typedef enum hesai_error {
+#define HESAI_C_ERROR(name) HESAI_ERROR_##name,
+  HESAI_ERROR_LIST(HESAI_C_ERROR)
+#undef HESAI_C_ERROR
+  HESAI_ERROR_COUNT /* number of codes, not a code */
+} hesai_error;
+
+/* A sensor model (values of hesai::Model). */
+typedef enum hesai_model {
+  HESAI_MODEL_unknown = 0,
+  HESAI_MODEL_pandar40 = 1,  /* Pandar40, older firmware: 1256-byte packets */
+  HESAI_MODEL_pandar40p = 2, /* Pandar40P: 1262 bytes, 1266 with UDP sequence */
+  HESAI_MODEL_pandar64 = 3,  /* Pandar64: 1194 bytes, 1198 with UDP sequence */
+  HESAI_MODEL_qt128c2x = 4   /* QT128C2X, point cloud protocol 3.2 */
+} hesai_model;
+
+/* What became of a packet's signature (hesai_packet_info.signature; hesai::SignatureStatus). */
+enum {
+  HESAI_SIGNATURE_not_signed = 0,       /* no signature (or all zero) and no key configured */
+  HESAI_SIGNATURE_unverified = 1,       /* a signature is present but no key is configured */
+  HESAI_SIGNATURE_valid = 2,            /* HMAC-SHA256 verified under the session key */
+  HESAI_SIGNATURE_accepted_unsigned = 3 /* a key is set, the packet is unsigned, unsigned allowed */
+};
+
+/* Whether times are absolute (hesai_packet_info.time_reference; hesai::TimeReference). */
+enum {
+  HESAI_TIME_utc = 0,          /* ns since the Unix epoch, UTC */
+  HESAI_TIME_hour_relative = 1 /* Pandar40 before its first GPS packet: ns since an unknown hour */
+};
+
+/* "crc_body", ...; "unknown" for a value that is no code. Never NULL. */
+const char* hesai_error_name(hesai_error e) HESAI_NOEXCEPT;
+/* "Pandar40", "Pandar40P", "Pandar64", "QT128C2X"; "unknown" otherwise. Never NULL. */
+const char* hesai_model_name(hesai_model m) HESAI_NOEXCEPT;
+/* Laser channels of the model: 40, 40, 64, 128 (0 for unknown). */
+size_t hesai_model_channels(hesai_model m) HESAI_NOEXCEPT;
+/* The most points one packet of the model holds, blocks x channels: 400, 400, 384, 256 (0 for
+ * unknown). A point array of this many entries suffices for any packet of the model. */
+size_t hesai_model_max_points(hesai_model m) HESAI_NOEXCEPT;
+
+/* The most points of any model's packet (Pandar40: 10 blocks x 40 channels). */
+#define HESAI_MAX_POINTS_PER_PACKET 400
+
+/* ---- Storage ----------------------------------------------------------------------------- */
+
+/* The aligned bytes a decoder lives in: same size on every target and in every version of this
+ * major release (the library checks at compile time that its decoder fits; it needs about
+ * 6.8 KiB). Initialise with hesai_decoder_init() before any other call. Copying one with memcpy
+ * or assignment is not supported: initialise each. */
+#define HESAI_DECODER_SIZE 8192
+typedef struct hesai_decoder {
+  union {
+    unsigned char bytes[HESAI_DECODER_SIZE];
+    long long align_ll;
+    double align_d;
+    void* align_p;
+  } opaque;
+} hesai_decoder;
+
+/* Working memory of the calibration calls: the parsed file (angles: two doubles per channel;
+ * firing times: two loops of doubles). Reusable at once; holds nothing after a call. */
+#define HESAI_CALIBRATION_SCRATCH_SIZE 2312
+typedef struct hesai_calibration_scratch {
+  union {
+    unsigned char bytes[HESAI_CALIBRATION_SCRATCH_SIZE];
+    long long align_ll;
+    double align_d;
+    void* align_p;
+  } opaque;
+} hesai_calibration_scratch;
+
+/* ---- Points and packet fields ------------------------------------------------------------ */
+
+/* A measured point in the manuals' frame: Y axis at azimuth 0, azimuth clockwise seen from above,
+ * Z up: x = r cos(e) sin(a), y = r cos(e) cos(a), z = r sin(e). The layout of hesai::Point. */
+typedef struct hesai_point {
+  float x;              /* metres */
+  float y;              /* metres */
+  float z;              /* metres */
+  float distance_m;     /* range r along the beam, metres */
+  float azimuth_deg;    /* horizontal angle a in [0, 360), firing-time correction included */
+  float elevation_deg;  /* vertical angle e, degrees, up positive */
+  int64_t time_ns;      /* firing time of this channel, ns since the Unix epoch (see time_reference) */
+  uint8_t intensity;    /* reflectivity byte as sent (0..255) */
+  uint8_t channel;      /* laser channel, 1-based as in the manuals */
+  uint8_t return_index; /* 0 for single return; in dual return 0 = odd block, 1 = even block */
+  uint8_t confidence;   /* QT128 per-point confidence byte; 0 for other models */
+  uint8_t block;        /* 0-based block index in the packet */
+} hesai_point;
+
+/* A tail's date-time, UTC. */
+typedef struct hesai_date_time {
+  int32_t year; /* full year, e.g. 2024 */
+  uint8_t month, day, hour, minute, second;
+} hesai_date_time;
+
+/* QT128 functional-safety section (header flags bit 2). */
+typedef struct hesai_functional_safety {
+  uint8_t present;           /* 1 when the packet has the section */
+  uint8_t version;           /* FS version (0x01) */
+  uint8_t lidar_state;       /* 0 init, 1 normal, 2 report fault, 3 pre-degradation, 4 degradation,
+                                5 pre-shutdown, 6 shutdown, 7 standby */
+  uint8_t fault_code_type;   /* 1 current fault, 2 past fault */
+  uint8_t rolling_counter;   /* 0..7 */
+  uint8_t total_fault_codes; /* 0..15 */
+  uint8_t fault_code_id;     /* 0..15 */
+  uint16_t fault_code;       /* outgoing fault code */
+} hesai_functional_safety;
+
+/* Packet-level fields (hesai::PacketInfo), filled by validate and decode. */
+typedef struct hesai_packet_info {
+  int64_t time_ns;              /* packet time t0 = date-time + timestamp, ns */
+  hesai_date_time date_time;    /* the tail's date-time (Pandar40: from the last GPS packet) */
+  uint32_t timestamp_us;        /* the tail's timestamp field as sent */
+  uint32_t sequence;            /* UDP sequence, when has_sequence */
+  uint16_t motor_rpm;           /* spin rate as sent */
+  uint16_t block_azimuth[10];   /* per block, 0.01 degree */
+  uint8_t model;                /* a hesai_model */
+  uint8_t return_mode;          /* the return-mode byte (0x37 strongest, 0x38 last, 0x39 ...) */
+  uint8_t returns;              /* 1 single return, 2 dual return */
+  uint8_t blocks;               /* blocks in the packet */
+  uint8_t dis_unit_mm;          /* distance step, mm */
+  uint8_t time_reference;       /* HESAI_TIME_utc or HESAI_TIME_hour_relative */
+  uint8_t has_sequence;         /* 1 when the packet carries a UDP sequence */
+  uint8_t high_temperature;     /* Pandar40/40P/64 shutdown flag */
+  uint8_t factory_info;         /* factory byte as sent */
+  uint8_t flags;                /* QT128 header flags */
+  uint8_t mode_flag;            /* QT128 tail mode flag */
+  uint8_t signature;            /* a HESAI_SIGNATURE_ value */
+  hesai_functional_safety safety; /* QT128 only */
+} hesai_packet_info;
+
+/* ---- Recognition ------------------------------------------------------------------------- */
+
+/* Identifies a UDP payload by length, magic and header fields. On ok *model is a hesai_model
+ * (HESAI_MODEL_unknown for a GPS packet) and *is_gps is 1 for a GPS packet, else 0.
+ * Errors: bad_length, bad_magic, unsupported_version, unsupported_model, flags_length_mismatch. */
+hesai_error hesai_identify(const uint8_t* payload, size_t size, uint8_t* model, uint8_t* is_gps) HESAI_NOEXCEPT;
+
+/* ---- The decoder ------------------------------------------------------------------------- */
+
+/* Makes *decoder a decoder for `model` with the manual's design angles and firing times, no key,
+ * unsigned packets refused when a key is set, firing-time correction on. May be called again on
+ * the same storage (it starts over). A model that is none of the four: HESAI_ERROR_invalid_argument,
+ * and the decoder refuses every packet (model_mismatch). */
+hesai_error hesai_decoder_init(hesai_decoder* decoder, hesai_model model) HESAI_NOEXCEPT;
+/* The decoder's model. */
+hesai_model hesai_decoder_model(const hesai_decoder* decoder) HESAI_NOEXCEPT;
+
+/* Calibration from the bytes of a vendor CSV file (UTF-8, LF or CRLF; see hesai/calibration.h
+ * for the accepted text). On a parse error *line (when not NULL) gets the 1-based line of the
+ * first bad row, else 0. Errors: calib_bad_header, calib_bad_row, calib_bad_number,
+ * calib_bad_channel, calib_channel_count (another number of channels than the model, or a
+ * one-loop firing-time file for the QT128), invalid_argument (an angle or firing time out of
+ * range). On any error the decoder is unchanged. */
+hesai_error hesai_decoder_set_angles_csv(hesai_decoder* decoder, const uint8_t* text, size_t size,
+                                         hesai_calibration_scratch* scratch, uint32_t* line) HESAI_NOEXCEPT;
+hesai_error hesai_decoder_set_firetimes_csv(hesai_decoder* decoder, const uint8_t* text, size_t size,
+                                            hesai_calibration_scratch* scratch, uint32_t* line) HESAI_NOEXCEPT;
+
+/* Calibration from arrays indexed by channel - 1, `channels` entries each (the model's count,
+ * else calib_channel_count). Angles in degrees: elevation in [-90, 90], azimuth offset in
+ * [-360, 360]. Firing times in microseconds, in [-1000, 1000], as the vendor files give them:
+ * loop2_us NULL for the Pandars' one firing sequence, both loops for the QT128 (any value in
+ * range, 0 say, where a channel rests). invalid_argument for a value out of range. On any error
+ * the decoder is unchanged. */
+hesai_error hesai_decoder_set_angles(hesai_decoder* decoder, const double* elevation_deg, const double* azimuth_deg,
+                                     size_t channels, hesai_calibration_scratch* scratch) HESAI_NOEXCEPT;
+hesai_error hesai_decoder_set_firetimes(hesai_decoder* decoder, const double* loop1_us, const double* loop2_us,
+                                        size_t channels, hesai_calibration_scratch* scratch) HESAI_NOEXCEPT;
+
+/* Azimuth firing-time correction (on after init): adds firing time x spin rate to each point. */
+hesai_error hesai_decoder_set_firetime_correction(hesai_decoder* decoder, int on) HESAI_NOEXCEPT;
+
+/* Verifies QT128 signatures (HMAC-SHA256) with this 32-byte session key; the decoder keeps its
+ * own prepared copy, the caller may wipe `key` after the call. */
+hesai_error hesai_decoder_set_session_key(hesai_decoder* decoder, const uint8_t key[32]) HESAI_NOEXCEPT;
+/* Forgets the key and wipes the decoder's copy of it. */
+hesai_error hesai_decoder_clear_session_key(hesai_decoder* decoder) HESAI_NOEXCEPT;
+/* With a key: accept packets that carry no signature (signature = accepted_unsigned) instead of
+ * refusing them with signature_missing. Off after init. */
+hesai_error hesai_decoder_set_allow_unsigned(hesai_decoder* decoder, int allow) HESAI_NOEXCEPT;
+/* The Hesai session key from the shared secret (8 to 32 bytes) and the two 32-byte randoms of the
+ * key exchange: HKDF-SHA256, info "finish session key". invalid_argument for another secret
+ * length (key untouched). */
+hesai_error hesai_session_key_derive(const uint8_t* secret, size_t secret_size, const uint8_t lidar_random[32],
+                                     const uint8_t client_random[32], uint8_t key[32]) HESAI_NOEXCEPT;
+
+/* Pandar40: takes the date and hour from a GPS packet (512-byte payload) for the packets that
+ * follow. Errors of the GPS packet: bad_length, bad_magic, bad_gps_field (decoder unchanged). */
+hesai_error hesai_decoder_update_gps(hesai_decoder* decoder, const uint8_t* payload, size_t size) HESAI_NOEXCEPT;
+
+/* Runs every check of a packet (length, header, flags, CRCs, signature, fields) and fills *info.
+ * Errors: those of hesai_identify, model_mismatch, and every field, integrity and signature code. */
+hesai_error hesai_decoder_validate(hesai_decoder* decoder, const uint8_t* payload, size_t size,
+                                   hesai_packet_info* info) HESAI_NOEXCEPT;
+
+/* Validates, then writes the packet's points to points[0 .. *count). A distance of 0 (QT128: 0
+ * or 1) gives no point. `capacity` must be at least hesai_model_max_points() of the decoder's
+ * model, else buffer_too_small before the packet is read (so a buffer sized for the model is
+ * always enough); entries past *count may be overwritten too. *count is 0 on any error. `info`
+ * may be NULL. */
+hesai_error hesai_decoder_decode(hesai_decoder* decoder, const uint8_t* payload, size_t size, hesai_packet_info* info,
+                                 hesai_point* points, size_t capacity, size_t* count) HESAI_NOEXCEPT;
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* HESAI_HESAI_H */

@@ -1,0 +1,312 @@
+// The C interface (hesai/hesai.h): hesai::Decoder built in the caller's hesai_decoder bytes, behind
+// extern "C" functions that check every pointer and cannot throw (the core has no exceptions).
+// What the C declarations promise about sizes, layouts and values is checked here at compile time.
+#include "hesai/hesai.h"
+
+#include <cstddef>
+#include <cstdint>
+#include <new>
+#include <type_traits>
+
+#include "hesai/calibration.h"
+#include "hesai/decoder.h"
+#include "hesai/gps.h"
+#include "hesai/hkdf.h"
+#include "hesai/model.h"
+#include "hesai/point.h"
+
+namespace {
+
+using hesai::ByteView;
+using hesai::Decoder;
+using hesai::Error;
+using hesai::Model;
+
+// ---- The storage contract -------------------------------------------------------------------
+
+template <class T, class Storage>
+constexpr bool fits() {
+  return sizeof(T) <= sizeof(Storage::opaque.bytes) && alignof(T) <= alignof(Storage);
+}
+// There is no release call: the storage may be dropped without running ~Decoder(), whose only
+// effect is wiping the key (hesai_decoder_clear_session_key() does that).
+static_assert(fits<Decoder, hesai_decoder>(), "hesai::Decoder must fit in HESAI_DECODER_SIZE aligned bytes");
+static_assert(fits<hesai::AngleCorrection, hesai_calibration_scratch>() &&
+                  fits<hesai::FiretimeCorrection, hesai_calibration_scratch>() &&
+                  fits<hesai::ChannelConfig, hesai_calibration_scratch>(),
+              "every parsed calibration file must fit in HESAI_CALIBRATION_SCRATCH_SIZE aligned bytes");
+static_assert(std::is_trivially_destructible_v<hesai::AngleCorrection> &&
+              std::is_trivially_destructible_v<hesai::FiretimeCorrection>);
+
+// ---- Values the C enums share with C++ --------------------------------------------------------
+
+// hesai_error is made from the same list as hesai::Error (hesai/error_list.h); checked anyway.
+#define HESAI_SAME_ERROR(name) static_assert(HESAI_ERROR_##name == static_cast<int>(Error::name));
+HESAI_ERROR_LIST(HESAI_SAME_ERROR)
+#undef HESAI_SAME_ERROR
+static_assert(HESAI_ERROR_COUNT == hesai::kErrorCount);
+
+static_assert(HESAI_MODEL_unknown == static_cast<int>(Model::unknown) &&
+              HESAI_MODEL_pandar40 == static_cast<int>(Model::pandar40) &&
+              HESAI_MODEL_pandar40p == static_cast<int>(Model::pandar40p) &&
+              HESAI_MODEL_pandar64 == static_cast<int>(Model::pandar64) &&
+              HESAI_MODEL_qt128c2x == static_cast<int>(Model::qt128c2x) && hesai::kModelCount == 5,
+              "hesai_model lists every hesai::Model with its value");
+static_assert(HESAI_SIGNATURE_not_signed == static_cast<int>(hesai::SignatureStatus::not_signed) &&
+              HESAI_SIGNATURE_unverified == static_cast<int>(hesai::SignatureStatus::unverified) &&
+              HESAI_SIGNATURE_valid == static_cast<int>(hesai::SignatureStatus::valid) &&
+              HESAI_SIGNATURE_accepted_unsigned == static_cast<int>(hesai::SignatureStatus::accepted_unsigned));
+static_assert(HESAI_TIME_utc == static_cast<int>(hesai::TimeReference::utc) &&
+              HESAI_TIME_hour_relative == static_cast<int>(hesai::TimeReference::hour_relative));
+static_assert(HESAI_MAX_POINTS_PER_PACKET == hesai::kMaxPointsPerPacket);
+
+// ---- hesai_point is hesai::Point's layout ------------------------------------------------------
+
+// The decoder writes hesai::Point values straight into the caller's hesai_point array (there is
+// no room for a copy: a packet's points are 10 to 16 KiB). Both are standard-layout structs of
+// the same members, types and offsets, checked here member by member; the array is written only
+// inside the library, and the caller reads it after the call returns.
+static_assert(std::is_standard_layout_v<hesai::Point> && std::is_trivially_copyable_v<hesai::Point>);
+static_assert(sizeof(hesai_point) == sizeof(hesai::Point) && alignof(hesai_point) == alignof(hesai::Point));
+#define HESAI_SAME_MEMBER(m)                                                         \
+  static_assert(offsetof(hesai_point, m) == offsetof(hesai::Point, m) &&             \
+                    std::is_same_v<decltype(hesai_point::m), decltype(hesai::Point::m)>, \
+                "hesai_point::" #m " differs from hesai::Point::" #m);
+HESAI_SAME_MEMBER(x)
+HESAI_SAME_MEMBER(y)
+HESAI_SAME_MEMBER(z)
+HESAI_SAME_MEMBER(distance_m)
+HESAI_SAME_MEMBER(azimuth_deg)
+HESAI_SAME_MEMBER(elevation_deg)
+HESAI_SAME_MEMBER(time_ns)
+HESAI_SAME_MEMBER(intensity)
+HESAI_SAME_MEMBER(channel)
+HESAI_SAME_MEMBER(return_index)
+HESAI_SAME_MEMBER(confidence)
+HESAI_SAME_MEMBER(block)
+#undef HESAI_SAME_MEMBER
+
+// ---- Helpers -----------------------------------------------------------------------------------
+
+// The decoder hesai_decoder_init() built in the storage.
+Decoder& decoder_in(hesai_decoder* d) noexcept { return *std::launder(reinterpret_cast<Decoder*>(d->opaque.bytes)); }
+const Decoder& decoder_in(const hesai_decoder* d) noexcept {
+  return *std::launder(reinterpret_cast<const Decoder*>(d->opaque.bytes));
+}
+
+hesai_error c_error(Error e) noexcept { return static_cast<hesai_error>(e); }
+
+// A byte range the caller passed: NULL only when empty.
+bool bytes_ok(const std::uint8_t* p, std::size_t size) noexcept { return p != nullptr || size == 0; }
+
+// A parsed-file struct, value-initialised in the scratch bytes.
+template <class T>
+T& fresh_in(hesai_calibration_scratch* s) noexcept {
+  return *::new (static_cast<void*>(s->opaque.bytes)) T{};
+}
+
+void copy_info(const hesai::PacketInfo& i, hesai_packet_info& o) noexcept {
+  o.time_ns = i.time_ns;
+  o.date_time.year = i.date_time.year;
+  o.date_time.month = i.date_time.month;
+  o.date_time.day = i.date_time.day;
+  o.date_time.hour = i.date_time.hour;
+  o.date_time.minute = i.date_time.minute;
+  o.date_time.second = i.date_time.second;
+  o.timestamp_us = i.timestamp_us;
+  o.sequence = i.sequence;
+  o.motor_rpm = i.motor_rpm;
+  static_assert(sizeof o.block_azimuth / sizeof o.block_azimuth[0] == std::tuple_size_v<decltype(i.block_azimuth)>);
+  for (std::size_t b = 0; b < i.block_azimuth.size(); ++b) o.block_azimuth[b] = i.block_azimuth[b];
+  o.model = static_cast<std::uint8_t>(i.model);
+  o.return_mode = i.return_mode;
+  o.returns = i.returns;
+  o.blocks = i.blocks;
+  o.dis_unit_mm = i.dis_unit_mm;
+  o.time_reference = static_cast<std::uint8_t>(i.time_reference);
+  o.has_sequence = i.has_sequence ? 1 : 0;
+  o.high_temperature = i.high_temperature;
+  o.factory_info = i.factory_info;
+  o.flags = i.flags;
+  o.mode_flag = i.mode_flag;
+  o.signature = static_cast<std::uint8_t>(i.signature);
+  o.safety.present = i.safety.present ? 1 : 0;
+  o.safety.version = i.safety.version;
+  o.safety.lidar_state = i.safety.lidar_state;
+  o.safety.fault_code_type = i.safety.fault_code_type;
+  o.safety.rolling_counter = i.safety.rolling_counter;
+  o.safety.total_fault_codes = i.safety.total_fault_codes;
+  o.safety.fault_code_id = i.safety.fault_code_id;
+  o.safety.fault_code = i.safety.fault_code;
+}
+
+bool known_model(hesai_model m) noexcept {
+  return m == HESAI_MODEL_pandar40 || m == HESAI_MODEL_pandar40p || m == HESAI_MODEL_pandar64 ||
+         m == HESAI_MODEL_qt128c2x;
+}
+
+Model cpp_model(hesai_model m) noexcept { return known_model(m) ? static_cast<Model>(m) : Model::unknown; }
+
+}  // namespace
+
+extern "C" {
+
+const char* hesai_error_name(hesai_error e) noexcept {
+  // Values outside the uint8_t range must not wrap onto a code.
+  const auto v = static_cast<long long>(e);
+  return v >= 0 && v < HESAI_ERROR_COUNT ? hesai::error_name(static_cast<Error>(v)) : "unknown";
+}
+
+const char* hesai_model_name(hesai_model m) noexcept { return hesai::model_name(cpp_model(m)); }
+
+std::size_t hesai_model_channels(hesai_model m) noexcept { return hesai::channel_count(cpp_model(m)); }
+
+std::size_t hesai_model_max_points(hesai_model m) noexcept { return hesai::max_points(cpp_model(m)); }
+
+hesai_error hesai_identify(const std::uint8_t* payload, std::size_t size, std::uint8_t* model,
+                           std::uint8_t* is_gps) noexcept {
+  if (!bytes_ok(payload, size) || model == nullptr || is_gps == nullptr) return HESAI_ERROR_invalid_argument;
+  Model m = Model::unknown;
+  hesai::PacketKind kind = hesai::PacketKind::point_cloud;
+  const Error e = hesai::identify(ByteView{payload, size}, m, kind);
+  *model = static_cast<std::uint8_t>(m);
+  *is_gps = kind == hesai::PacketKind::gps ? 1 : 0;
+  return c_error(e);
+}
+
+hesai_error hesai_decoder_init(hesai_decoder* decoder, hesai_model model) noexcept {
+  if (decoder == nullptr) return HESAI_ERROR_invalid_argument;
+  ::new (static_cast<void*>(decoder->opaque.bytes)) Decoder(cpp_model(model));
+  return known_model(model) ? HESAI_ERROR_ok : HESAI_ERROR_invalid_argument;
+}
+
+hesai_model hesai_decoder_model(const hesai_decoder* decoder) noexcept {
+  if (decoder == nullptr) return HESAI_MODEL_unknown;
+  return static_cast<hesai_model>(decoder_in(decoder).model());
+}
+
+hesai_error hesai_decoder_set_angles_csv(hesai_decoder* decoder, const std::uint8_t* text, std::size_t size,
+                                         hesai_calibration_scratch* scratch, std::uint32_t* line) noexcept {
+  if (line != nullptr) *line = 0;
+  if (decoder == nullptr || scratch == nullptr || !bytes_ok(text, size)) return HESAI_ERROR_invalid_argument;
+  Decoder& d = decoder_in(decoder);
+  auto& angles = fresh_in<hesai::AngleCorrection>(scratch);
+  const hesai::ParseResult r = hesai::parse_angle_csv(ByteView{text, size}, hesai::channel_count(d.model()), angles);
+  if (r.error != Error::ok) {
+    if (line != nullptr) *line = r.line;
+    return c_error(r.error);
+  }
+  return c_error(d.set_angles(angles));
+}
+
+hesai_error hesai_decoder_set_firetimes_csv(hesai_decoder* decoder, const std::uint8_t* text, std::size_t size,
+                                            hesai_calibration_scratch* scratch, std::uint32_t* line) noexcept {
+  if (line != nullptr) *line = 0;
+  if (decoder == nullptr || scratch == nullptr || !bytes_ok(text, size)) return HESAI_ERROR_invalid_argument;
+  Decoder& d = decoder_in(decoder);
+  auto& firetimes = fresh_in<hesai::FiretimeCorrection>(scratch);
+  const hesai::ParseResult r =
+      hesai::parse_firetime_csv(ByteView{text, size}, hesai::channel_count(d.model()), firetimes);
+  if (r.error != Error::ok) {
+    if (line != nullptr) *line = r.line;
+    return c_error(r.error);
+  }
+  return c_error(d.set_firetimes(firetimes));
+}
+
+hesai_error hesai_decoder_set_angles(hesai_decoder* decoder, const double* elevation_deg, const double* azimuth_deg,
+                                     std::size_t channels, hesai_calibration_scratch* scratch) noexcept {
+  if (decoder == nullptr || scratch == nullptr || elevation_deg == nullptr || azimuth_deg == nullptr)
+    return HESAI_ERROR_invalid_argument;
+  Decoder& d = decoder_in(decoder);
+  if (channels != hesai::channel_count(d.model())) return HESAI_ERROR_calib_channel_count;
+  auto& angles = fresh_in<hesai::AngleCorrection>(scratch);
+  angles.channels = static_cast<std::uint16_t>(channels);
+  for (std::size_t i = 0; i < channels; ++i) {
+    angles.elevation_deg[i] = elevation_deg[i];
+    angles.azimuth_deg[i] = azimuth_deg[i];
+  }
+  return c_error(d.set_angles(angles));
+}
+
+hesai_error hesai_decoder_set_firetimes(hesai_decoder* decoder, const double* loop1_us, const double* loop2_us,
+                                        std::size_t channels, hesai_calibration_scratch* scratch) noexcept {
+  if (decoder == nullptr || scratch == nullptr || loop1_us == nullptr) return HESAI_ERROR_invalid_argument;
+  Decoder& d = decoder_in(decoder);
+  if (channels != hesai::channel_count(d.model())) return HESAI_ERROR_calib_channel_count;
+  auto& firetimes = fresh_in<hesai::FiretimeCorrection>(scratch);
+  firetimes.channels = static_cast<std::uint16_t>(channels);
+  firetimes.loops = loop2_us != nullptr ? 2 : 1;
+  const double* const loops[2] = {loop1_us, loop2_us};
+  for (std::size_t loop = 0; loop < firetimes.loops; ++loop) {
+    for (std::size_t i = 0; i < channels; ++i) {
+      firetimes.firetime_us[loop][i] = loops[loop][i];
+      firetimes.fires[loop][i] = true;
+    }
+  }
+  return c_error(d.set_firetimes(firetimes));
+}
+
+hesai_error hesai_decoder_set_firetime_correction(hesai_decoder* decoder, int on) noexcept {
+  if (decoder == nullptr) return HESAI_ERROR_invalid_argument;
+  decoder_in(decoder).set_firetime_correction(on != 0);
+  return HESAI_ERROR_ok;
+}
+
+hesai_error hesai_decoder_set_session_key(hesai_decoder* decoder, const std::uint8_t key[32]) noexcept {
+  if (decoder == nullptr || key == nullptr) return HESAI_ERROR_invalid_argument;
+  decoder_in(decoder).set_session_key(key);
+  return HESAI_ERROR_ok;
+}
+
+hesai_error hesai_decoder_clear_session_key(hesai_decoder* decoder) noexcept {
+  if (decoder == nullptr) return HESAI_ERROR_invalid_argument;
+  decoder_in(decoder).clear_session_key();
+  return HESAI_ERROR_ok;
+}
+
+hesai_error hesai_decoder_set_allow_unsigned(hesai_decoder* decoder, int allow) noexcept {
+  if (decoder == nullptr) return HESAI_ERROR_invalid_argument;
+  decoder_in(decoder).set_allow_unsigned(allow != 0);
+  return HESAI_ERROR_ok;
+}
+
+hesai_error hesai_session_key_derive(const std::uint8_t* secret, std::size_t secret_size,
+                                     const std::uint8_t lidar_random[32], const std::uint8_t client_random[32],
+                                     std::uint8_t key[32]) noexcept {
+  if (!bytes_ok(secret, secret_size) || lidar_random == nullptr || client_random == nullptr || key == nullptr)
+    return HESAI_ERROR_invalid_argument;
+  return c_error(hesai::hesai_session_key(ByteView{secret, secret_size}, lidar_random, client_random, key));
+}
+
+hesai_error hesai_decoder_update_gps(hesai_decoder* decoder, const std::uint8_t* payload, std::size_t size) noexcept {
+  if (decoder == nullptr || !bytes_ok(payload, size)) return HESAI_ERROR_invalid_argument;
+  hesai::GpsPacket gps;
+  const Error e = hesai::parse_gps_packet(ByteView{payload, size}, gps);
+  if (e == Error::ok) decoder_in(decoder).update_gps(gps);
+  return c_error(e);
+}
+
+hesai_error hesai_decoder_validate(hesai_decoder* decoder, const std::uint8_t* payload, std::size_t size,
+                                   hesai_packet_info* info) noexcept {
+  if (decoder == nullptr || info == nullptr || !bytes_ok(payload, size)) return HESAI_ERROR_invalid_argument;
+  hesai::PacketInfo i;
+  const Error e = decoder_in(decoder).validate(ByteView{payload, size}, i);
+  copy_info(i, *info);
+  return c_error(e);
+}
+
+hesai_error hesai_decoder_decode(hesai_decoder* decoder, const std::uint8_t* payload, std::size_t size,
+                                 hesai_packet_info* info, hesai_point* points, std::size_t capacity,
+                                 std::size_t* count) noexcept {
+  if (count != nullptr) *count = 0;
+  if (decoder == nullptr || points == nullptr || count == nullptr || !bytes_ok(payload, size))
+    return HESAI_ERROR_invalid_argument;
+  hesai::PacketInfo i;
+  const Error e = decoder_in(decoder).decode(ByteView{payload, size}, i, reinterpret_cast<hesai::Point*>(points),
+                                             capacity, *count);
+  if (info != nullptr) copy_info(i, *info);
+  return c_error(e);
+}
+
+}  // extern "C"

@@ -1,0 +1,45 @@
+/* The C side of the C interface's test: functions written in C99 (test_c_api.c) that the C++
+ * driver (driver.cpp) calls with the bundled captures' bytes. */
+#ifndef HESAI_TEST_C_API_H
+#define HESAI_TEST_C_API_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "hesai/hesai.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* Sets up the C test's decoder for `model` from the bytes of an angle and a firing-time file
+ * (either may be NULL: design values). Returns the first error. */
+hesai_error c_open_csv(hesai_model model, const uint8_t* angles, size_t angles_size, const uint8_t* firetimes,
+                       size_t firetimes_size);
+/* The same from arrays indexed by channel - 1 (loop2_us NULL for one firing sequence). */
+hesai_error c_open_arrays(hesai_model model, const double* elevation_deg, const double* azimuth_deg,
+                          const double* loop1_us, const double* loop2_us, size_t channels);
+/* One UDP payload through the C test's decoder: a GPS packet updates it (*count = 0), any other
+ * is decoded into the test's static point array (*points). */
+hesai_error c_feed(const uint8_t* payload, size_t size, hesai_packet_info* info, const hesai_point** points,
+                   size_t* count);
+
+/* The layout of the C structs as a C compiler sees it: sizeof, then offsetof of each hesai_point
+ * member in declaration order (12), then sizeof and alignment of hesai_decoder,
+ * hesai_calibration_scratch and hesai_packet_info. Returns the number of values written. */
+size_t c_layout(size_t* out, size_t room);
+
+/* Checks of behaviour the header promises, each on its own packet copy; they print what fails to
+ * stderr and return the number of failures.
+ * - qt128: a real unsigned QT128 packet; qt128_signed: the same signed with `key`. */
+int c_check_errors(const uint8_t* qt128, size_t size);
+int c_check_keys(const uint8_t* qt128, const uint8_t* qt128_signed, size_t size, const uint8_t key[32]);
+/* - pandar40: a Pandar40 packet (1256 bytes) whose timestamp is below 1 s into the hour. */
+int c_check_pandar40_gps(const uint8_t* pandar40, size_t size);
+int c_check_calibration_errors(void);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif

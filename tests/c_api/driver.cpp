@@ -1,0 +1,244 @@
+// The C interface against the C++ one: the C functions of test_c_api.c (compiled as C99) decode
+// the bundled captures, and every packet's fields and every point must equal, member for member,
+// what hesai::Decoder gives for the same bytes and calibration. Then the C checks of errors, keys,
+// GPS time and calibration, and the C compiler's view of the structs' layout.
+#include <gtest/gtest.h>
+
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include "../packet_builder.h"
+#include "../test_support.h"
+#include "c_api_test.h"
+#include "hesai/calibration.h"
+#include "hesai/decoder.h"
+#include "hesai/gps.h"
+#include "hesai/hkdf.h"
+
+using namespace hesai;
+using namespace hesai_test;
+
+namespace {
+
+struct Capture {
+  Model model;
+  const char* file;
+  const char* angles;
+  const char* firetimes;
+};
+const Capture kCaptures[] = {
+    {Model::pandar40p, "pandar40p_dual.pcap", "calibration/pandar40p_unit_a_angles.csv", "calibration/pandar40p_firetimes.csv"},
+    {Model::pandar64, "pandar64_dual.pcap", "calibration/pandar64_unit_a_angles.csv", "calibration/pandar64_firetimes.csv"},
+    {Model::qt128c2x, "qt128c2x_dual.pcap", "calibration/qt128c2x_unit_a_angles.csv", "calibration/qt128c2x_firetimes.csv"},
+};
+
+hesai_model c_model(Model m) { return static_cast<hesai_model>(m); }
+
+// A C++ decoder with the capture's calibration files, parsed by the library.
+Decoder cpp_decoder(const Capture& c) {
+  Decoder d(c.model);
+  AngleCorrection angles;
+  FiretimeCorrection firetimes;
+  EXPECT_EQ(parse_angle_csv(view(read_file(data_path(c.angles))), channel_count(c.model), angles).error, Error::ok);
+  EXPECT_EQ(parse_firetime_csv(view(read_file(data_path(c.firetimes))), channel_count(c.model), firetimes).error,
+            Error::ok);
+  EXPECT_EQ(d.set_angles(angles), Error::ok);
+  EXPECT_EQ(d.set_firetimes(firetimes), Error::ok);
+  return d;
+}
+
+void expect_same_info(const hesai_packet_info& c, const PacketInfo& i, std::size_t n) {
+  EXPECT_EQ(c.time_ns, i.time_ns) << n;
+  EXPECT_EQ(c.date_time.year, i.date_time.year) << n;
+  EXPECT_EQ(c.date_time.month, i.date_time.month) << n;
+  EXPECT_EQ(c.date_time.day, i.date_time.day) << n;
+  EXPECT_EQ(c.date_time.hour, i.date_time.hour) << n;
+  EXPECT_EQ(c.date_time.minute, i.date_time.minute) << n;
+  EXPECT_EQ(c.date_time.second, i.date_time.second) << n;
+  EXPECT_EQ(c.timestamp_us, i.timestamp_us) << n;
+  EXPECT_EQ(c.sequence, i.sequence) << n;
+  EXPECT_EQ(c.motor_rpm, i.motor_rpm) << n;
+  for (std::size_t b = 0; b < i.block_azimuth.size(); ++b) EXPECT_EQ(c.block_azimuth[b], i.block_azimuth[b]) << n;
+  EXPECT_EQ(c.model, static_cast<std::uint8_t>(i.model)) << n;
+  EXPECT_EQ(c.return_mode, i.return_mode) << n;
+  EXPECT_EQ(c.returns, i.returns) << n;
+  EXPECT_EQ(c.blocks, i.blocks) << n;
+  EXPECT_EQ(c.dis_unit_mm, i.dis_unit_mm) << n;
+  EXPECT_EQ(c.time_reference, static_cast<std::uint8_t>(i.time_reference)) << n;
+  EXPECT_EQ(c.has_sequence, i.has_sequence ? 1 : 0) << n;
+  EXPECT_EQ(c.high_temperature, i.high_temperature) << n;
+  EXPECT_EQ(c.factory_info, i.factory_info) << n;
+  EXPECT_EQ(c.flags, i.flags) << n;
+  EXPECT_EQ(c.mode_flag, i.mode_flag) << n;
+  EXPECT_EQ(c.signature, static_cast<std::uint8_t>(i.signature)) << n;
+  EXPECT_EQ(c.safety.present, i.safety.present ? 1 : 0) << n;
+  EXPECT_EQ(c.safety.version, i.safety.version) << n;
+  EXPECT_EQ(c.safety.lidar_state, i.safety.lidar_state) << n;
+  EXPECT_EQ(c.safety.fault_code_type, i.safety.fault_code_type) << n;
+  EXPECT_EQ(c.safety.rolling_counter, i.safety.rolling_counter) << n;
+  EXPECT_EQ(c.safety.total_fault_codes, i.safety.total_fault_codes) << n;
+  EXPECT_EQ(c.safety.fault_code_id, i.safety.fault_code_id) << n;
+  EXPECT_EQ(c.safety.fault_code, i.safety.fault_code) << n;
+}
+
+// Exactly the same values: the same computation, so not even a rounding apart.
+::testing::AssertionResult same_point(const hesai_point& c, const Point& w) {
+#define HESAI_SAME(m) \
+  if (!(c.m == w.m)) return ::testing::AssertionFailure() << #m << ": C " << +c.m << ", C++ " << +w.m;
+  HESAI_SAME(x) HESAI_SAME(y) HESAI_SAME(z) HESAI_SAME(distance_m) HESAI_SAME(azimuth_deg) HESAI_SAME(elevation_deg)
+  HESAI_SAME(time_ns) HESAI_SAME(intensity) HESAI_SAME(channel) HESAI_SAME(return_index) HESAI_SAME(confidence)
+  HESAI_SAME(block)
+#undef HESAI_SAME
+  return ::testing::AssertionSuccess();
+}
+
+// Every packet of `packets` through the C test's decoder (already set up) and through `cpp`:
+// the same error, fields and points. Returns the points compared.
+std::size_t expect_same_decoding(const std::vector<std::vector<std::uint8_t>>& packets, Decoder& cpp) {
+  PacketPoints want;
+  PacketInfo want_info;
+  std::size_t compared = 0;
+  for (std::size_t n = 0; n < packets.size(); ++n) {
+    const auto& p = packets[n];
+    hesai_packet_info info{};
+    const hesai_point* got = nullptr;
+    std::size_t count = 0;
+    const hesai_error e = c_feed(p.data(), p.size(), &info, &got, &count);
+    // What c_feed does, in C++: a GPS packet updates the decoder, any other is decoded.
+    Model model = Model::unknown;
+    PacketKind kind = PacketKind::point_cloud;
+    if (identify(view(p), model, kind) == Error::ok && kind == PacketKind::gps) {
+      GpsPacket gps;
+      const Error want_error = parse_gps_packet(view(p), gps);
+      if (want_error == Error::ok) cpp.update_gps(gps);
+      EXPECT_EQ(static_cast<int>(e), static_cast<int>(want_error)) << n;
+      EXPECT_EQ(count, 0u);
+      continue;
+    }
+    const Error want_error = cpp.decode(view(p), want_info, want);
+    EXPECT_EQ(static_cast<int>(e), static_cast<int>(want_error)) << n;
+    if (e != HESAI_ERROR_ok) continue;
+    expect_same_info(info, want_info, n);
+    EXPECT_EQ(count, want.count) << n;
+    for (std::size_t k = 0; k < count && k < want.count; ++k) {
+      const ::testing::AssertionResult same = same_point(got[k], want.points[k]);
+      if (!same) {
+        ADD_FAILURE() << "packet " << n << " point " << k << ": " << same.message();
+        return compared;
+      }
+    }
+    compared += count;
+  }
+  return compared;
+}
+
+class CApi : public ::testing::TestWithParam<Capture> {};
+
+void PrintTo(const Capture& c, std::ostream* os) { *os << model_name(c.model); }
+
+// The capture with the unit's calibration files, given to C as the files' bytes.
+TEST_P(CApi, CaptureDecodesToTheSamePointsAsCpp) {
+  const Capture& c = GetParam();
+  const auto packets = pcap_payloads(c.file);
+  ASSERT_FALSE(packets.empty());
+  const auto angles = read_file(data_path(c.angles));
+  const auto firetimes = read_file(data_path(c.firetimes));
+  ASSERT_EQ(c_open_csv(c_model(c.model), angles.data(), angles.size(), firetimes.data(), firetimes.size()),
+            HESAI_ERROR_ok);
+  Decoder cpp = cpp_decoder(c);
+  EXPECT_GT(expect_same_decoding(packets, cpp), 100000u);
+}
+
+// The same calibration given as arrays (read with strtod by the test): the same points.
+TEST_P(CApi, CalibrationArraysGiveTheSamePointsAsTheFiles) {
+  const Capture& c = GetParam();
+  const auto packets = pcap_payloads(c.file);
+  const std::size_t channels = channel_count(c.model);
+  const ReferenceCalibration t = read_reference_calibration(c.angles, c.firetimes, channels);
+  const bool two_loops = c.model == Model::qt128c2x;
+  ASSERT_EQ(c_open_arrays(c_model(c.model), t.elevation.data(), t.azimuth.data(), t.fire1.data(),
+                          two_loops ? t.fire2.data() : nullptr, channels),
+            HESAI_ERROR_ok);
+  Decoder cpp = cpp_decoder(c);
+  EXPECT_GT(expect_same_decoding(packets, cpp), 100000u);
+}
+
+INSTANTIATE_TEST_SUITE_P(Captures, CApi, ::testing::ValuesIn(kCaptures));
+
+// Design values (no calibration), a Pandar40 stream (the Pandar40P packets' first 1256 bytes,
+// as tests/firmware does: no Pandar40 capture is at hand) with a GPS packet amid it.
+TEST(CApiPandar40, DesignValuesAndGpsTimeLikeCpp) {
+  auto packets = pcap_payloads("pandar40p_dual.pcap");
+  packets.resize(200);
+  for (auto& p : packets) p.resize(1256);
+  // Pandar40 GPS packet 2017-09-06 16:00:00 (see test_c_api.c's pandar40_gps), amid the stream.
+  std::vector<std::uint8_t> gps(512, 0);
+  gps[0] = 0xFF;
+  gps[1] = 0xEE;
+  const char digits[] = "719060000061";
+  for (std::size_t i = 0; i < 12; ++i) gps[2 + i] = static_cast<std::uint8_t>(digits[i]);
+  for (std::size_t i = 95; i < 506; ++i) gps[i] = 0xDF;
+  gps[506] = 'A';
+  gps[507] = 1;
+  packets.insert(packets.begin() + 100, gps);
+
+  ASSERT_EQ(c_open_csv(HESAI_MODEL_pandar40, nullptr, 0, nullptr, 0), HESAI_ERROR_ok);
+  Decoder cpp(Model::pandar40);
+  EXPECT_GT(expect_same_decoding(packets, cpp), 10000u);
+}
+
+TEST(CApi, LayoutSeenByTheCCompiler) {
+  std::size_t v[32];
+  ASSERT_EQ(c_layout(v, 32), 19u);
+  EXPECT_EQ(v[0], sizeof(Point));
+  const std::size_t offsets[] = {offsetof(Point, x), offsetof(Point, y), offsetof(Point, z),
+                                 offsetof(Point, distance_m), offsetof(Point, azimuth_deg),
+                                 offsetof(Point, elevation_deg), offsetof(Point, time_ns),
+                                 offsetof(Point, intensity), offsetof(Point, channel),
+                                 offsetof(Point, return_index), offsetof(Point, confidence),
+                                 offsetof(Point, block)};
+  for (std::size_t i = 0; i < 12; ++i) EXPECT_EQ(v[1 + i], offsets[i]) << "member " << i;
+  // hesai.h's storage, as the C compiler lays it out, and as the library's C++ compiler does.
+  EXPECT_EQ(v[13], 8192u);
+  EXPECT_EQ(v[13], sizeof(hesai_decoder));
+  EXPECT_EQ(v[14], alignof(hesai_decoder));
+  EXPECT_GE(v[14], alignof(Decoder));
+  EXPECT_EQ(v[15], sizeof(hesai_calibration_scratch));
+  EXPECT_EQ(v[16], alignof(hesai_calibration_scratch));
+  EXPECT_EQ(v[17], sizeof(hesai_packet_info));
+  EXPECT_EQ(v[18], alignof(hesai_packet_info));
+}
+
+TEST(CApi, Errors) {
+  const auto qt = pcap_payloads("qt128c2x_dual.pcap").at(5);
+  EXPECT_EQ(c_check_errors(qt.data(), qt.size()), 0);
+}
+
+TEST(CApi, SessionKeys) {
+  // The key of tests/test_decoder.cpp's Signature tests: HKDF of a secret and two randoms.
+  const char secret[] = "correct horse battery";
+  std::uint8_t lidar[32], client[32], key[32];
+  for (int i = 0; i < 32; ++i) {
+    lidar[i] = static_cast<std::uint8_t>(i);
+    client[i] = static_cast<std::uint8_t>(0xA0 + i);
+  }
+  ASSERT_EQ(hesai_session_key(ByteView{reinterpret_cast<const std::uint8_t*>(secret), sizeof secret - 1}, lidar,
+                              client, key),
+            Error::ok);
+  // Packet 5 has the signature section, all zero (unsigned); signed here with the key.
+  const auto unsigned_packet = pcap_payloads("qt128c2x_dual.pcap").at(5);
+  auto signed_packet = unsigned_packet;
+  qt128_seal(signed_packet, key);
+  EXPECT_EQ(c_check_keys(unsigned_packet.data(), signed_packet.data(), signed_packet.size(), key), 0);
+}
+
+TEST(CApi, Pandar40TimeFromGps) {
+  auto p = pcap_payloads("pandar40p_dual.pcap").at(0);
+  p.resize(1256);
+  EXPECT_EQ(c_check_pandar40_gps(p.data(), p.size()), 0);
+}
+
+TEST(CApi, CalibrationErrors) { EXPECT_EQ(c_check_calibration_errors(), 0); }
+
+}  // namespace
