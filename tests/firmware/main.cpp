@@ -7,6 +7,8 @@
 //   derived by hand from the manuals (tests/firmware/derive_points.py prints them), and does so at
 //   every byte offset 0..3. In the ARMv6-M (Cortex-M0+) image a wire field read through a cast
 //   would fault at an odd address: the startup code arms the alignment trap, checked below.
+// - The C path (c_path.c, C99 through hesai.h) decodes the QT128 packet to the same points as
+//   hesai::Decoder, and gives the errors hesai.h names for a damaged packet and a short array.
 // - The stack each entry point used, measured by painting the stack, and sizeof(Decoder).
 #include <cstddef>
 #include <cstdint>
@@ -18,6 +20,7 @@
 #include "hesai/hkdf.h"
 #include "hesai/hmac.h"
 #include "hesai/sha256.h"
+#include "c_path.h"
 #include "semihost.h"
 
 #include "../../fuzz/seed_packets.inc"
@@ -226,6 +229,56 @@ void real_packets() {
   decoders[3].clear_session_key();
 }
 
+// ---- The C path ---------------------------------------------------------------------------------
+
+// Every member of every point, folded into one CRC: two arrays of points with the same digest
+// hold the same values (the RAM holds one packet's points, not two).
+template <class P>
+std::uint32_t digest(const P* pts, std::size_t count) {
+  std::uint32_t crc = hesai::kCrc32Mpeg2Init;
+  auto add = [&crc](const auto& v) {
+    std::uint8_t bytes[sizeof v];
+    std::memcpy(bytes, &v, sizeof v);
+    crc = hesai::crc32_mpeg2_update(hesai::CrcPath::table, crc, {bytes, sizeof bytes});
+  };
+  for (std::size_t i = 0; i < count; ++i) {
+    const P& p = pts[i];
+    add(p.x), add(p.y), add(p.z), add(p.distance_m), add(p.azimuth_deg), add(p.elevation_deg), add(p.time_ns);
+    add(p.intensity), add(p.channel), add(p.return_index), add(p.confidence), add(p.block);
+  }
+  return crc;
+}
+
+// The caller's array of the C path: the storage of `points`, as C sees it (hesai_point has
+// hesai::Point's layout).
+hesai_point* c_points() { return reinterpret_cast<hesai_point*>(points.points.data()); }
+
+void c_path() {
+  const ByteView bqt{kQt128, sizeof kQt128};
+  hesai::PacketInfo info;
+  check(decoders[3].decode(bqt, info, points) == Error::ok, "QT128C2X packet");
+  const std::size_t want_count = points.count;
+  const std::uint32_t want = digest(points.points.data(), points.count);
+
+  failures += firmware_c_path_checks(kQt128, sizeof kQt128, c_points(), 256);
+  std::size_t count = 0;
+  check(firmware_c_decode(kQt128, sizeof kQt128, c_points(), 256, &count) == HESAI_ERROR_ok, "C path: QT128C2X packet");
+  check(count == want_count && count == nonzero_distances(bqt, 12 + 2, 514, 2, 128, 4, 2), "C path: point count");
+  check(digest(c_points(), count) == want, "C path: the same points as hesai::Decoder");
+  // The hand-checked point of real_packets(): block 0, channel 35.
+  bool found = false;
+  for (std::size_t i = 0; i < count; ++i) {
+    const hesai_point& p = c_points()[i];
+    if (p.block != 0 || p.channel != 35) continue;
+    found = absf(p.x - 0.0432f) < 1e-3f && absf(p.y - 0.3306f) < 1e-3f && absf(p.z - -0.0996f) < 1e-3f &&
+            p.time_ns == 1602245009403807312;
+  }
+  check(found, "C path: hand-checked point");
+  print("C path (hesai.h, c_path.c): QT128C2X packet, ");
+  print_int(static_cast<std::int64_t>(count));
+  print(" points, the same as hesai::Decoder's\n");
+}
+
 // ---- The alignment trap -------------------------------------------------------------------------
 
 #if defined(__ARM_ARCH_6M__)
@@ -289,6 +342,10 @@ void stack_use() {
   report_stack("hmac_sha256 (1095 B)", stack_used([] { hmac_sha256({data, 32}, {data, sizeof data}, out); }));
   report_stack("hkdf_sha256 (42 B)", stack_used([] { (void)hkdf_sha256({data, 13}, {data, 22}, {data, 10}, out, 42); }));
   report_stack("hesai_session_key", stack_used([] { (void)hesai_session_key({data, 32}, data, data + 32, out); }));
+  report_stack("hesai_decoder_decode (C) QT128C2X", stack_used([] {
+    std::size_t count = 0;
+    (void)firmware_c_decode(kQt128, sizeof kQt128, c_points(), 256, &count);
+  }));
   // The constructor, rebuilding the QT128 decoder in place (no fifth decoder in RAM for it).
   decoders[3].~Decoder();
   report_stack("Decoder::Decoder QT128C2X", stack_used([] { ::new (&decoders[3]) Decoder(Model::qt128c2x); }));
@@ -304,6 +361,7 @@ int main() {
 #endif
   known_answers();
   real_packets();
+  c_path();
   stack_use();
   print("sizeof(Decoder): ");
   print_int(static_cast<std::int64_t>(sizeof(hesai::Decoder)));

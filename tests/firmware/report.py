@@ -201,7 +201,8 @@ def main():
     rows = []
     for fn in frames:
         n = names.get(fn, fn)
-        if 'hesai::' not in n or '{anonymous}' in n or '::detail::' in n:
+        # The C++ API (hesai::) and the C interface (hesai_*, extern "C").
+        if ('hesai::' not in n and not n.startswith('hesai_')) or '{anonymous}' in n or '::detail::' in n:
             continue
         total, chain, external, recursive = worst_stack(fn, frames, edges, memo)
         rows.append((total, short_name(n), chain, external, recursive or fn in dynamic))

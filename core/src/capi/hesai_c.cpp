@@ -88,10 +88,10 @@ HESAI_SAME_MEMBER(block)
 
 // ---- Helpers -----------------------------------------------------------------------------------
 
-// The decoder hesai_decoder_init() built in the storage.
-Decoder& decoder_in(hesai_decoder* d) noexcept { return *std::launder(reinterpret_cast<Decoder*>(d->opaque.bytes)); }
+// The decoder hesai_decoder_init() built in the storage (at its start, aligned as checked above).
+Decoder& decoder_in(hesai_decoder* d) noexcept { return *std::launder(static_cast<Decoder*>(static_cast<void*>(d))); }
 const Decoder& decoder_in(const hesai_decoder* d) noexcept {
-  return *std::launder(reinterpret_cast<const Decoder*>(d->opaque.bytes));
+  return *std::launder(static_cast<const Decoder*>(static_cast<const void*>(d)));
 }
 
 hesai_error c_error(Error e) noexcept { return static_cast<hesai_error>(e); }
@@ -102,7 +102,7 @@ bool bytes_ok(const std::uint8_t* p, std::size_t size) noexcept { return p != nu
 // A parsed-file struct, value-initialised in the scratch bytes.
 template <class T>
 T& fresh_in(hesai_calibration_scratch* s) noexcept {
-  return *::new (static_cast<void*>(s->opaque.bytes)) T{};
+  return *::new (static_cast<void*>(s)) T{};
 }
 
 void copy_info(const hesai::PacketInfo& i, hesai_packet_info& o) noexcept {
@@ -176,7 +176,7 @@ hesai_error hesai_identify(const std::uint8_t* payload, std::size_t size, std::u
 
 hesai_error hesai_decoder_init(hesai_decoder* decoder, hesai_model model) noexcept {
   if (decoder == nullptr) return HESAI_ERROR_invalid_argument;
-  ::new (static_cast<void*>(decoder->opaque.bytes)) Decoder(cpp_model(model));
+  ::new (static_cast<void*>(decoder)) Decoder(cpp_model(model));
   return known_model(model) ? HESAI_ERROR_ok : HESAI_ERROR_invalid_argument;
 }
 
