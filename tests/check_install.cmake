@@ -1,24 +1,45 @@
-# Installs the core into a scratch prefix and builds a consumer that uses find_package(hesai).
+# Installs the core into a scratch prefix and builds two consumers that use find_package(hesai): a
+# C++ one (consumer/) and a C-only one (consumer/c/, linked by the C compiler).
 set(prefix ${BUILD}/install-check/prefix)
-set(cbuild ${BUILD}/install-check/consumer)
 file(REMOVE_RECURSE ${BUILD}/install-check)
 execute_process(COMMAND ${CMAKE_COMMAND} --install ${BUILD} --prefix ${prefix} RESULT_VARIABLE rc)
 if(NOT rc EQUAL 0)
   message(FATAL_ERROR "install failed")
 endif()
-execute_process(COMMAND ${CMAKE_COMMAND} -S ${CONSUMER} -B ${cbuild} -G ${GENERATOR}
-                        -DCMAKE_PREFIX_PATH=${prefix} -DCMAKE_CXX_COMPILER=${CXX}
-                        # the asan preset's core needs the sanitizer runtimes at link time
-                        "-DCMAKE_EXE_LINKER_FLAGS=${LINK_FLAGS}" RESULT_VARIABLE rc)
-if(NOT rc EQUAL 0)
-  message(FATAL_ERROR "consumer configure failed")
-endif()
-execute_process(COMMAND ${CMAKE_COMMAND} --build ${cbuild} RESULT_VARIABLE rc)
-if(NOT rc EQUAL 0)
-  message(FATAL_ERROR "consumer build failed")
-endif()
-execute_process(COMMAND ${cbuild}/consumer RESULT_VARIABLE rc OUTPUT_VARIABLE out)
-message(STATUS "${out}")
-if(NOT rc EQUAL 0)
-  message(FATAL_ERROR "consumer failed")
+foreach(kind IN ITEMS cxx c)
+  if(kind STREQUAL "cxx")
+    set(source ${CONSUMER})
+    set(program consumer)
+  else()
+    set(source ${CONSUMER}/c)
+    set(program c_consumer)
+  endif()
+  set(cbuild ${BUILD}/install-check/${program})
+  execute_process(COMMAND ${CMAKE_COMMAND} -S ${source} -B ${cbuild} -G ${GENERATOR}
+                          -DCMAKE_PREFIX_PATH=${prefix} -DCMAKE_CXX_COMPILER=${CXX} -DCMAKE_C_COMPILER=${CC}
+                          # the asan preset's core needs the sanitizer runtimes at link time
+                          "-DCMAKE_EXE_LINKER_FLAGS=${LINK_FLAGS}" RESULT_VARIABLE rc)
+  if(NOT rc EQUAL 0)
+    message(FATAL_ERROR "${program} configure failed")
+  endif()
+  execute_process(COMMAND ${CMAKE_COMMAND} --build ${cbuild} RESULT_VARIABLE rc)
+  if(NOT rc EQUAL 0)
+    message(FATAL_ERROR "${program} build failed")
+  endif()
+  execute_process(COMMAND ${cbuild}/${program} RESULT_VARIABLE rc OUTPUT_VARIABLE out)
+  message(STATUS "${out}")
+  if(NOT rc EQUAL 0)
+    message(FATAL_ERROR "${program} failed")
+  endif()
+endforeach()
+
+# The C program needs no C++ runtime: the core has no exceptions, RTTI or heap.
+find_program(READELF readelf)
+if(READELF)
+  execute_process(COMMAND ${READELF} -d ${BUILD}/install-check/c_consumer/c_consumer OUTPUT_VARIABLE needed
+                  RESULT_VARIABLE rc)
+  if(NOT rc EQUAL 0 OR needed MATCHES "libstdc\\+\\+|libc\\+\\+")
+    message(FATAL_ERROR "the C consumer depends on a C++ runtime:\n${needed}")
+  endif()
+  message(STATUS "c_consumer: linked by the C compiler, no C++ runtime among its libraries")
 endif()
