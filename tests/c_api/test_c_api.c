@@ -183,20 +183,22 @@ static hesai_error decode_into(const uint8_t* p, size_t size, hesai_packet_info*
 }
 
 int c_check_keys(const uint8_t* qt128, const uint8_t* qt128_signed, size_t size, const uint8_t key[32]) {
-  /* The key the driver derived in C++, derived again here from the same secret and randoms. */
-  static const char secret[] = "correct horse battery";
+  /* `key` is a fixed vector computed outside this code base from this secret and these randoms. */
+  static const char secret[] = "0123456789abcdef";
   uint8_t lidar[32], client[32], derived[32], wrong[32];
   hesai_packet_info info;
   size_t count = 0;
   int i;
   for (i = 0; i < 32; ++i) {
     lidar[i] = (uint8_t)i;
-    client[i] = (uint8_t)(0xA0 + i);
+    client[i] = (uint8_t)(0x20 + i);
   }
   EXPECT_ERROR(hesai_session_key_derive((const uint8_t*)secret, sizeof secret - 1, lidar, client, derived), "ok");
   EXPECT(memcmp(derived, key, 32) == 0);
+  memset(wrong, 0xEE, sizeof wrong);
   EXPECT_ERROR(hesai_session_key_derive((const uint8_t*)secret, 7, lidar, client, wrong), "invalid_argument");
   EXPECT_ERROR(hesai_session_key_derive((const uint8_t*)secret, 33, lidar, client, wrong), "invalid_argument");
+  EXPECT(wrong[0] == 0xEE && wrong[31] == 0xEE); /* untouched */
 
   EXPECT_ERROR(hesai_decoder_init(&decoder, HESAI_MODEL_qt128c2x), "ok");
   /* No key: nothing is checked. */

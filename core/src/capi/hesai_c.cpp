@@ -105,6 +105,25 @@ T& fresh_in(hesai_calibration_scratch* s) noexcept {
   return *::new (static_cast<void*>(s)) T{};
 }
 
+// A calibration file's bytes parsed into the scratch for the decoder's channel count, then given
+// to the decoder: the CSV setters of hesai.h.
+template <class Parsed>
+hesai_error set_from_csv(hesai_decoder* decoder, const std::uint8_t* text, std::size_t size,
+                         hesai_calibration_scratch* scratch, std::uint32_t* line,
+                         hesai::ParseResult (*parse)(ByteView, std::size_t, Parsed&) noexcept,
+                         Error (Decoder::*apply)(const Parsed&) noexcept) noexcept {
+  if (line != nullptr) *line = 0;
+  if (decoder == nullptr || scratch == nullptr || !bytes_ok(text, size)) return HESAI_ERROR_invalid_argument;
+  Decoder& d = decoder_in(decoder);
+  Parsed& parsed = fresh_in<Parsed>(scratch);
+  const hesai::ParseResult r = parse(ByteView{text, size}, hesai::channel_count(d.model()), parsed);
+  if (r.error != Error::ok) {
+    if (line != nullptr) *line = r.line;
+    return c_error(r.error);
+  }
+  return c_error((d.*apply)(parsed));
+}
+
 void copy_info(const hesai::PacketInfo& i, hesai_packet_info& o) noexcept {
   o.time_ns = i.time_ns;
   o.date_time.year = i.date_time.year;
@@ -187,31 +206,14 @@ hesai_model hesai_decoder_model(const hesai_decoder* decoder) noexcept {
 
 hesai_error hesai_decoder_set_angles_csv(hesai_decoder* decoder, const std::uint8_t* text, std::size_t size,
                                          hesai_calibration_scratch* scratch, std::uint32_t* line) noexcept {
-  if (line != nullptr) *line = 0;
-  if (decoder == nullptr || scratch == nullptr || !bytes_ok(text, size)) return HESAI_ERROR_invalid_argument;
-  Decoder& d = decoder_in(decoder);
-  auto& angles = fresh_in<hesai::AngleCorrection>(scratch);
-  const hesai::ParseResult r = hesai::parse_angle_csv(ByteView{text, size}, hesai::channel_count(d.model()), angles);
-  if (r.error != Error::ok) {
-    if (line != nullptr) *line = r.line;
-    return c_error(r.error);
-  }
-  return c_error(d.set_angles(angles));
+  return set_from_csv<hesai::AngleCorrection>(decoder, text, size, scratch, line, hesai::parse_angle_csv,
+                                              &Decoder::set_angles);
 }
 
 hesai_error hesai_decoder_set_firetimes_csv(hesai_decoder* decoder, const std::uint8_t* text, std::size_t size,
                                             hesai_calibration_scratch* scratch, std::uint32_t* line) noexcept {
-  if (line != nullptr) *line = 0;
-  if (decoder == nullptr || scratch == nullptr || !bytes_ok(text, size)) return HESAI_ERROR_invalid_argument;
-  Decoder& d = decoder_in(decoder);
-  auto& firetimes = fresh_in<hesai::FiretimeCorrection>(scratch);
-  const hesai::ParseResult r =
-      hesai::parse_firetime_csv(ByteView{text, size}, hesai::channel_count(d.model()), firetimes);
-  if (r.error != Error::ok) {
-    if (line != nullptr) *line = r.line;
-    return c_error(r.error);
-  }
-  return c_error(d.set_firetimes(firetimes));
+  return set_from_csv<hesai::FiretimeCorrection>(decoder, text, size, scratch, line, hesai::parse_firetime_csv,
+                                                 &Decoder::set_firetimes);
 }
 
 hesai_error hesai_decoder_set_angles(hesai_decoder* decoder, const double* elevation_deg, const double* azimuth_deg,
