@@ -114,9 +114,9 @@ int cmd_decode(Args& args) {
 
   OutputSink sink(out);
   Pipeline pipeline(o, &sink);
-  if (!pipeline.load_files(error)) {
+  if (const int rc = pipeline.load_files(error); rc != kExitOk) {
     std::fprintf(stderr, "hesai decode: %s\n", error.c_str());
-    return kExitInput;
+    return rc;
   }
   if (!sink.open(error)) return usage_error("decode", error);
   const int rc = run_capture(capture, pipeline, quiet);
@@ -174,9 +174,9 @@ int cmd_stats(Args& args) {
   if (capture.empty()) return usage_error("stats", "missing CAPTURE");
   if (!finish_key_options(o, error)) return usage_error("stats", error);
   Pipeline pipeline(o, nullptr);
-  if (!pipeline.load_files(error)) {
+  if (const int rc = pipeline.load_files(error); rc != kExitOk) {
     std::fprintf(stderr, "hesai stats: %s\n", error.c_str());
-    return kExitInput;
+    return rc;
   }
   const int rc = run_capture(capture, pipeline, quiet);
   if (rc == kExitUsage) return rc;
@@ -238,9 +238,9 @@ int cmd_listen(Args& args) {
     if (!sink->open(error)) return usage_error("listen", error);
   }
   Pipeline pipeline(o, sink.get());
-  if (!pipeline.load_files(error)) {
+  if (const int rc = pipeline.load_files(error); rc != kExitOk) {
     std::fprintf(stderr, "hesai listen: %s\n", error.c_str());
-    return kExitInput;
+    return rc;
   }
   port::UdpReceiver points_rx, gps_rx;
   if (!points_rx.open(bind_addr, static_cast<std::uint16_t>(port), error) ||
