@@ -7,8 +7,10 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <cerrno>
 #include <chrono>
 #include <cstdio>
+#include <cstring>
 #include <fstream>
 #include <iterator>
 #include <map>
@@ -179,6 +181,37 @@ TEST(Cli, HelpAndExitStatuses) {
   // A QT128 calibration for a Pandar64 capture: a configuration error, named.
   EXPECT_EQ(run("stats " + data_path("pandar64_dual.pcap") + " --calibration " +
                 data_path("calibration/qt128c2x_unit_a_angles.csv")).status, 1);
+}
+
+// Capture errors: named by the file, the code and the byte offset, exit status 2 (README). The
+// message texts are a contract: scripts match them.
+TEST(Cli, CaptureErrorMessages) {
+  const std::string dir = temp_dir();
+  const std::string not_capture = data_path("calibration/pandar64_firetimes.csv");
+  // The bundled Pandar64 capture cut after 5000 bytes: records of 16 + incl_len bytes after the
+  // 24-byte header, all of the same length; the cut one starts at 24 + k * (16 + incl_len).
+  const std::vector<std::uint8_t> whole = read_file(data_path("pandar64_dual.pcap"));
+  const std::size_t record = 16 + load_le32(&whole[24 + 8]);
+  const std::size_t cut_at = 24 + (5000 - 24) / record * record;
+  const std::string cut = dir + "/cut.pcap", empty = dir + "/empty.pcap", link = dir + "/link.pcap";
+  std::ofstream(cut, std::ios::binary).write(reinterpret_cast<const char*>(whole.data()), 5000);
+  std::ofstream(empty, std::ios::binary).flush();
+  // A classic pcap header of link type 119 (LINKTYPE_PRISM_HEADER, not read here).
+  std::vector<std::uint8_t> header(whole.begin(), whole.begin() + 24);
+  store_le32(&header[20], 119);
+  std::ofstream(link, std::ios::binary).write(reinterpret_cast<const char*>(header.data()), 24);
+  const std::pair<std::string, std::string> cases[] = {
+      {not_capture, not_capture + ": capture_bad_magic at byte 0: not a pcap or pcapng file (or an unsupported version)"},
+      {cut, cut + ": capture_truncated at byte " + std::to_string(cut_at) + ": the file ends inside a header, record or block"},
+      {empty, empty + ": empty file"},
+      {link, link + ": capture_unsupported_link at byte 20: a link type this reader does not unpack"},
+      {dir + "/none.pcap", dir + "/none.pcap: open failed: " + std::strerror(ENOENT)},
+  };
+  for (const auto& [file, message] : cases) {
+    const CmdResult r = run("stats --json " + file, true);
+    EXPECT_EQ(r.status, 2) << r.out;
+    EXPECT_NE(r.out.find("hesai: " + message + "\n"), std::string::npos) << r.out;
+  }
 }
 
 // A copy of a bundled calibration file, in a fresh temporary directory, with the line that

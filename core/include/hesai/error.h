@@ -1,4 +1,5 @@
-// Error codes of the whole core: one code per distinct cause.
+// Error codes of the core: one code per distinct cause. (The port has its own: capture files are
+// read by port/, see hesai_port/capture.h CaptureError.)
 #pragma once
 
 #include <cstdint>
@@ -50,17 +51,10 @@ enum class Error : std::uint8_t {
   calib_bad_number,       ///< a field is not a decimal number
   calib_bad_channel,      ///< a channel number outside 1..N, or repeated
   calib_channel_count,    ///< the file has another number of channels than the model
-
-  // Capture files (read by port/, named here so that one enum covers the project).
-  capture_bad_magic,      ///< not a pcap or pcapng file
-  capture_truncated,      ///< a record or block ends past the end of the file
-  capture_bad_record,     ///< a record or block length that cannot be (absurd, misaligned)
-  capture_unsupported_link, ///< a link type we do not read
-  capture_io,             ///< the capture file cannot be opened, read or mapped (see errno)
 };
 
 /// The last code, for loops over every code (keep it last when adding codes).
-inline constexpr Error kLastError = Error::capture_io;
+inline constexpr Error kLastError = Error::calib_channel_count;
 
 /// Stable lower-case name of an error code, for logs and JSON ("crc_body").
 const char* error_name(Error e) noexcept;

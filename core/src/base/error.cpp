@@ -32,11 +32,6 @@ const char* error_name(Error e) noexcept {
     case Error::calib_bad_number: return "calib_bad_number";
     case Error::calib_bad_channel: return "calib_bad_channel";
     case Error::calib_channel_count: return "calib_channel_count";
-    case Error::capture_bad_magic: return "capture_bad_magic";
-    case Error::capture_truncated: return "capture_truncated";
-    case Error::capture_bad_record: return "capture_bad_record";
-    case Error::capture_unsupported_link: return "capture_unsupported_link";
-    case Error::capture_io: return "capture_io";
   }
   return "unknown";
 }

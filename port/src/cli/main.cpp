@@ -54,7 +54,7 @@ std::uint64_t source_key(const port::UdpDatagram& d) {
 // Feeds every datagram of a capture to the pipeline. Returns an exit status.
 int run_capture(const std::string& path, Pipeline& pipeline, bool quiet) {
   port::CaptureFile file;
-  if (file.open(path) != Error::ok) {
+  if (file.open(path) != port::CaptureError::ok) {
     std::fprintf(stderr, "hesai: %s\n", file.message().c_str());
     return kExitInput;
   }
@@ -353,7 +353,7 @@ int cmd_replay(Args& args) {
   port::UdpSender sender;
   if (!sender.open(to, error)) return usage_error("replay", error);
   port::CaptureFile file;
-  if (file.open(capture) != Error::ok) {
+  if (file.open(capture) != port::CaptureError::ok) {
     std::fprintf(stderr, "hesai: %s\n", file.message().c_str());
     return kExitInput;
   }
@@ -363,7 +363,10 @@ int cmd_replay(Args& args) {
   std::vector<std::uint8_t> packet;
   const std::int64_t start = port::monotonic_ns();
   for (std::uint64_t loop = 0; loop < loops && !g_stop; ++loop) {
-    if (loop > 0 && file.open(capture) != Error::ok) return kExitInput;
+    if (loop > 0 && file.open(capture) != port::CaptureError::ok) {
+      std::fprintf(stderr, "hesai: %s\n", file.message().c_str());
+      return kExitInput;
+    }
     port::UdpDatagram d;
     std::int64_t first_record = -1, loop_start = port::monotonic_ns();
     for (;;) {
