@@ -187,6 +187,11 @@ int cmd_stats(Args& args) {
 
 // ---- listen ----
 
+// The kernel's drop count for the socket, or "unavailable" on the portable receive path.
+std::string kernel_drops(const port::UdpReceiver& rx) {
+  return port::UdpReceiver::kernel_drops_known() ? std::to_string(rx.kernel_drops()) : "unavailable";
+}
+
 int cmd_listen(Args& args) {
   DecodeOptions o;
   OutputOptions out;
@@ -198,8 +203,8 @@ int cmd_listen(Args& args) {
   while (!args.empty()) {
     const std::string a = args.peek();
     if (a == "--help" || a == "-h") {
-      std::printf("usage: hesai listen [options]\n\nReceives sensor packets over UDP, prints statistics once a second\n"
-                  "(on stderr) and a summary at the end (Ctrl-C, --count, --seconds or --idle).\n\n"
+      std::printf("usage: hesai listen [options]\n\nReceives sensor packets over UDP (with %s), prints statistics once a\n"
+                  "second (on stderr) and a summary at the end (Ctrl-C, --count, --seconds or --idle).\n\n"
                   "  --bind ADDR             local IPv4 address (default 0.0.0.0)\n"
                   "  --port N                point-cloud port (default 2368)\n"
                   "  --gps-port N            GPS port (default 10110; 0: none)\n"
@@ -208,7 +213,7 @@ int cmd_listen(Args& args) {
                   "  --idle S                stop when no packet came for S seconds (after the first)\n"
                   "  --json                  the summary as one JSON object (keys as in 'hesai stats --json')\n"
                   "  --quiet                 no statistics once a second\n%s%s%s",
-                  kDecodeOptionsHelp, kOutputOptionsHelp, kKeyOptionsHelp);
+                  port::UdpReceiver::method(), kDecodeOptionsHelp, kOutputOptionsHelp, kKeyOptionsHelp);
       return kExitOk;
     }
     if (parse_decode_option(args, o, error) || parse_output_option(args, out, error)) {
@@ -280,18 +285,18 @@ int cmd_listen(Args& args) {
     if (arrived) last_packet = now;
     if (!quiet && now >= next_report) {
       const Stats& s = pipeline.stats();
-      std::fprintf(stderr, "%6.1f s  packets %llu  points %llu  frames %llu  lost %llu  crc %llu  kernel drops %llu\n",
+      std::fprintf(stderr, "%6.1f s  packets %llu  points %llu  frames %llu  lost %llu  crc %llu  kernel drops %s\n",
                    static_cast<double>(now - start) / 1e9, static_cast<unsigned long long>(s.packets),
                    static_cast<unsigned long long>(s.points), static_cast<unsigned long long>(s.frames),
                    static_cast<unsigned long long>(s.lost), static_cast<unsigned long long>(s.crc_errors),
-                   static_cast<unsigned long long>(points_rx.kernel_drops()));
+                   kernel_drops(points_rx).c_str());
       next_report += 1000000000;
     }
   }
   pipeline.finish();
   if (sink && !sink->close(error)) std::fprintf(stderr, "hesai listen: %s\n", error.c_str());
   if (json) std::printf("%s\n", stats_json(pipeline.stats()).c_str());
-  else std::printf("%s  kernel_drops          %llu\n", stats_text(pipeline).c_str(), static_cast<unsigned long long>(points_rx.kernel_drops()));
+  else std::printf("%s  kernel_drops          %s\n", stats_text(pipeline).c_str(), kernel_drops(points_rx).c_str());
   return fatal ? kExitInput : kExitOk;
 }
 
