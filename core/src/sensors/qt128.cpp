@@ -1,6 +1,7 @@
 // QT128C2X, point cloud protocol 3.2: identification (header and the flags-implied length),
 // validation (the three CRCs, the signature, then the fields) and the walk over its two blocks
-// with their firing sequences. Layout: hesai/qt128_packet.h; tables: hesai/tables/qt128_tables.h.
+// with their firing sequences; and qt128::seal, which writes the CRCs validation checks.
+// Layout: hesai/qt128_packet.h; tables: hesai/tables/qt128_tables.h.
 #include "hesai/crc32.h"
 #include "hesai/ct.h"
 #include "hesai/decoder.h"
@@ -30,6 +31,27 @@ bool qt128_return_mode(std::uint8_t byte, std::uint8_t& returns) {
     case ReturnMode::strongest_second_strongest: returns = 2; return true;
   }
   return false;
+}
+
+// One CRC field of a packet: the bytes it covers and its offset (0: the section is absent).
+struct CrcField {
+  ByteView covered;
+  std::size_t at = 0;
+};
+
+// CRC1 over the body (both blocks), CRC2 over the functional-safety section after its version
+// byte, CRC3 over the tail before it (manual 3.1.2); with the code a mismatch gives.
+struct CrcFields {
+  CrcField field[3];
+  static constexpr Error kMismatch[3] = {Error::crc_body, Error::crc_functional_safety, Error::crc_tail};
+};
+CrcFields crc_fields(ByteView p, const qt128::Layout& l) noexcept {
+  using namespace qt128;
+  CrcFields c;
+  c.field[0] = {p.sub(kBody, kBodyBytes), kCrc1};
+  if (l.fs != 0) c.field[1] = {p.sub(l.fs + kFsCrcFrom, kFsCrc2 - kFsCrcFrom), l.fs + kFsCrc2};
+  c.field[2] = {p.sub(l.tail, l.crc3 - l.tail), l.crc3};
+  return c;
 }
 
 bool all_zero(const std::uint8_t* p, std::size_t n) {
@@ -62,13 +84,12 @@ Error Decoder::validate_qt128(ByteView p, PacketInfo& info) noexcept {
   const std::uint8_t return_num = p[kReturnNum];
   if (info.dis_unit_mm == 0 || (return_num != 1 && return_num != 2)) return Error::bad_header;
 
-  // CRC1: the body (both blocks); CRC2: functional safety after its version byte; CRC3: the tail.
-  if (crc32_mpeg2(p.sub(kBody, kBodyBytes)) != load_le32(p.data + kCrc1)) return Error::crc_body;
-  if (layout.fs != 0 &&
-      crc32_mpeg2(p.sub(layout.fs + kFsCrcFrom, kFsCrc2 - kFsCrcFrom)) != load_le32(p.data + layout.fs + kFsCrc2))
-    return Error::crc_functional_safety;
-  if (crc32_mpeg2(p.sub(layout.tail, layout.crc3 - layout.tail)) != load_le32(p.data + layout.crc3))
-    return Error::crc_tail;
+  // CRC1, CRC2, CRC3, in this order.
+  const CrcFields crcs = crc_fields(p, layout);
+  for (std::size_t i = 0; i < 3; ++i) {
+    const CrcField& f = crcs.field[i];
+    if (f.at != 0 && crc32_mpeg2(f.covered) != load_le32(p.data + f.at)) return CrcFields::kMismatch[i];
+  }
 
   // Signature: HMAC-SHA256 of everything before it. All-zero bytes mean signing was not started.
   const bool signed_packet = layout.signature != 0 && !all_zero(p.data + layout.signature, kSignatureBytes);
@@ -133,5 +154,20 @@ void Decoder::decode_qt128(const std::uint8_t* p, const PacketInfo& info, Packet
                             info.time_ns + kBlockNs[dual][b], loop, out);
   }
 }
+
+namespace qt128 {
+
+Error seal(std::uint8_t* payload, std::size_t size) noexcept {
+  if (size <= kFlags) return Error::bad_length;
+  if (payload[0] != kMagic0 || payload[1] != kMagic1) return Error::bad_magic;
+  const Layout layout = Layout::from_flags(payload[kFlags]);
+  if (size != layout.total) return Error::bad_length;
+  const CrcFields crcs = crc_fields(ByteView{payload, size}, layout);
+  for (const CrcField& f : crcs.field)
+    if (f.at != 0) store_le32(payload + f.at, crc32_mpeg2(f.covered));
+  return Error::ok;
+}
+
+}  // namespace qt128
 
 }  // namespace hesai

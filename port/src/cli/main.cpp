@@ -12,7 +12,6 @@
 #include <string>
 #include <vector>
 
-#include "hesai/crc32.h"
 #include "hesai/pandar40_packet.h"
 #include "hesai/pandar64_packet.h"
 #include "hesai/qt128_packet.h"
@@ -313,9 +312,8 @@ bool renumber(std::vector<std::uint8_t>& p, std::uint32_t seq) {
   } else if (m == Model::pandar40p && p.size() == pandar40::kPandar40PSequenceBytes) {
     store_le32(&p[pandar40::kSequence], seq);
   } else if (m == Model::qt128c2x && (p[qt128::kFlags] & qt128::kFlagSequence)) {
-    const qt128::Layout l = qt128::Layout::from_flags(p[qt128::kFlags]);
-    store_le32(&p[l.tail + qt128::kTailSequence], seq);
-    store_le32(&p[l.crc3], crc32_mpeg2(ByteView{&p[l.tail], l.crc3 - l.tail}));
+    store_le32(&p[qt128::Layout::from_flags(p[qt128::kFlags]).tail + qt128::kTailSequence], seq);
+    return qt128::seal(p.data(), p.size()) == Error::ok;  // identify() checked the length
   } else {
     return false;
   }
