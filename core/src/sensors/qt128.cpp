@@ -33,25 +33,24 @@ bool qt128_return_mode(std::uint8_t byte, std::uint8_t& returns) {
   return false;
 }
 
-// One CRC field of a packet: the bytes it covers and its offset (0: the section is absent).
+// The three CRCs of a packet, in the order validation checks them (manual 3.1.2): CRC1 over
+// the body (both blocks), CRC2 over the functional-safety section after its version byte, CRC3
+// over the tail before it; with the code a mismatch gives.
+constexpr std::size_t kCrcCount = 3;
+constexpr Error kCrcMismatch[kCrcCount] = {Error::crc_body, Error::crc_functional_safety, Error::crc_tail};
+
+// CRC `i` of a packet: the bytes it covers and its offset (0: the section is absent).
 struct CrcField {
   ByteView covered;
   std::size_t at = 0;
 };
-
-// CRC1 over the body (both blocks), CRC2 over the functional-safety section after its version
-// byte, CRC3 over the tail before it (manual 3.1.2); with the code a mismatch gives.
-struct CrcFields {
-  CrcField field[3];
-  static constexpr Error kMismatch[3] = {Error::crc_body, Error::crc_functional_safety, Error::crc_tail};
-};
-CrcFields crc_fields(ByteView p, const qt128::Layout& l) noexcept {
+CrcField crc_field(ByteView p, const qt128::Layout& l, std::size_t i) noexcept {
   using namespace qt128;
-  CrcFields c;
-  c.field[0] = {p.sub(kBody, kBodyBytes), kCrc1};
-  if (l.fs != 0) c.field[1] = {p.sub(l.fs + kFsCrcFrom, kFsCrc2 - kFsCrcFrom), l.fs + kFsCrc2};
-  c.field[2] = {p.sub(l.tail, l.crc3 - l.tail), l.crc3};
-  return c;
+  switch (i) {
+    case 0: return {p.sub(kBody, kBodyBytes), kCrc1};
+    case 1: return l.fs != 0 ? CrcField{p.sub(l.fs + kFsCrcFrom, kFsCrc2 - kFsCrcFrom), l.fs + kFsCrc2} : CrcField{};
+    default: return {p.sub(l.tail, l.crc3 - l.tail), l.crc3};
+  }
 }
 
 bool all_zero(const std::uint8_t* p, std::size_t n) {
@@ -85,10 +84,9 @@ Error Decoder::validate_qt128(ByteView p, PacketInfo& info) noexcept {
   if (info.dis_unit_mm == 0 || (return_num != 1 && return_num != 2)) return Error::bad_header;
 
   // CRC1, CRC2, CRC3, in this order.
-  const CrcFields crcs = crc_fields(p, layout);
-  for (std::size_t i = 0; i < 3; ++i) {
-    const CrcField& f = crcs.field[i];
-    if (f.at != 0 && crc32_mpeg2(f.covered) != load_le32(p.data + f.at)) return CrcFields::kMismatch[i];
+  for (std::size_t i = 0; i < kCrcCount; ++i) {
+    const CrcField f = crc_field(p, layout, i);
+    if (f.at != 0 && crc32_mpeg2(f.covered) != load_le32(p.data + f.at)) return kCrcMismatch[i];
   }
 
   // Signature: HMAC-SHA256 of everything before it. All-zero bytes mean signing was not started.
@@ -162,9 +160,10 @@ Error seal(std::uint8_t* payload, std::size_t size) noexcept {
   if (payload[0] != kMagic0 || payload[1] != kMagic1) return Error::bad_magic;
   const Layout layout = Layout::from_flags(payload[kFlags]);
   if (size != layout.total) return Error::bad_length;
-  const CrcFields crcs = crc_fields(ByteView{payload, size}, layout);
-  for (const CrcField& f : crcs.field)
+  for (std::size_t i = 0; i < kCrcCount; ++i) {
+    const CrcField f = crc_field(ByteView{payload, size}, layout, i);
     if (f.at != 0) store_le32(payload + f.at, crc32_mpeg2(f.covered));
+  }
   return Error::ok;
 }
 
