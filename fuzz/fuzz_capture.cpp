@@ -1,15 +1,21 @@
 // libFuzzer harness: CaptureParser over a whole pcap/pcapng file held in memory.
 #include <cstddef>
 #include <cstdint>
+#include <cstring>
 
 #include "fuzz_common.h"
 #include "hesai_port/capture.h"
 
 namespace {
 
+// A capture error code must have a name.
+void check_named(hesai::port::CaptureError e) {
+  hesai_fuzz::check(std::strcmp(hesai::port::capture_error_name(e), "unknown") != 0);
+}
+
 struct Summary {
-  hesai::Error open_error = hesai::Error::ok;
-  hesai::Error error = hesai::Error::ok;
+  hesai::port::CaptureError open_error = hesai::port::CaptureError::ok;
+  hesai::port::CaptureError error = hesai::port::CaptureError::ok;
   std::uint64_t error_offset = 0;
   std::uint64_t datagrams = 0;
   std::uint64_t payload_bytes = 0;
@@ -22,8 +28,8 @@ Summary parse(hesai::ByteView file) {
   Summary s;
   hesai::port::CaptureParser parser;
   s.open_error = parser.open(file);
-  hesai_fuzz::check_named(s.open_error);
-  if (s.open_error != hesai::Error::ok) {
+  check_named(s.open_error);
+  if (s.open_error != hesai::port::CaptureError::ok) {
     check(parser.error() == s.open_error);
     return s;
   }
@@ -48,8 +54,8 @@ Summary parse(hesai::ByteView file) {
   s.error = parser.error();
   s.error_offset = parser.error_offset();
   s.stats = parser.stats();
-  hesai_fuzz::check_named(s.error);
-  check((st == hesai::port::CaptureStatus::error) == (s.error != hesai::Error::ok));
+  check_named(s.error);
+  check((st == hesai::port::CaptureStatus::error) == (s.error != hesai::port::CaptureError::ok));
   if (st == hesai::port::CaptureStatus::error) {
     check(s.error_offset <= file.size);
     hesai::port::UdpDatagram again;

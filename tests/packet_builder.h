@@ -1,6 +1,8 @@
 // Test-only builders of synthetic packets, field by field from the manuals' layouts.
 #pragma once
 
+#include <gtest/gtest.h>
+
 #include <array>
 #include <cstdint>
 #include <cstring>
@@ -9,6 +11,7 @@
 #include "hesai/bytes.h"
 #include "hesai/crc32.h"
 #include "hesai/hmac.h"
+#include "hesai/qt128_packet.h"
 
 namespace hesai_test {
 
@@ -115,13 +118,11 @@ inline QtOffsets qt128_offsets(std::uint8_t flags) {
   o.sig = (flags & 8) ? o.crc3 + 4 : 0;
   return o;
 }
-/// Fills CRC1, CRC2 and CRC3 and, with a key, the signature.
+/// Fills CRC1, CRC2 and CRC3 (hesai::qt128::seal, itself checked on the sensor's own packets in
+/// test_decoder.cpp) and, with a key, the signature.
 inline void qt128_seal(std::vector<std::uint8_t>& p, const std::uint8_t* key = nullptr) {
-  const std::uint8_t flags = p[11];
-  const QtOffsets o = qt128_offsets(flags);
-  hesai::store_le32(&p[1040], hesai::crc32_mpeg2(hesai::ByteView{&p[12], 1028}));
-  if (o.fs) hesai::store_le32(&p[o.fs + 13], hesai::crc32_mpeg2(hesai::ByteView{&p[o.fs + 1], 12}));
-  hesai::store_le32(&p[o.crc3], hesai::crc32_mpeg2(hesai::ByteView{&p[o.tail], o.crc3 - o.tail}));
+  ASSERT_EQ(hesai::qt128::seal(p.data(), p.size()), hesai::Error::ok) << "a QT128 packet of " << p.size() << " bytes";
+  const QtOffsets o = qt128_offsets(p[11]);
   if (o.sig && key) hesai::hmac_sha256(hesai::ByteView{key, 32}, hesai::ByteView{p.data(), o.sig}, &p[o.sig]);
 }
 

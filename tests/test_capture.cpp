@@ -19,6 +19,7 @@
 #include <map>
 #include <memory>
 #include <sstream>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -27,7 +28,7 @@
 namespace {
 
 using hesai::ByteView;
-using hesai::Error;
+using hesai::port::CaptureError;
 using hesai::port::CaptureFile;
 using hesai::port::CaptureParser;
 using hesai::port::CaptureStatus;
@@ -334,10 +335,10 @@ struct Pcapng {
 
 // Every datagram of a capture, plus the final status.
 struct Parsed {
-  Error open = Error::ok;
+  CaptureError open = CaptureError::ok;
   std::vector<UdpDatagram> datagrams;
   CaptureStatus last = CaptureStatus::error;
-  Error error = Error::ok;
+  CaptureError error = CaptureError::ok;
   std::uint64_t error_offset = 0;
   hesai::port::CaptureStats stats;
 };
@@ -400,7 +401,7 @@ TEST_P(BundledCapture, MatchesAnIndependentRecordWalk) {
             c.first_ns);
 
   CaptureParser parser;
-  ASSERT_EQ(parser.open(view(file)), Error::ok);
+  ASSERT_EQ(parser.open(view(file)), CaptureError::ok);
   EXPECT_EQ(parser.format(), hesai::port::CaptureFormat::pcap);
   EXPECT_FALSE(parser.big_endian());
   EXPECT_EQ(parser.pcap_link_type(), 1u);
@@ -423,7 +424,7 @@ TEST_P(BundledCapture, MatchesAnIndependentRecordWalk) {
     EXPECT_EQ(d.payload[1], c.first_bytes[1]);
     ++n;
   }
-  EXPECT_EQ(parser.error(), Error::ok);
+  EXPECT_EQ(parser.error(), CaptureError::ok);
   EXPECT_EQ(n, c.packets);
   EXPECT_EQ(first_ns, c.first_ns);
   EXPECT_EQ(parser.stats().records, c.packets);
@@ -471,7 +472,7 @@ TEST_P(PcapFormat, ReadsRecordsInEitherOrderAndResolution) {
             v.big ? Bytes({0, 2, 0, 4}) : Bytes({2, 0, 4, 0}));
 
   CaptureParser parser;
-  ASSERT_EQ(parser.open(view(f.bytes)), Error::ok);
+  ASSERT_EQ(parser.open(view(f.bytes)), CaptureError::ok);
   EXPECT_EQ(parser.big_endian(), v.big);
   EXPECT_EQ(parser.nanosecond_pcap(), v.ns);
   UdpDatagram d;
@@ -511,7 +512,7 @@ TEST(Pcap, SnapLengthCutsAreCountedNotFatal) {
                            {{1, 0, cut, static_cast<std::uint32_t>(frame.size())},
                             {2, 0, eth_udp(1, 2, payload_bytes(10, 4))}});
   const Parsed p = parse_all(view(f.bytes));
-  ASSERT_EQ(p.open, Error::ok);
+  ASSERT_EQ(p.open, CaptureError::ok);
   EXPECT_EQ(p.last, CaptureStatus::end);
   ASSERT_EQ(p.datagrams.size(), 1u);
   EXPECT_EQ(p.datagrams[0].record_index, 1u);
@@ -540,7 +541,7 @@ TEST(Pcap, OtherLinkTypes) {
     SCOPED_TRACE(c.link);
     const File f = pcap_file(true, false, c.link, 0, {{1, 2, c.frame}});
     const Parsed p = parse_all(view(f.bytes));
-    ASSERT_EQ(p.open, Error::ok);
+    ASSERT_EQ(p.open, CaptureError::ok);
     ASSERT_EQ(p.datagrams.size(), 1u);
     EXPECT_EQ(p.last, CaptureStatus::end);
     EXPECT_EQ(payload_of(p.datagrams[0]), pl);
@@ -553,23 +554,23 @@ TEST(Pcap, OtherLinkTypes) {
 TEST(Pcap, BadHeaders) {
   const Bytes text = {'t', 'i', 'm', 'e', ',', 'a', 'z', 'i', 'm', 'u', 't', 'h', '\n'};
   Parsed p = parse_all(view(text));
-  EXPECT_EQ(p.open, Error::capture_bad_magic);
+  EXPECT_EQ(p.open, CaptureError::bad_magic);
   EXPECT_EQ(p.last, CaptureStatus::error);
-  EXPECT_EQ(parse_all(view(Bytes{'h', 'i'})).open, Error::capture_bad_magic);
-  EXPECT_EQ(parse_all(view(Bytes{})).open, Error::capture_truncated);
-  EXPECT_EQ(parse_all(view(Bytes{0xD4, 0xC3})).open, Error::capture_truncated);
+  EXPECT_EQ(parse_all(view(Bytes{'h', 'i'})).open, CaptureError::bad_magic);
+  EXPECT_EQ(parse_all(view(Bytes{})).open, CaptureError::truncated);
+  EXPECT_EQ(parse_all(view(Bytes{0xD4, 0xC3})).open, CaptureError::truncated);
 
   File f = pcap_file(false, false, 105, 0, {});  // IEEE 802.11
   CaptureParser parser;
-  EXPECT_EQ(parser.open(view(f.bytes)), Error::capture_unsupported_link);
+  EXPECT_EQ(parser.open(view(f.bytes)), CaptureError::unsupported_link);
   EXPECT_EQ(parser.error_offset(), 20u);
   f = pcap_file(false, false, 1, 0, {});
   f.bytes[4] = 3;  // major version 3
-  EXPECT_EQ(parser.open(view(f.bytes)), Error::capture_bad_magic);
+  EXPECT_EQ(parser.open(view(f.bytes)), CaptureError::bad_magic);
   EXPECT_EQ(parser.error_offset(), 4u);
   // FCS length bits above the link type are not part of it (Ethernet with a 4-byte FCS).
   f = pcap_file(false, false, 0x10000001u | 0x04000000u | 0x40000000u, 0, {{0, 0, eth_udp(1, 2, {1})}});
-  EXPECT_EQ(parser.open(view(f.bytes)), Error::ok);
+  EXPECT_EQ(parser.open(view(f.bytes)), CaptureError::ok);
 }
 
 TEST(Pcap, AbsurdRecordLengthsGiveTheRecordOffset) {
@@ -584,14 +585,14 @@ TEST(Pcap, AbsurdRecordLengthsGiveTheRecordOffset) {
     const char* what;
     std::size_t field;  // offset inside the record header
     std::uint32_t value;
-    Error expected;
+    CaptureError expected;
   };
   const Case cases[] = {
-      {"incl_len 0xFFFFFFFF", 8, 0xFFFFFFFFu, Error::capture_bad_record},
-      {"incl_len above 256 KiB", 8, 256 * 1024 + 1, Error::capture_bad_record},
-      {"incl_len above snaplen", 8, 65536, Error::capture_bad_record},
-      {"orig_len below incl_len", 12, static_cast<std::uint32_t>(frame.size() - 1), Error::capture_bad_record},
-      {"incl_len past the end", 8, 4000, Error::capture_truncated},
+      {"incl_len 0xFFFFFFFF", 8, 0xFFFFFFFFu, CaptureError::bad_record},
+      {"incl_len above 256 KiB", 8, 256 * 1024 + 1, CaptureError::bad_record},
+      {"incl_len above snaplen", 8, 65536, CaptureError::bad_record},
+      {"orig_len below incl_len", 12, static_cast<std::uint32_t>(frame.size() - 1), CaptureError::bad_record},
+      {"incl_len past the end", 8, 4000, CaptureError::truncated},
   };
   for (const Case& c : cases) {
     SCOPED_TRACE(c.what);
@@ -599,7 +600,7 @@ TEST(Pcap, AbsurdRecordLengthsGiveTheRecordOffset) {
     o.put32_at(second + c.field, c.value);
     if (c.field == 8) o.put32_at(second + 12, c.value);  // orig_len = incl_len: only incl_len is wrong
     const Parsed p = parse_all(view(o.b));
-    ASSERT_EQ(p.open, Error::ok);
+    ASSERT_EQ(p.open, CaptureError::ok);
     EXPECT_EQ(p.datagrams.size(), 1u);
     EXPECT_EQ(p.last, CaptureStatus::error);
     EXPECT_EQ(p.error, c.expected);
@@ -618,7 +619,7 @@ void check_every_cut(const File& f) {
     const Parsed p = parse_all(ByteView{cut.get(), len});
     const std::size_t header_end = f.starts.empty() ? f.bytes.size() : f.starts[0];
     if (len < header_end && (f.starts.empty() || f.bytes[0] != 0x0A)) {
-      EXPECT_EQ(p.open, Error::capture_truncated);
+      EXPECT_EQ(p.open, CaptureError::truncated);
       EXPECT_EQ(p.error_offset, 0u);
       continue;
     }
@@ -634,17 +635,17 @@ void check_every_cut(const File& f) {
       }
     }
     if (f.bytes[0] == 0x0A && len < f.ends[0]) {  // pcapng: the first section header is cut
-      EXPECT_EQ(p.open, Error::capture_truncated);
+      EXPECT_EQ(p.open, CaptureError::truncated);
       EXPECT_EQ(p.error_offset, 0u);
       continue;
     }
-    ASSERT_EQ(p.open, Error::ok);
+    ASSERT_EQ(p.open, CaptureError::ok);
     EXPECT_EQ(p.datagrams.size(), complete);
     if (boundary) {
       EXPECT_EQ(p.last, CaptureStatus::end);
     } else {
       EXPECT_EQ(p.last, CaptureStatus::error);
-      EXPECT_EQ(p.error, Error::capture_truncated);
+      EXPECT_EQ(p.error, CaptureError::truncated);
       EXPECT_EQ(p.error_offset, cut_start);
     }
   }
@@ -695,7 +696,7 @@ TEST_P(PcapngOrder, SectionsInterfacesAndBlocks) {
   ASSERT_EQ(Bytes(f.bytes.begin(), f.bytes.begin() + 28), big ? shb_be : shb_le);
 
   CaptureParser parser;
-  ASSERT_EQ(parser.open(view(f.bytes)), Error::ok);
+  ASSERT_EQ(parser.open(view(f.bytes)), CaptureError::ok);
   EXPECT_EQ(parser.format(), hesai::port::CaptureFormat::pcapng);
   EXPECT_EQ(parser.big_endian(), big);
   UdpDatagram d;
@@ -754,11 +755,11 @@ TEST_P(PcapngOrder, BadBlocksGiveTheBlockOffset) {
     return w;
   };
   // Each case appends one bad block after a good packet; the error names that block's offset.
-  auto run = [&](const char* what, Pcapng w, Error expected, std::size_t at) {
+  auto run = [&](const char* what, Pcapng w, CaptureError expected, std::size_t at) {
     SCOPED_TRACE(what);
     const File f = w.done();
     const Parsed p = parse_all(view(f.bytes));
-    ASSERT_EQ(p.open, Error::ok);
+    ASSERT_EQ(p.open, CaptureError::ok);
     EXPECT_EQ(p.datagrams.size(), 1u);
     EXPECT_EQ(p.last, CaptureStatus::error);
     EXPECT_EQ(p.error, expected);
@@ -769,7 +770,7 @@ TEST_P(PcapngOrder, BadBlocksGiveTheBlockOffset) {
     const std::size_t at = w.o.b.size();
     w.epb(0, 6, eth_udp(1, 2, payload_bytes(8, 1)));
     w.o.put32_at(at + 4, 13);  // not a multiple of 4
-    run("length 13", w, Error::capture_bad_record, at);
+    run("length 13", w, CaptureError::bad_record, at);
   }
   {
     Pcapng w = base();
@@ -777,75 +778,75 @@ TEST_P(PcapngOrder, BadBlocksGiveTheBlockOffset) {
     w.block(0x00000BADu, Bytes(12, 0));
     w.o.put32_at(at + 4, 17);   // not a multiple of 4,
     w.o.put32_at(at + 13, 17);  // although the "trailing" length matches
-    run("length 17", w, Error::capture_bad_record, at);
+    run("length 17", w, CaptureError::bad_record, at);
   }
   {
     Pcapng w = base();
     const std::size_t at = w.o.b.size();
     w.epb(0, 6, eth_udp(1, 2, payload_bytes(8, 1)));
     w.o.put32_at(at + 4, 8);  // below the 12-byte minimum
-    run("length 8", w, Error::capture_bad_record, at);
+    run("length 8", w, CaptureError::bad_record, at);
   }
   {
     Pcapng w = base();
     const std::size_t at = w.o.b.size();
     w.epb(0, 6, eth_udp(1, 2, payload_bytes(8, 1)));
     w.o.put32_at(w.o.b.size() - 4, 1000);  // trailing length differs from the leading one
-    run("trailing length", w, Error::capture_bad_record, at);
+    run("trailing length", w, CaptureError::bad_record, at);
   }
   {
     Pcapng w = base();
     const std::size_t at = w.o.b.size();
     w.epb(0, 6, eth_udp(1, 2, payload_bytes(8, 1)));
     w.o.put32_at(at + 4, 0xFFFFFFFCu);  // past the end
-    run("length 0xFFFFFFFC", w, Error::capture_truncated, at);
+    run("length 0xFFFFFFFC", w, CaptureError::truncated, at);
   }
   {
     Pcapng w = base();
     const std::size_t at = w.o.b.size();
     w.epb(0, 6, eth_udp(1, 2, payload_bytes(8, 1)));
     w.o.put32_at(at + 20, 0xFFFFFFFFu);  // captured length past the block
-    run("captured length", w, Error::capture_bad_record, at);
+    run("captured length", w, CaptureError::bad_record, at);
   }
   {
     Pcapng w = base();
     const std::size_t at = w.o.b.size();
     w.epb(0, 6, eth_udp(1, 2, payload_bytes(8, 1)));
     w.o.put32_at(at + 24, 3);  // original length below the captured length
-    run("original length", w, Error::capture_bad_record, at);
+    run("original length", w, CaptureError::bad_record, at);
   }
   {
     Pcapng w = base();
     const std::size_t at = w.o.b.size();
     w.epb(1, 6, eth_udp(1, 2, payload_bytes(8, 1)));  // only interface 0 exists
-    run("interface 1", w, Error::capture_bad_record, at);
+    run("interface 1", w, CaptureError::bad_record, at);
   }
   {
     Pcapng w = base();
     const std::size_t at = w.o.b.size();
     w.idb(1, 0, 6);
     w.o.put32_at(at + 8 + 8, big ? 0x00090020u : 0x00200009u);  // if_tsresol claims 32 bytes
-    run("option past the block", w, Error::capture_bad_record, at);
+    run("option past the block", w, CaptureError::bad_record, at);
   }
   {
     Pcapng w = base();
     const std::size_t at = w.o.b.size();
     w.idb(1, 0, 20);  // 10^-20 s: not representable in 64 bits
-    run("tsresol 10^-20", w, Error::capture_bad_record, at);
+    run("tsresol 10^-20", w, CaptureError::bad_record, at);
   }
   {
     Pcapng w = base();
     const std::size_t at = w.o.b.size();
     w.shb(big);
     w.o.b[at + 8] ^= 0xFF;  // byte-order magic spoiled
-    run("byte-order magic", w, Error::capture_bad_magic, at);
+    run("byte-order magic", w, CaptureError::bad_magic, at);
   }
   {
     Pcapng w = base();
     const std::size_t at = w.o.b.size();
     w.shb(big);
     w.spb(eth_udp(1, 2, payload_bytes(8, 1)));  // the new section has no interface yet
-    run("SPB without interface", w, Error::capture_bad_record, at + 28);
+    run("SPB without interface", w, CaptureError::bad_record, at + 28);
   }
   {
     Pcapng w = base();
@@ -853,7 +854,7 @@ TEST_P(PcapngOrder, BadBlocksGiveTheBlockOffset) {
     w.epb(0, 6, Bytes(12, 0));
     w.o.put32_at(at + 4, 16);  // an EPB too short for its fixed fields
     w.o.put32_at(at + 12, 16);
-    run("EPB of 16 bytes", w, Error::capture_bad_record, at);
+    run("EPB of 16 bytes", w, CaptureError::bad_record, at);
   }
 }
 
@@ -866,7 +867,7 @@ TEST_P(PcapngOrder, OtherLinkTypesAreSkippedNotFatal) {
   w.epb(1, 1, eth_udp(1, 2, payload_bytes(4, 1)));
   const File f = w.done();
   const Parsed p = parse_all(view(f.bytes));
-  ASSERT_EQ(p.open, Error::ok);
+  ASSERT_EQ(p.open, CaptureError::ok);
   EXPECT_EQ(p.last, CaptureStatus::end);
   EXPECT_EQ(p.datagrams.size(), 1u);
   EXPECT_EQ(p.stats.other_link, 1u);
@@ -880,17 +881,17 @@ TEST(Pcapng, BadFirstSection) {
   w.shb(false);
   File f = w.done();
   f.bytes[12] = 2;  // major version 2
-  EXPECT_EQ(parse_all(view(f.bytes)).open, Error::capture_bad_magic);
+  EXPECT_EQ(parse_all(view(f.bytes)).open, CaptureError::bad_magic);
   f = w.done();
   f.bytes[4] = 24;  // shorter than a section header can be
   f.bytes[24] = 24;
-  EXPECT_EQ(parse_all(view(f.bytes)).open, Error::capture_bad_record);
+  EXPECT_EQ(parse_all(view(f.bytes)).open, CaptureError::bad_record);
   f = w.done();
   f.bytes[9] = 0;  // no byte-order magic
-  EXPECT_EQ(parse_all(view(f.bytes)).open, Error::capture_bad_magic);
+  EXPECT_EQ(parse_all(view(f.bytes)).open, CaptureError::bad_magic);
   // An empty pcapng (one section, no interfaces) ends cleanly.
   const Parsed p = parse_all(view(w.done().bytes));
-  EXPECT_EQ(p.open, Error::ok);
+  EXPECT_EQ(p.open, CaptureError::ok);
   EXPECT_EQ(p.last, CaptureStatus::end);
 }
 
@@ -1062,32 +1063,57 @@ std::string temp_path(const char* name) {
 
 TEST(CaptureFile, ReadsABundledCapture) {
   CaptureFile f;
-  ASSERT_EQ(f.open(std::string(HESAI_DATA_DIR) + "/pandar64_dual.pcap"), Error::ok) << f.message();
+  ASSERT_EQ(f.open(std::string(HESAI_DATA_DIR) + "/pandar64_dual.pcap"), CaptureError::ok) << f.message();
   EXPECT_EQ(f.bytes().size, 3014424u);
   UdpDatagram d;
   std::size_t n = 0;
   while (f.parser().next(d) == CaptureStatus::datagram) ++n;
   EXPECT_EQ(n, 2400u);
-  EXPECT_EQ(f.parser().error(), Error::ok);
+  EXPECT_EQ(f.parser().error(), CaptureError::ok);
   EXPECT_EQ(f.message(), "");
+}
+
+// The names are what messages print (README: "the message gives its byte offset"); they are the
+// names these codes had when they were part of hesai::Error, kept so that messages do not change.
+TEST(CaptureError, EveryCodeHasItsOwnName) {
+  std::set<std::string> names;
+  for (unsigned v = 0; v <= static_cast<unsigned>(hesai::port::kLastCaptureError); ++v) {
+    const std::string n = hesai::port::capture_error_name(static_cast<CaptureError>(v));
+    EXPECT_NE(n, "unknown") << v;
+    EXPECT_TRUE(names.insert(n).second) << n;
+  }
+  EXPECT_EQ(names, (std::set<std::string>{"ok", "capture_bad_magic", "capture_truncated", "capture_bad_record",
+                                          "capture_unsupported_link", "capture_io", "capture_not_open"}));
+  EXPECT_STREQ(hesai::port::capture_error_name(CaptureError::bad_magic), "capture_bad_magic");
+  EXPECT_STREQ(hesai::port::capture_error_name(CaptureError::io), "capture_io");
+  EXPECT_STREQ(hesai::port::capture_error_name(
+                   static_cast<CaptureError>(static_cast<unsigned>(hesai::port::kLastCaptureError) + 1)),
+               "unknown");
+}
+
+TEST(CaptureParser, NextBeforeOpenIsAnError) {
+  CaptureParser parser;
+  UdpDatagram d;
+  EXPECT_EQ(parser.next(d), CaptureStatus::error);
+  EXPECT_EQ(parser.error(), CaptureError::not_open);
 }
 
 TEST(CaptureFile, MissingFileGivesTheErrnoText) {
   CaptureFile f;
   const std::string path = "/nonexistent-hesai-dir/none.pcap";
-  EXPECT_EQ(f.open(path), Error::capture_io);
+  EXPECT_EQ(f.open(path), CaptureError::io);
   EXPECT_EQ(f.os_error(), ENOENT);
   const std::string m = f.message();
   EXPECT_NE(m.find(path), std::string::npos) << m;
   EXPECT_NE(m.find(std::strerror(ENOENT)), std::string::npos) << m;
-  EXPECT_EQ(f.open(HESAI_DATA_DIR), Error::capture_io);  // a directory
+  EXPECT_EQ(f.open(HESAI_DATA_DIR), CaptureError::io);  // a directory
   EXPECT_EQ(f.os_error(), EISDIR);
 }
 
 TEST(CaptureFile, NonCaptureAndEmptyFile) {
   CaptureFile f;
   const std::string csv = std::string(HESAI_DATA_DIR) + "/calibration/pandar64_firetimes.csv";
-  EXPECT_EQ(f.open(csv), Error::capture_bad_magic);
+  EXPECT_EQ(f.open(csv), CaptureError::bad_magic);
   EXPECT_EQ(f.os_error(), 0);
   EXPECT_NE(f.message().find("capture_bad_magic at byte 0"), std::string::npos) << f.message();
   UdpDatagram d;
@@ -1095,7 +1121,7 @@ TEST(CaptureFile, NonCaptureAndEmptyFile) {
 
   const std::string empty = temp_path("empty.pcap");
   { std::ofstream(empty, std::ios::binary); }
-  EXPECT_EQ(f.open(empty), Error::capture_truncated);
+  EXPECT_EQ(f.open(empty), CaptureError::truncated);
   EXPECT_NE(f.message().find("empty file"), std::string::npos) << f.message();
   std::remove(empty.c_str());
 }
@@ -1167,7 +1193,7 @@ void cross_check(const std::string& path, std::size_t expected_datagrams) {
   const std::map<std::size_t, SharkRow> rows = run_tshark(path);
   ASSERT_FALSE(rows.empty()) << "tshark read nothing";
   CaptureFile f;
-  ASSERT_EQ(f.open(path), Error::ok) << f.message();
+  ASSERT_EQ(f.open(path), CaptureError::ok) << f.message();
   UdpDatagram d;
   std::size_t n = 0;
   std::size_t mismatches = 0;
@@ -1185,7 +1211,7 @@ void cross_check(const std::string& path, std::size_t expected_datagrams) {
                     << d.payload.size + 8 << " " << d.time_ns;
     }
   }
-  EXPECT_EQ(f.parser().error(), Error::ok) << f.message();
+  EXPECT_EQ(f.parser().error(), CaptureError::ok) << f.message();
   EXPECT_EQ(mismatches, 0u);
   EXPECT_EQ(n, expected_datagrams);
   std::size_t shark_udp = 0;

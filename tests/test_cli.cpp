@@ -7,8 +7,10 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <cerrno>
 #include <chrono>
 #include <cstdio>
+#include <cstring>
 #include <fstream>
 #include <iterator>
 #include <map>
@@ -44,9 +46,10 @@ struct CmdResult {
   std::string out;
 };
 
-CmdResult run(const std::string& args) {
+// Runs the program; `out` is its standard output, followed by its standard error with `with_stderr`.
+CmdResult run(const std::string& args, bool with_stderr = false) {
   CmdResult r;
-  const std::string cmd = cli() + " " + args + " 2>/dev/null";
+  const std::string cmd = cli() + " " + args + (with_stderr ? " 2>&1" : " 2>/dev/null");
   FILE* p = popen(cmd.c_str(), "r");
   if (!p) return r;
   char buf[65536];
@@ -167,12 +170,105 @@ TEST(Cli, HelpAndExitStatuses) {
   EXPECT_EQ(run("decode").status, 1);
   EXPECT_EQ(run("stats x.pcap --bogus").status, 1);
   EXPECT_EQ(run("decode x.pcap --format tiff").status, 1);
+  // --cut-angle in [0, 360), --fov START in [0, 360), END in [0, 360], START != END (frame.h).
+  for (const char* bad : {"--cut-angle 360", "--cut-angle -0.01", "--cut-angle nan", "--fov 10:10", "--fov 360:10",
+                          "--fov 10:360.5", "--fov 10"})
+    EXPECT_EQ(run(std::string("stats x.pcap ") + bad).status, 1) << bad;
+  EXPECT_EQ(run("stats " + data_path("pandar64_dual.pcap") + " --cut-angle 359.999 --fov 300:360").status, 0);
   EXPECT_EQ(run("stats /nonexistent/file.pcap").status, 2);
   EXPECT_EQ(run("stats " + data_path("calibration/pandar64_unit_a_angles.csv")).status, 2);  // not a capture
   EXPECT_EQ(run("stats " + data_path("pandar64_dual.pcap") + " --calibration /nonexistent.csv").status, 2);
   // A QT128 calibration for a Pandar64 capture: a configuration error, named.
   EXPECT_EQ(run("stats " + data_path("pandar64_dual.pcap") + " --calibration " +
                 data_path("calibration/qt128c2x_unit_a_angles.csv")).status, 1);
+}
+
+// Capture errors: named by the file, the code and the byte offset, exit status 2 (README). The
+// message texts are a contract: scripts match them.
+TEST(Cli, CaptureErrorMessages) {
+  const std::string dir = temp_dir();
+  const std::string not_capture = data_path("calibration/pandar64_firetimes.csv");
+  // The bundled Pandar64 capture cut after 5000 bytes: records of 16 + incl_len bytes after the
+  // 24-byte header, all of the same length; the cut one starts at 24 + k * (16 + incl_len).
+  const std::vector<std::uint8_t> whole = read_file(data_path("pandar64_dual.pcap"));
+  const std::size_t record = 16 + load_le32(&whole[24 + 8]);
+  const std::size_t cut_at = 24 + (5000 - 24) / record * record;
+  const std::string cut = dir + "/cut.pcap", empty = dir + "/empty.pcap", link = dir + "/link.pcap";
+  std::ofstream(cut, std::ios::binary).write(reinterpret_cast<const char*>(whole.data()), 5000);
+  std::ofstream(empty, std::ios::binary).flush();
+  // A classic pcap header of link type 119 (LINKTYPE_PRISM_HEADER, not read here).
+  std::vector<std::uint8_t> header(whole.begin(), whole.begin() + 24);
+  store_le32(&header[20], 119);
+  std::ofstream(link, std::ios::binary).write(reinterpret_cast<const char*>(header.data()), 24);
+  const std::pair<std::string, std::string> cases[] = {
+      {not_capture, not_capture + ": capture_bad_magic at byte 0: not a pcap or pcapng file (or an unsupported version)"},
+      {cut, cut + ": capture_truncated at byte " + std::to_string(cut_at) + ": the file ends inside a header, record or block"},
+      {empty, empty + ": empty file"},
+      {link, link + ": capture_unsupported_link at byte 20: a link type this reader does not unpack"},
+      {dir + "/none.pcap", dir + "/none.pcap: open failed: " + std::strerror(ENOENT)},
+  };
+  for (const auto& [file, message] : cases) {
+    const CmdResult r = run("stats --json " + file, true);
+    EXPECT_EQ(r.status, 2) << r.out;
+    EXPECT_NE(r.out.find("hesai: " + message + "\n"), std::string::npos) << r.out;
+  }
+}
+
+// A copy of a bundled calibration file, in a fresh temporary directory, with the line that
+// starts with `from` starting with `to` instead.
+std::string altered_calibration(const std::string& name, const std::string& from, const std::string& to) {
+  const std::vector<std::uint8_t> bytes = read_file(data_path("calibration/" + name));
+  std::string text(bytes.begin(), bytes.end());
+  const std::size_t at = text.find("\n" + from);
+  EXPECT_NE(at, std::string::npos) << name << " has no line " << from;
+  if (at != std::string::npos) text.replace(at + 1, from.size(), to);
+  const std::string path = temp_dir() + "/" + name;
+  std::ofstream(path, std::ios::binary) << text;
+  return path;
+}
+
+// A calibration file the decoder cannot use is a configuration error (exit status 1, README
+// "The hesai program"), named by file and Error code, and nothing is decoded: never points on
+// the design angles as if the file had been applied. Limits: Decoder::set_angles and
+// set_firetimes (decoder.h), parse_channel_config_csv (calibration.h).
+TEST(Cli, CalibrationValueOutOfRangeIsAConfigurationError) {
+  struct Case {
+    const char* capture;
+    const char* option;
+    const char* file;
+    const char* from;  // a line of the bundled file...
+    const char* to;    // ...becomes this
+    const char* error; // expected after "PATH: "
+    const char* why;   // and this in the message
+  };
+  const Case cases[] = {
+      {"pandar64_dual.pcap", "--calibration", "pandar64_unit_a_angles.csv", "2,11.05,", "2,95,", "invalid_argument", "elevation"},
+      {"qt128c2x_dual.pcap", "--calibration", "qt128c2x_unit_a_angles.csv", "3,-49.51495392,9.384265827", "3,-49.51495392,400",
+       "invalid_argument", "azimuth offset"},
+      {"pandar64_dual.pcap", "--firetimes", "pandar64_firetimes.csv", "61,-3.62", "61,-5000", "invalid_argument", "firing time"},
+      {"qt128c2x_dual.pcap", "--firetimes", "qt128c2x_firetimes.csv", "65,1.456,99,1.456", "65,5000,99,1.456",
+       "invalid_argument", "firing time"},
+      // Channel 49 twice in Loop1 (lines 4 and 5); channel 200 of a 128-channel sensor (line 6).
+      {"qt128c2x_dual.pcap", "--channel-config", "qt128c2x_channel_config.csv", "50,18", "49,18", "line 5: calib_bad_channel", ""},
+      {"qt128c2x_dual.pcap", "--channel-config", "qt128c2x_channel_config.csv", "51,19", "51,200", "line 6: calib_bad_channel", ""},
+  };
+  for (const Case& c : cases) {
+    SCOPED_TRACE(std::string(c.file) + ": " + c.to);
+    const std::string stats = "stats " + data_path(c.capture) + " --json " + c.option + " ";
+    // The bundled file itself is accepted.
+    EXPECT_EQ(run(stats + data_path(std::string("calibration/") + c.file)).status, 0);
+    const std::string path = altered_calibration(c.file, c.from, c.to);
+    const CmdResult r = run(stats + path, true);
+    EXPECT_EQ(r.status, 1) << r.out;
+    EXPECT_NE(r.out.find(path + ": " + c.error), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find(c.why), std::string::npos) << r.out;
+    EXPECT_EQ(r.out.find("\"packets\""), std::string::npos) << r.out;  // no statistics
+  }
+  // The ends of the ranges are accepted: elevation 90 degrees, a firing time of -1000 us.
+  EXPECT_EQ(run("stats " + data_path("pandar64_dual.pcap") + " --calibration " +
+                altered_calibration("pandar64_unit_a_angles.csv", "2,11.05,", "2,90,")).status, 0);
+  EXPECT_EQ(run("stats " + data_path("pandar64_dual.pcap") + " --firetimes " +
+                altered_calibration("pandar64_firetimes.csv", "61,-3.62", "61,-1000")).status, 0);
 }
 
 // The text report prints capture times as UTC dates. The Pandar64 capture is dated 2120 (year

@@ -532,6 +532,68 @@ TEST(Reject, Pandar40PBlockPreamble) {
   EXPECT_EQ(dec.decode(view(p), info, pts), Error::bad_return_mode);
 }
 
+// ---- qt128::seal ----
+
+// CRC-32/MPEG-2 written out here, independently of core/ (poly 0x04C11DB7, init 0xFFFFFFFF,
+// most significant bit first, no final xor).
+std::uint32_t reference_crc(const std::uint8_t* p, std::size_t n) {
+  std::uint32_t c = 0xFFFFFFFFu;
+  for (std::size_t i = 0; i < n; ++i) {
+    c ^= std::uint32_t{p[i]} << 24;
+    for (int b = 0; b < 8; ++b) c = (c & 0x80000000u) ? (c << 1) ^ 0x04C11DB7u : c << 1;
+  }
+  return c;
+}
+
+TEST(Qt128Seal, ReproducesTheSensorsCrcsAndResealsAChangedTail) {
+  const std::uint8_t check[] = {'1', '2', '3', '4', '5', '6', '7', '8', '9'};
+  ASSERT_EQ(reference_crc(check, 9), 0x0376E6E7u);  // the catalogue's check value
+  // Packet 0 of the bundled capture: flags 0x1D (sequence, functional safety, signature), so by
+  // manual 3.1.2 header 12 + body 1028 + CRC1 4 + functional safety 17: the tail starts at 1061;
+  // its UDP sequence at 1061 + 26, CRC3 over the 30 bytes before it at 1091; 1127 bytes in all.
+  const std::vector<std::uint8_t> real = pcap_payloads("qt128c2x_dual.pcap").at(0);
+  ASSERT_EQ(real.size(), 1127u);
+  ASSERT_EQ(real[11], 0x1D);
+  std::vector<std::uint8_t> p = real;
+  ASSERT_EQ(qt128::seal(p.data(), p.size()), Error::ok);
+  EXPECT_EQ(p, real);  // the sensor's own CRC1, CRC2 and CRC3 (0xA745F91E) reproduced
+
+  p[1061 + 26] ^= 1;  // UDP sequence 6394573 -> 6394572
+  Decoder dec(Model::qt128c2x);
+  PacketInfo info;
+  EXPECT_EQ(dec.validate(ByteView{p.data(), p.size()}, info), Error::crc_tail);
+  ASSERT_EQ(qt128::seal(p.data(), p.size()), Error::ok);
+  EXPECT_EQ(dec.validate(ByteView{p.data(), p.size()}, info), Error::ok);
+  EXPECT_EQ(info.sequence, 6394572u);
+  // CRC3 as the reference computes it, and as Python's hand-written CRC gave: 0x7B2863A9.
+  EXPECT_EQ(load_le32(&p[1091]), reference_crc(&p[1061], 30));
+  EXPECT_EQ(load_le32(&p[1091]), 0x7B2863A9u);
+  // Nothing else moved: CRC1, CRC2 and the signature bytes are the sensor's.
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    const bool changed = i == 1061 + 26 || (i >= 1091 && i < 1095);
+    if (!changed) {
+      ASSERT_EQ(p[i], real[i]) << "byte " << i;
+    }
+  }
+}
+
+TEST(Qt128Seal, RefusesWhatIsNotAQt128PacketOfItsFlagsLength) {
+  std::vector<std::uint8_t> p = pcap_payloads("qt128c2x_dual.pcap").at(0);
+  p[1061 + 26] ^= 1;
+  const std::vector<std::uint8_t> before = p;
+  EXPECT_EQ(qt128::seal(p.data(), p.size() - 1), Error::bad_length);
+  EXPECT_EQ(qt128::seal(p.data(), 11), Error::bad_length);  // no flags byte
+  p[11] = 0x1C;  // no sequence: 4 bytes shorter
+  EXPECT_EQ(qt128::seal(p.data(), p.size()), Error::bad_length);
+  p[11] = 0x1D;
+  p[0] = 0xFF;
+  p[1] = 0xEE;  // Pandar40/64 start bytes
+  EXPECT_EQ(qt128::seal(p.data(), p.size()), Error::bad_magic);
+  p[0] = 0xEE;
+  p[1] = 0xFF;
+  EXPECT_EQ(p, before);  // nothing written
+}
+
 // ---- Signatures (QT128) ----
 
 class Signature : public ::testing::Test {

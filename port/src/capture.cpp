@@ -271,7 +271,7 @@ FrameKind parse_frame(std::uint32_t link_type, ByteView frame, UdpDatagram& out)
 
 // ---- CaptureParser ------------------------------------------------------------------------------
 
-Error CaptureParser::open(ByteView file) {
+CaptureError CaptureParser::open(ByteView file) {
   file_ = file;
   pos_ = 0;
   format_ = CaptureFormat::none;
@@ -282,10 +282,10 @@ Error CaptureParser::open(ByteView file) {
   interface_count_ = 0;
   record_index_ = 0;
   stats_ = CaptureStats{};
-  error_ = Error::ok;
+  error_ = CaptureError::ok;
   error_offset_ = 0;
 
-  auto failed = [this](Error e, std::uint64_t at) {
+  auto failed = [this](CaptureError e, std::uint64_t at) {
     fail(e, at);
     return e;
   };
@@ -299,19 +299,19 @@ Error CaptureParser::open(ByteView file) {
       store_be32(be, m);
       if (file.size == 0 || std::memcmp(le, file.data, file.size) == 0 ||
           std::memcmp(be, file.data, file.size) == 0) {
-        return failed(Error::capture_truncated, 0);
+        return failed(CaptureError::truncated, 0);
       }
     }
-    return failed(Error::capture_bad_magic, 0);
+    return failed(CaptureError::bad_magic, 0);
   }
 
   if (load_le32(file.data) == block_shb) {
     format_ = CaptureFormat::pcapng;
     std::size_t length = 0;
-    const Error e = read_section_header(0, length);
-    if (e != Error::ok) return failed(e, 0);
+    const CaptureError e = read_section_header(0, length);
+    if (e != CaptureError::ok) return failed(e, 0);
     pos_ = length;
-    return Error::ok;
+    return CaptureError::ok;
   }
 
   const std::uint32_t le = load_le32(file.data);
@@ -323,29 +323,29 @@ Error CaptureParser::open(ByteView file) {
     big_endian_ = true;
     nanosecond_ = be == pcap_magic_ns;
   } else {
-    return failed(Error::capture_bad_magic, 0);
+    return failed(CaptureError::bad_magic, 0);
   }
   format_ = CaptureFormat::pcap;
-  if (file.size < pcap_header_size) return failed(Error::capture_truncated, 0);
-  if (u16(file.data + pcap_off_major) != 2) return failed(Error::capture_bad_magic, pcap_off_major);
+  if (file.size < pcap_header_size) return failed(CaptureError::truncated, 0);
+  if (u16(file.data + pcap_off_major) != 2) return failed(CaptureError::bad_magic, pcap_off_major);
   pcap_snaplen_ = u32(file.data + pcap_off_snaplen);
   // Bits 16..31 of the link-type field carry FCS information, not the link type.
   pcap_link_ = u32(file.data + pcap_off_link) & 0xFFFFu;
-  if (!link_type_supported(pcap_link_)) return failed(Error::capture_unsupported_link, pcap_off_link);
+  if (!link_type_supported(pcap_link_)) return failed(CaptureError::unsupported_link, pcap_off_link);
   pos_ = pcap_header_size;
-  return Error::ok;
+  return CaptureError::ok;
 }
 
-CaptureParser::Step CaptureParser::fail(Error e, std::uint64_t offset) {
+CaptureParser::Step CaptureParser::fail(CaptureError e, std::uint64_t offset) {
   error_ = e;
   error_offset_ = offset;
   return Step::error;
 }
 
 CaptureStatus CaptureParser::next(UdpDatagram& out) {
-  if (error_ != Error::ok) return CaptureStatus::error;
+  if (error_ != CaptureError::ok) return CaptureStatus::error;
   if (format_ == CaptureFormat::none) {
-    fail(Error::invalid_argument, 0);  // next() before a successful open()
+    fail(CaptureError::not_open, 0);  // next() before a successful open()
     return CaptureStatus::error;
   }
   for (;;) {
@@ -377,7 +377,7 @@ CaptureStatus CaptureParser::next(UdpDatagram& out) {
 CaptureParser::Step CaptureParser::next_pcap_record(Record& rec) {
   if (pos_ == file_.size) return Step::end;
   const std::size_t at = pos_;
-  if (file_.size - at < pcap_record_header_size) return fail(Error::capture_truncated, at);
+  if (file_.size - at < pcap_record_header_size) return fail(CaptureError::truncated, at);
   const std::uint8_t* h = file_.data + at;
   const std::uint32_t ts_sec = u32(h);
   const std::uint32_t ts_frac = u32(h + 4);
@@ -385,9 +385,9 @@ CaptureParser::Step CaptureParser::next_pcap_record(Record& rec) {
   const std::uint32_t orig_len = u32(h + 12);
   if (incl_len > max_record_bytes || (pcap_snaplen_ != 0 && incl_len > pcap_snaplen_) ||
       orig_len < incl_len) {
-    return fail(Error::capture_bad_record, at);
+    return fail(CaptureError::bad_record, at);
   }
-  if (incl_len > file_.size - at - pcap_record_header_size) return fail(Error::capture_truncated, at);
+  if (incl_len > file_.size - at - pcap_record_header_size) return fail(CaptureError::truncated, at);
   rec.frame = file_.sub(at + pcap_record_header_size, incl_len);
   rec.time_ns = std::uint64_t{ts_sec} * ns_per_s + (nanosecond_ ? ts_frac : std::uint64_t{ts_frac} * 1000u);
   rec.offset = at;
@@ -397,29 +397,29 @@ CaptureParser::Step CaptureParser::next_pcap_record(Record& rec) {
   return Step::record;
 }
 
-Error CaptureParser::read_section_header(std::size_t at, std::size_t& length) {
-  if (file_.size - at < block_overhead) return Error::capture_truncated;
+CaptureError CaptureParser::read_section_header(std::size_t at, std::size_t& length) {
+  if (file_.size - at < block_overhead) return CaptureError::truncated;
   const std::uint8_t* b = file_.data + at;
   if (load_le32(b + 8) == byte_order_magic) {
     big_endian_ = false;
   } else if (load_be32(b + 8) == byte_order_magic) {
     big_endian_ = true;
   } else {
-    return Error::capture_bad_magic;
+    return CaptureError::bad_magic;
   }
   const std::uint32_t len = u32(b + 4);
-  if (len < shb_min_size || len % 4 != 0) return Error::capture_bad_record;
-  if (len > file_.size - at) return Error::capture_truncated;
-  if (u32(b + len - 4) != len) return Error::capture_bad_record;
-  if (u16(b + 12) != 1) return Error::capture_bad_magic;  // major version 1 is the only one
+  if (len < shb_min_size || len % 4 != 0) return CaptureError::bad_record;
+  if (len > file_.size - at) return CaptureError::truncated;
+  if (u32(b + len - 4) != len) return CaptureError::bad_record;
+  if (u16(b + 12) != 1) return CaptureError::bad_magic;  // major version 1 is the only one
   interface_count_ = 0;
   length = len;
-  return Error::ok;
+  return CaptureError::ok;
 }
 
-Error CaptureParser::read_interface(ByteView body) {
-  if (body.size < idb_body_min) return Error::capture_bad_record;
-  if (interface_count_ == max_interfaces) return Error::capture_bad_record;
+CaptureError CaptureParser::read_interface(ByteView body) {
+  if (body.size < idb_body_min) return CaptureError::bad_record;
+  if (interface_count_ == max_interfaces) return CaptureError::bad_record;
   Interface ifc;
   ifc.link_type = u16(body.data);
   ifc.snaplen = u32(body.data + 4);
@@ -430,39 +430,39 @@ Error CaptureParser::read_interface(ByteView body) {
     const std::size_t len = u16(body.data + off + 2);
     off += 4;
     if (code == opt_endofopt) break;
-    if (len > body.size - off) return Error::capture_bad_record;
+    if (len > body.size - off) return CaptureError::bad_record;
     if (code == opt_if_tsresol) {
-      if (len != 1 || !tsresol_valid(body[off])) return Error::capture_bad_record;
+      if (len != 1 || !tsresol_valid(body[off])) return CaptureError::bad_record;
       ifc.tsresol = body[off];
     } else if (code == opt_if_tsoffset) {
-      if (len != 8) return Error::capture_bad_record;
+      if (len != 8) return CaptureError::bad_record;
       const std::uint64_t v = big_endian_ ? load_be64(body.data + off) : load_le64(body.data + off);
       ifc.tsoffset = static_cast<std::int64_t>(v);
     }
     off += min_size((len + 3) & ~std::size_t{3}, body.size - off);
   }
   interfaces_[interface_count_++] = ifc;
-  return Error::ok;
+  return CaptureError::ok;
 }
 
 CaptureParser::Step CaptureParser::next_pcapng_record(Record& rec) {
   for (;;) {
     if (pos_ == file_.size) return Step::end;
     const std::size_t at = pos_;
-    if (file_.size - at < block_overhead) return fail(Error::capture_truncated, at);
+    if (file_.size - at < block_overhead) return fail(CaptureError::truncated, at);
     const std::uint8_t* b = file_.data + at;
     const std::uint32_t type = u32(b);
     if (type == block_shb) {
       std::size_t length = 0;
-      const Error e = read_section_header(at, length);
-      if (e != Error::ok) return fail(e, at);
+      const CaptureError e = read_section_header(at, length);
+      if (e != CaptureError::ok) return fail(e, at);
       pos_ = at + length;
       continue;
     }
     const std::uint32_t len = u32(b + 4);
-    if (len < block_overhead || len % 4 != 0) return fail(Error::capture_bad_record, at);
-    if (len > file_.size - at) return fail(Error::capture_truncated, at);
-    if (u32(b + len - 4) != len) return fail(Error::capture_bad_record, at);
+    if (len < block_overhead || len % 4 != 0) return fail(CaptureError::bad_record, at);
+    if (len > file_.size - at) return fail(CaptureError::truncated, at);
+    if (u32(b + len - 4) != len) return fail(CaptureError::bad_record, at);
     const ByteView body = file_.sub(at + 8, len - block_overhead);
     pos_ = at + len;
 
@@ -473,16 +473,16 @@ CaptureParser::Step CaptureParser::next_pcapng_record(Record& rec) {
     std::size_t data_off = 0;
     bool has_time = true;
     if (type == block_epb || type == block_pb) {
-      if (body.size < epb_body_min) return fail(Error::capture_bad_record, at);
+      if (body.size < epb_body_min) return fail(CaptureError::bad_record, at);
       static_assert(epb_body_min == pb_body_min, "same fixed part after the interface field");
       if_id = type == block_epb ? u32(body.data) : u16(body.data);
       ts = (std::uint64_t{u32(body.data + 4)} << 32) | u32(body.data + 8);
       cap = u32(body.data + 12);
       orig = u32(body.data + 16);
       data_off = epb_body_min;
-      if (cap > body.size - data_off) return fail(Error::capture_bad_record, at);
+      if (cap > body.size - data_off) return fail(CaptureError::bad_record, at);
     } else if (type == block_spb) {
-      if (body.size < spb_body_min) return fail(Error::capture_bad_record, at);
+      if (body.size < spb_body_min) return fail(CaptureError::bad_record, at);
       orig = u32(body.data);
       data_off = spb_body_min;
       // The captured length is not stored: the original length cut to the snap length and the block.
@@ -492,18 +492,18 @@ CaptureParser::Step CaptureParser::next_pcapng_record(Record& rec) {
       }
       has_time = false;
     } else if (type == block_idb) {
-      const Error e = read_interface(body);
-      if (e != Error::ok) return fail(e, at);
+      const CaptureError e = read_interface(body);
+      if (e != CaptureError::ok) return fail(e, at);
       continue;
     } else {
       ++stats_.other_blocks;
       continue;
     }
 
-    if (if_id >= interface_count_) return fail(Error::capture_bad_record, at);
+    if (if_id >= interface_count_) return fail(CaptureError::bad_record, at);
     const Interface& ifc = interfaces_[if_id];
     if (cap > max_record_bytes || (ifc.snaplen != 0 && cap > ifc.snaplen) || orig < cap) {
-      return fail(Error::capture_bad_record, at);
+      return fail(CaptureError::bad_record, at);
     }
     rec.frame = body.sub(data_off, cap);
     rec.time_ns = has_time ? units_to_ns(ts, ifc.tsresol) +
@@ -516,18 +516,31 @@ CaptureParser::Step CaptureParser::next_pcapng_record(Record& rec) {
   }
 }
 
+const char* capture_error_name(CaptureError e) {
+  switch (e) {
+    case CaptureError::ok: return "ok";
+    case CaptureError::bad_magic: return "capture_bad_magic";
+    case CaptureError::truncated: return "capture_truncated";
+    case CaptureError::bad_record: return "capture_bad_record";
+    case CaptureError::unsupported_link: return "capture_unsupported_link";
+    case CaptureError::io: return "capture_io";
+    case CaptureError::not_open: return "capture_not_open";
+  }
+  return "unknown";
+}
+
 // ---- CaptureFile --------------------------------------------------------------------------------
 
 namespace {
 
-const char* describe(Error e) {
+const char* describe(CaptureError e) {
   switch (e) {
-    case Error::capture_bad_magic: return "not a pcap or pcapng file (or an unsupported version)";
-    case Error::capture_truncated: return "the file ends inside a header, record or block";
-    case Error::capture_bad_record: return "a record or block length that cannot be";
-    case Error::capture_unsupported_link: return "a link type this reader does not unpack";
-    case Error::invalid_argument: return "no capture open";
-    default: return error_name(e);
+    case CaptureError::bad_magic: return "not a pcap or pcapng file (or an unsupported version)";
+    case CaptureError::truncated: return "the file ends inside a header, record or block";
+    case CaptureError::bad_record: return "a record or block length that cannot be";
+    case CaptureError::unsupported_link: return "a link type this reader does not unpack";
+    case CaptureError::not_open: return "no capture open";
+    default: return capture_error_name(e);
   }
 }
 
@@ -542,7 +555,7 @@ void CaptureFile::close() {
   parser_ = CaptureParser{};
 }
 
-Error CaptureFile::open(const std::string& path) {
+CaptureError CaptureFile::open(const std::string& path) {
   close();
   path_ = path;
   os_error_ = 0;
@@ -550,7 +563,7 @@ Error CaptureFile::open(const std::string& path) {
   auto os_fail = [this](const char* what, int err) {
     os_error_ = err;
     os_what_ = what;
-    return Error::capture_io;
+    return CaptureError::io;
   };
 
   const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
@@ -583,10 +596,10 @@ Error CaptureFile::open(const std::string& path) {
 
 std::string CaptureFile::message() const {
   if (os_error_ != 0) return path_ + ": " + os_what_ + " failed: " + std::strerror(os_error_);
-  const Error e = parser_.error();
-  if (e == Error::ok) return std::string();
-  if (e == Error::capture_truncated && size_ == 0 && !path_.empty()) return path_ + ": empty file";
-  return path_ + ": " + error_name(e) + " at byte " + std::to_string(parser_.error_offset()) + ": " +
+  const CaptureError e = parser_.error();
+  if (e == CaptureError::ok) return std::string();
+  if (e == CaptureError::truncated && size_ == 0 && !path_.empty()) return path_ + ": empty file";
+  return path_ + ": " + capture_error_name(e) + " at byte " + std::to_string(parser_.error_offset()) + ": " +
          describe(e);
 }
 

@@ -4,11 +4,17 @@
 #include <cerrno>
 #include <cstring>
 #include <ctime>
+#include <fcntl.h>
 #include <netdb.h>
 #include <netinet/in.h>
 #include <poll.h>
 #include <sys/socket.h>
 #include <unistd.h>
+
+// Set by port/CMakeLists.txt: 1 for the Linux path (recvmmsg, SO_TIMESTAMPNS, SO_RXQ_OVFL).
+#if !defined(HESAI_UDP_RECVMMSG)
+#define HESAI_UDP_RECVMMSG 0
+#endif
 
 namespace hesai::port {
 
@@ -32,8 +38,35 @@ void sleep_until_ns(std::int64_t deadline_ns) {
   }
 }
 
-UdpReceiver::UdpReceiver()
-    : buffers_(kBatch * kMaxDatagram), control_(kBatch * CMSG_SPACE(sizeof(timespec)) + kBatch * CMSG_SPACE(sizeof(std::uint32_t))) {}
+namespace {
+// Each datagram's buffer holds one byte more than kMaxDatagram: a datagram that fills it is
+// larger than kMaxDatagram (how the recvfrom path, which has no MSG_TRUNC flag, sees truncation).
+constexpr std::size_t kSlot = UdpReceiver::kMaxDatagram + 1;
+#if HESAI_UDP_RECVMMSG
+constexpr std::size_t kControlEach = CMSG_SPACE(sizeof(timespec)) + CMSG_SPACE(sizeof(std::uint32_t));
+#else
+constexpr std::size_t kControlEach = 0;
+#endif
+
+// A UDP socket closed on exec.
+int udp_socket() {
+#if defined(SOCK_CLOEXEC)
+  return socket(AF_INET, SOCK_DGRAM | SOCK_CLOEXEC, 0);
+#else
+  const int fd = socket(AF_INET, SOCK_DGRAM, 0);
+  if (fd >= 0 && fcntl(fd, F_SETFD, FD_CLOEXEC) != 0) {
+    close(fd);
+    return -1;
+  }
+  return fd;
+#endif
+}
+}  // namespace
+
+const char* UdpReceiver::method() { return HESAI_UDP_RECVMMSG ? "recvmmsg" : "recvfrom"; }
+bool UdpReceiver::kernel_drops_known() { return HESAI_UDP_RECVMMSG != 0; }
+
+UdpReceiver::UdpReceiver() : buffers_(kBatch * kSlot), control_(kBatch * kControlEach) {}
 
 UdpReceiver::~UdpReceiver() {
   if (fd_ >= 0) close(fd_);
@@ -47,7 +80,7 @@ bool UdpReceiver::open(const std::string& address, std::uint16_t port, std::stri
     error = "not an IPv4 address: " + address;
     return false;
   }
-  fd_ = socket(AF_INET, SOCK_DGRAM | SOCK_CLOEXEC, 0);
+  fd_ = udp_socket();
   if (fd_ < 0) {
     error = std::string("socket: ") + std::strerror(errno);
     return false;
@@ -55,8 +88,19 @@ bool UdpReceiver::open(const std::string& address, std::uint16_t port, std::stri
   const int one = 1;
   setsockopt(fd_, SOL_SOCKET, SO_REUSEADDR, &one, sizeof one);
   setsockopt(fd_, SOL_SOCKET, SO_BROADCAST, &one, sizeof one);
+#if HESAI_UDP_RECVMMSG
   setsockopt(fd_, SOL_SOCKET, SO_TIMESTAMPNS, &one, sizeof one);  // kernel receive time
   setsockopt(fd_, SOL_SOCKET, SO_RXQ_OVFL, &one, sizeof one);     // kernel drop counter
+#else
+  // receive() reads until the socket is empty.
+  const int flags = fcntl(fd_, F_GETFL);
+  if (flags < 0 || fcntl(fd_, F_SETFL, flags | O_NONBLOCK) != 0) {
+    error = std::string("fcntl O_NONBLOCK: ") + std::strerror(errno);
+    close(fd_);
+    fd_ = -1;
+    return false;
+  }
+#endif
   const int rcvbuf = 16 * 1024 * 1024;  // about 7 s of a QT128 stream; capped by rmem_max
   setsockopt(fd_, SOL_SOCKET, SO_RCVBUF, &rcvbuf, sizeof rcvbuf);
   if (bind(fd_, reinterpret_cast<const sockaddr*>(&sa), sizeof sa) != 0) {
@@ -78,24 +122,24 @@ int UdpReceiver::receive(std::vector<Datagram>& out, int timeout_ms) {
   if (ready < 0) return errno == EINTR ? 0 : -1;
   if (ready == 0) return 0;
 
+#if HESAI_UDP_RECVMMSG
   mmsghdr msgs[kBatch];
   iovec iovs[kBatch];
-  const std::size_t control_each = control_.size() / kBatch;
   for (std::size_t i = 0; i < kBatch; ++i) {
-    iovs[i].iov_base = buffers_.data() + i * kMaxDatagram;
+    iovs[i].iov_base = buffers_.data() + i * kSlot;
     iovs[i].iov_len = kMaxDatagram;
     std::memset(&msgs[i], 0, sizeof msgs[i]);
     msgs[i].msg_hdr.msg_iov = &iovs[i];
     msgs[i].msg_hdr.msg_iovlen = 1;
-    msgs[i].msg_hdr.msg_control = control_.data() + i * control_each;
-    msgs[i].msg_hdr.msg_controllen = control_each;
+    msgs[i].msg_hdr.msg_control = control_.data() + i * kControlEach;
+    msgs[i].msg_hdr.msg_controllen = kControlEach;
   }
   const int n = recvmmsg(fd_, msgs, kBatch, MSG_DONTWAIT, nullptr);
   if (n < 0) return (errno == EAGAIN || errno == EINTR) ? 0 : -1;
   const std::int64_t fallback = realtime_ns();
   for (int i = 0; i < n; ++i) {
     Datagram d;
-    d.data = buffers_.data() + static_cast<std::size_t>(i) * kMaxDatagram;
+    d.data = buffers_.data() + static_cast<std::size_t>(i) * kSlot;
     d.size = msgs[i].msg_len;
     d.truncated = (msgs[i].msg_hdr.msg_flags & MSG_TRUNC) != 0;
     d.time_ns = fallback;
@@ -114,6 +158,25 @@ int UdpReceiver::receive(std::vector<Datagram>& out, int timeout_ms) {
     out.push_back(d);
   }
   return n;
+#else
+  // One recvfrom per datagram on the non-blocking socket, until it is empty or kBatch are read.
+  for (std::size_t i = 0; i < kBatch; ++i) {
+    std::uint8_t* slot = buffers_.data() + i * kSlot;
+    const ssize_t got = recvfrom(fd_, slot, kSlot, 0, nullptr, nullptr);
+    if (got < 0) {
+      if (errno == EAGAIN || errno == EWOULDBLOCK || errno == EINTR) break;
+      if (out.empty()) return -1;
+      break;  // the error shows again on the next call
+    }
+    Datagram d;
+    d.data = slot;
+    d.truncated = static_cast<std::size_t>(got) > kMaxDatagram;
+    d.size = d.truncated ? kMaxDatagram : static_cast<std::size_t>(got);
+    d.time_ns = realtime_ns();
+    out.push_back(d);
+  }
+  return static_cast<int>(out.size());
+#endif
 }
 
 UdpSender::~UdpSender() {
@@ -136,7 +199,7 @@ bool UdpSender::open(const std::string& host_port, std::string& error) {
     error = "cannot resolve " + host_port + ": " + gai_strerror(rc);
     return false;
   }
-  fd_ = socket(res->ai_family, SOCK_DGRAM | SOCK_CLOEXEC, 0);
+  fd_ = udp_socket();
   const int one = 1;
   if (fd_ >= 0) setsockopt(fd_, SOL_SOCKET, SO_BROADCAST, &one, sizeof one);
   const int sndbuf = 4 * 1024 * 1024;

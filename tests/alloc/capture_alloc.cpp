@@ -19,7 +19,7 @@ TEST(ZeroAllocation, CaptureParser) {
   hesai::port::CaptureParser parser;
   hesai::port::UdpDatagram d;
   std::size_t datagrams = 0;
-  hesai::Error opened = hesai::Error::truncated;
+  hesai::port::CaptureError opened = hesai::port::CaptureError::not_open;
   const std::size_t n = hesai_test::allocations_during([&] {
     opened = parser.open(hesai::ByteView{file.data(), file.size()});
     while (parser.next(d) == hesai::port::CaptureStatus::datagram) ++datagrams;
@@ -28,14 +28,14 @@ TEST(ZeroAllocation, CaptureParser) {
     }
   });
   EXPECT_EQ(n, 0u);
-  EXPECT_EQ(opened, hesai::Error::ok);
+  EXPECT_EQ(opened, hesai::port::CaptureError::ok);
   EXPECT_EQ(datagrams, 2400u);
-  EXPECT_EQ(parser.error(), hesai::Error::capture_truncated);
+  EXPECT_EQ(parser.error(), hesai::port::CaptureError::truncated);
 }
 
 TEST(ZeroAllocation, CaptureFileNext) {
   hesai::port::CaptureFile f;
-  ASSERT_EQ(f.open(HESAI_DATA_DIR "/qt128c2x_dual.pcap"), hesai::Error::ok);
+  ASSERT_EQ(f.open(HESAI_DATA_DIR "/qt128c2x_dual.pcap"), hesai::port::CaptureError::ok);
   hesai::port::UdpDatagram d;
   std::size_t datagrams = 0;
   const std::size_t n = hesai_test::allocations_during([&] {

@@ -44,12 +44,6 @@
   X(calib_bad_row)            /* a row has the wrong number of fields */                                       \
   X(calib_bad_number)         /* a field is not a decimal number */                                            \
   X(calib_bad_channel)        /* a channel number outside 1..N, or repeated */                                 \
-  X(calib_channel_count)      /* the file has another number of channels than the model */                     \
-  /* Capture files (read by port/, named here so that one enum covers the project). */                         \
-  X(capture_bad_magic)        /* not a pcap or pcapng file */                                                  \
-  X(capture_truncated)        /* a record or block ends past the end of the file */                            \
-  X(capture_bad_record)       /* a record or block length that cannot be (absurd, misaligned) */               \
-  X(capture_unsupported_link) /* a link type we do not read */                                                 \
-  X(capture_io)               /* the capture file cannot be opened, read or mapped (see errno) */
+  X(calib_channel_count)      /* the file has another number of channels than the model */
 
 #endif /* HESAI_ERROR_LIST_H */

@@ -7,6 +7,8 @@
 #include <cstddef>
 #include <cstdint>
 
+#include "hesai/error.h"
+
 namespace hesai::qt128 {
 
 // Pre-header (6) and header (6).
@@ -92,5 +94,13 @@ struct Layout {
 };
 static_assert(Layout::from_flags(0x1D).total == 1127 && Layout::from_flags(0x1D).tail == 1061);
 static_assert(Layout::from_flags(0x00).total == 1074);
+
+/// Rewrites CRC1 (body), CRC2 (functional safety, when present) and CRC3 (tail) of a QT128
+/// packet from its bytes, where the layout of its header flags puts them: for tools that change a
+/// field (a replayer renumbering the UDP sequence, a test building packets). The signature, when
+/// present, is left as it is (it no longer verifies once a signed byte changed).
+/// Error::bad_length (nothing written) when `size` is not the length the flags imply;
+/// Error::bad_magic when the packet does not start with EE FF.
+Error seal(std::uint8_t* payload, std::size_t size) noexcept;
 
 }  // namespace hesai::qt128

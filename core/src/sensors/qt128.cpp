@@ -1,6 +1,7 @@
 // QT128C2X, point cloud protocol 3.2: identification (header and the flags-implied length),
 // validation (the three CRCs, the signature, then the fields) and the walk over its two blocks
-// with their firing sequences. Layout: hesai/qt128_packet.h; tables: hesai/tables/qt128_tables.h.
+// with their firing sequences; and qt128::seal, which writes the CRCs validation checks.
+// Layout: hesai/qt128_packet.h; tables: hesai/tables/qt128_tables.h.
 #include "hesai/crc32.h"
 #include "hesai/ct.h"
 #include "hesai/decoder.h"
@@ -30,6 +31,26 @@ bool qt128_return_mode(std::uint8_t byte, std::uint8_t& returns) {
     case ReturnMode::strongest_second_strongest: returns = 2; return true;
   }
   return false;
+}
+
+// The three CRCs of a packet, in the order validation checks them (manual 3.1.2): CRC1 over
+// the body (both blocks), CRC2 over the functional-safety section after its version byte, CRC3
+// over the tail before it; with the code a mismatch gives.
+constexpr std::size_t kCrcCount = 3;
+constexpr Error kCrcMismatch[kCrcCount] = {Error::crc_body, Error::crc_functional_safety, Error::crc_tail};
+
+// CRC `i` of a packet: the bytes it covers and its offset (0: the section is absent).
+struct CrcField {
+  ByteView covered;
+  std::size_t at = 0;
+};
+CrcField crc_field(ByteView p, const qt128::Layout& l, std::size_t i) noexcept {
+  using namespace qt128;
+  switch (i) {
+    case 0: return {p.sub(kBody, kBodyBytes), kCrc1};
+    case 1: return l.fs != 0 ? CrcField{p.sub(l.fs + kFsCrcFrom, kFsCrc2 - kFsCrcFrom), l.fs + kFsCrc2} : CrcField{};
+    default: return {p.sub(l.tail, l.crc3 - l.tail), l.crc3};
+  }
 }
 
 bool all_zero(const std::uint8_t* p, std::size_t n) {
@@ -62,13 +83,11 @@ Error Decoder::validate_qt128(ByteView p, PacketInfo& info) noexcept {
   const std::uint8_t return_num = p[kReturnNum];
   if (info.dis_unit_mm == 0 || (return_num != 1 && return_num != 2)) return Error::bad_header;
 
-  // CRC1: the body (both blocks); CRC2: functional safety after its version byte; CRC3: the tail.
-  if (crc32_mpeg2(p.sub(kBody, kBodyBytes)) != load_le32(p.data + kCrc1)) return Error::crc_body;
-  if (layout.fs != 0 &&
-      crc32_mpeg2(p.sub(layout.fs + kFsCrcFrom, kFsCrc2 - kFsCrcFrom)) != load_le32(p.data + layout.fs + kFsCrc2))
-    return Error::crc_functional_safety;
-  if (crc32_mpeg2(p.sub(layout.tail, layout.crc3 - layout.tail)) != load_le32(p.data + layout.crc3))
-    return Error::crc_tail;
+  // CRC1, CRC2, CRC3, in this order.
+  for (std::size_t i = 0; i < kCrcCount; ++i) {
+    const CrcField f = crc_field(p, layout, i);
+    if (f.at != 0 && crc32_mpeg2(f.covered) != load_le32(p.data + f.at)) return kCrcMismatch[i];
+  }
 
   // Signature: HMAC-SHA256 of everything before it. All-zero bytes mean signing was not started.
   const bool signed_packet = layout.signature != 0 && !all_zero(p.data + layout.signature, kSignatureBytes);
@@ -133,5 +152,21 @@ void Decoder::decode_qt128(const std::uint8_t* p, const PacketInfo& info, Point*
                             info.time_ns + kBlockNs[dual][b], loop, out, count);
   }
 }
+
+namespace qt128 {
+
+Error seal(std::uint8_t* payload, std::size_t size) noexcept {
+  if (size <= kFlags) return Error::bad_length;
+  if (payload[0] != kMagic0 || payload[1] != kMagic1) return Error::bad_magic;
+  const Layout layout = Layout::from_flags(payload[kFlags]);
+  if (size != layout.total) return Error::bad_length;
+  for (std::size_t i = 0; i < kCrcCount; ++i) {
+    const CrcField f = crc_field(ByteView{payload, size}, layout, i);
+    if (f.at != 0) store_le32(payload + f.at, crc32_mpeg2(f.covered));
+  }
+  return Error::ok;
+}
+
+}  // namespace qt128
 
 }  // namespace hesai

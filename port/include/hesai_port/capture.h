@@ -20,9 +20,27 @@
 #include <string>
 
 #include "hesai/bytes.h"
-#include "hesai/error.h"
 
 namespace hesai::port {
+
+/// Why a capture cannot be read: the port's own codes (the freestanding core reads no files).
+/// Names, as capture_error_name() gives them, are what messages print.
+enum class [[nodiscard]] CaptureError : std::uint8_t {
+  ok = 0,
+  bad_magic,         ///< "capture_bad_magic": not a pcap or pcapng file, or an unsupported version
+  truncated,         ///< "capture_truncated": a header, record or block ends past the end of the file
+  bad_record,        ///< "capture_bad_record": a record or block length that cannot be (absurd, misaligned)
+  unsupported_link,  ///< "capture_unsupported_link": a link type this reader does not unpack (classic pcap)
+  io,                ///< "capture_io": the file cannot be opened, read or mapped (see CaptureFile::os_error())
+  not_open,          ///< "capture_not_open": CaptureParser::next() before a successful open()
+};
+
+/// The last code, for loops over every code (keep it last when adding codes).
+inline constexpr CaptureError kLastCaptureError = CaptureError::not_open;
+
+/// Stable lower-case name of a code, for messages and logs ("capture_bad_magic"); "unknown" for
+/// a value that is not a code.
+const char* capture_error_name(CaptureError e);
 
 /// One UDP datagram of a capture. `payload` points into the parser's input.
 struct UdpDatagram {
@@ -95,15 +113,15 @@ class CaptureParser {
   static constexpr std::uint32_t max_record_bytes = 256 * 1024;
 
   /// Starts reading `file`: checks the pcap global header or the first pcapng section header.
-  /// Error::ok, capture_truncated, capture_bad_magic, capture_bad_record or
-  /// capture_unsupported_link (pcap); the same code stays in error().
-  Error open(ByteView file);
+  /// CaptureError::ok, truncated, bad_magic, bad_record or unsupported_link (pcap); the same
+  /// code stays in error().
+  CaptureError open(ByteView file);
 
   /// The next UDP datagram. Frames without one are counted in stats() and skipped.
   CaptureStatus next(UdpDatagram& out);
 
-  /// The error that stopped the parse, Error::ok if none.
-  Error error() const { return error_; }
+  /// The error that stopped the parse, CaptureError::ok if none.
+  CaptureError error() const { return error_; }
   /// Byte offset of the record, block or header where the error was found.
   std::uint64_t error_offset() const { return error_offset_; }
   /// Counters since open().
@@ -136,9 +154,9 @@ class CaptureParser {
 
   Step next_pcap_record(Record& rec);
   Step next_pcapng_record(Record& rec);
-  Error read_section_header(std::size_t at, std::size_t& length);
-  Error read_interface(ByteView body);
-  Step fail(Error e, std::uint64_t offset);
+  CaptureError read_section_header(std::size_t at, std::size_t& length);
+  CaptureError read_interface(ByteView body);
+  Step fail(CaptureError e, std::uint64_t offset);
   std::uint16_t u16(const std::uint8_t* p) const { return big_endian_ ? load_be16(p) : load_le16(p); }
   std::uint32_t u32(const std::uint8_t* p) const { return big_endian_ ? load_be32(p) : load_le32(p); }
 
@@ -153,7 +171,7 @@ class CaptureParser {
   std::size_t interface_count_ = 0;
   std::uint32_t record_index_ = 0;
   CaptureStats stats_{};
-  Error error_ = Error::ok;
+  CaptureError error_ = CaptureError::ok;
   std::uint64_t error_offset_ = 0;
 };
 
@@ -165,9 +183,9 @@ class CaptureFile {
   CaptureFile(const CaptureFile&) = delete;
   CaptureFile& operator=(const CaptureFile&) = delete;
 
-  /// Maps `path` and opens the parser on it. Error::capture_io when the file cannot be opened
+  /// Maps `path` and opens the parser on it. CaptureError::io when the file cannot be opened
   /// or mapped (errno in os_error()), otherwise CaptureParser::open's result. message() says why.
-  Error open(const std::string& path);
+  CaptureError open(const std::string& path);
   /// Unmaps the file.
   void close();
 

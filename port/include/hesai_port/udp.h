@@ -1,4 +1,9 @@
-// Live UDP: a batched receiver with kernel receive timestamps, a sender, and clocks.
+// Live UDP: a receiver, a sender, and clocks.
+//
+// The receiver has two paths, chosen at configure time (port/CMakeLists.txt): on Linux, recvmmsg
+// batches with kernel receive timestamps (SO_TIMESTAMPNS) and the kernel's drop counter
+// (SO_RXQ_OVFL); on other POSIX systems, or with -DHESAI_PORTABLE_UDP=ON, plain recvfrom, one
+// call per datagram, each stamped with the clock when it is read, and no drop counter.
 #pragma once
 
 #include <cstddef>
@@ -19,15 +24,20 @@ void sleep_until_ns(std::int64_t deadline_ns);
 struct Datagram {
   const std::uint8_t* data = nullptr;
   std::size_t size = 0;
-  std::int64_t time_ns = 0;  ///< kernel receive time (SO_TIMESTAMPNS) or, without it, realtime_ns()
+  std::int64_t time_ns = 0;  ///< kernel receive time (SO_TIMESTAMPNS) or, without it, realtime_ns() when read
   bool truncated = false;    ///< larger than the buffer (MSG_TRUNC): not a sensor packet
 };
 
-/// A UDP socket bound to an address and port that receives in batches with recvmmsg().
+/// A UDP socket bound to an address and port that receives up to kBatch datagrams per call.
 class UdpReceiver {
  public:
   static constexpr std::size_t kBatch = 64;
   static constexpr std::size_t kMaxDatagram = 2048;  ///< larger than any sensor packet
+
+  /// The receive path built in: "recvmmsg" (Linux) or "recvfrom" (portable).
+  static const char* method();
+  /// Whether kernel_drops() counts anything: true on the recvmmsg path only.
+  static bool kernel_drops_known();
 
   UdpReceiver();
   ~UdpReceiver();
@@ -43,7 +53,8 @@ class UdpReceiver {
   /// Receives up to kBatch datagrams, waiting at most `timeout_ms` (0: poll, -1: forever).
   /// Returns how many were received into `out` (0 on timeout), or -1 on a socket error.
   int receive(std::vector<Datagram>& out, int timeout_ms);
-  /// Datagrams the kernel dropped because the socket buffer was full (SO_RXQ_OVFL), when known.
+  /// Datagrams the kernel dropped because the socket buffer was full (SO_RXQ_OVFL); always 0
+  /// when !kernel_drops_known().
   std::uint64_t kernel_drops() const { return kernel_drops_; }
 
  private:

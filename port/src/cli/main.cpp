@@ -12,7 +12,6 @@
 #include <string>
 #include <vector>
 
-#include "hesai/crc32.h"
 #include "hesai/pandar40_packet.h"
 #include "hesai/pandar64_packet.h"
 #include "hesai/qt128_packet.h"
@@ -54,7 +53,7 @@ std::uint64_t source_key(const port::UdpDatagram& d) {
 // Feeds every datagram of a capture to the pipeline. Returns an exit status.
 int run_capture(const std::string& path, Pipeline& pipeline, bool quiet) {
   port::CaptureFile file;
-  if (file.open(path) != Error::ok) {
+  if (file.open(path) != port::CaptureError::ok) {
     std::fprintf(stderr, "hesai: %s\n", file.message().c_str());
     return kExitInput;
   }
@@ -114,9 +113,9 @@ int cmd_decode(Args& args) {
 
   OutputSink sink(out);
   Pipeline pipeline(o, &sink);
-  if (!pipeline.load_files(error)) {
+  if (const int rc = pipeline.load_files(error); rc != kExitOk) {
     std::fprintf(stderr, "hesai decode: %s\n", error.c_str());
-    return kExitInput;
+    return rc;
   }
   if (!sink.open(error)) return usage_error("decode", error);
   const int rc = run_capture(capture, pipeline, quiet);
@@ -174,9 +173,9 @@ int cmd_stats(Args& args) {
   if (capture.empty()) return usage_error("stats", "missing CAPTURE");
   if (!finish_key_options(o, error)) return usage_error("stats", error);
   Pipeline pipeline(o, nullptr);
-  if (!pipeline.load_files(error)) {
+  if (const int rc = pipeline.load_files(error); rc != kExitOk) {
     std::fprintf(stderr, "hesai stats: %s\n", error.c_str());
-    return kExitInput;
+    return rc;
   }
   const int rc = run_capture(capture, pipeline, quiet);
   if (rc == kExitUsage) return rc;
@@ -186,6 +185,11 @@ int cmd_stats(Args& args) {
 }
 
 // ---- listen ----
+
+// The kernel's drop count for the socket, or "unavailable" on the portable receive path.
+std::string kernel_drops(const port::UdpReceiver& rx) {
+  return port::UdpReceiver::kernel_drops_known() ? std::to_string(rx.kernel_drops()) : "unavailable";
+}
 
 int cmd_listen(Args& args) {
   DecodeOptions o;
@@ -198,8 +202,8 @@ int cmd_listen(Args& args) {
   while (!args.empty()) {
     const std::string a = args.peek();
     if (a == "--help" || a == "-h") {
-      std::printf("usage: hesai listen [options]\n\nReceives sensor packets over UDP, prints statistics once a second\n"
-                  "(on stderr) and a summary at the end (Ctrl-C, --count, --seconds or --idle).\n\n"
+      std::printf("usage: hesai listen [options]\n\nReceives sensor packets over UDP (with %s), prints statistics once a\n"
+                  "second (on stderr) and a summary at the end (Ctrl-C, --count, --seconds or --idle).\n\n"
                   "  --bind ADDR             local IPv4 address (default 0.0.0.0)\n"
                   "  --port N                point-cloud port (default 2368)\n"
                   "  --gps-port N            GPS port (default 10110; 0: none)\n"
@@ -208,7 +212,7 @@ int cmd_listen(Args& args) {
                   "  --idle S                stop when no packet came for S seconds (after the first)\n"
                   "  --json                  the summary as one JSON object (keys as in 'hesai stats --json')\n"
                   "  --quiet                 no statistics once a second\n%s%s%s",
-                  kDecodeOptionsHelp, kOutputOptionsHelp, kKeyOptionsHelp);
+                  port::UdpReceiver::method(), kDecodeOptionsHelp, kOutputOptionsHelp, kKeyOptionsHelp);
       return kExitOk;
     }
     if (parse_decode_option(args, o, error) || parse_output_option(args, out, error)) {
@@ -238,9 +242,9 @@ int cmd_listen(Args& args) {
     if (!sink->open(error)) return usage_error("listen", error);
   }
   Pipeline pipeline(o, sink.get());
-  if (!pipeline.load_files(error)) {
+  if (const int rc = pipeline.load_files(error); rc != kExitOk) {
     std::fprintf(stderr, "hesai listen: %s\n", error.c_str());
-    return kExitInput;
+    return rc;
   }
   port::UdpReceiver points_rx, gps_rx;
   if (!points_rx.open(bind_addr, static_cast<std::uint16_t>(port), error) ||
@@ -280,18 +284,18 @@ int cmd_listen(Args& args) {
     if (arrived) last_packet = now;
     if (!quiet && now >= next_report) {
       const Stats& s = pipeline.stats();
-      std::fprintf(stderr, "%6.1f s  packets %llu  points %llu  frames %llu  lost %llu  crc %llu  kernel drops %llu\n",
+      std::fprintf(stderr, "%6.1f s  packets %llu  points %llu  frames %llu  lost %llu  crc %llu  kernel drops %s\n",
                    static_cast<double>(now - start) / 1e9, static_cast<unsigned long long>(s.packets),
                    static_cast<unsigned long long>(s.points), static_cast<unsigned long long>(s.frames),
                    static_cast<unsigned long long>(s.lost), static_cast<unsigned long long>(s.crc_errors),
-                   static_cast<unsigned long long>(points_rx.kernel_drops()));
+                   kernel_drops(points_rx).c_str());
       next_report += 1000000000;
     }
   }
   pipeline.finish();
   if (sink && !sink->close(error)) std::fprintf(stderr, "hesai listen: %s\n", error.c_str());
   if (json) std::printf("%s\n", stats_json(pipeline.stats()).c_str());
-  else std::printf("%s  kernel_drops          %llu\n", stats_text(pipeline).c_str(), static_cast<unsigned long long>(points_rx.kernel_drops()));
+  else std::printf("%s  kernel_drops          %s\n", stats_text(pipeline).c_str(), kernel_drops(points_rx).c_str());
   return fatal ? kExitInput : kExitOk;
 }
 
@@ -308,9 +312,8 @@ bool renumber(std::vector<std::uint8_t>& p, std::uint32_t seq) {
   } else if (m == Model::pandar40p && p.size() == pandar40::kPandar40PSequenceBytes) {
     store_le32(&p[pandar40::kSequence], seq);
   } else if (m == Model::qt128c2x && (p[qt128::kFlags] & qt128::kFlagSequence)) {
-    const qt128::Layout l = qt128::Layout::from_flags(p[qt128::kFlags]);
-    store_le32(&p[l.tail + qt128::kTailSequence], seq);
-    store_le32(&p[l.crc3], crc32_mpeg2(ByteView{&p[l.tail], l.crc3 - l.tail}));
+    store_le32(&p[qt128::Layout::from_flags(p[qt128::kFlags]).tail + qt128::kTailSequence], seq);
+    return qt128::seal(p.data(), p.size()) == Error::ok;  // identify() checked the length
   } else {
     return false;
   }
@@ -353,7 +356,7 @@ int cmd_replay(Args& args) {
   port::UdpSender sender;
   if (!sender.open(to, error)) return usage_error("replay", error);
   port::CaptureFile file;
-  if (file.open(capture) != Error::ok) {
+  if (file.open(capture) != port::CaptureError::ok) {
     std::fprintf(stderr, "hesai: %s\n", file.message().c_str());
     return kExitInput;
   }
@@ -363,7 +366,10 @@ int cmd_replay(Args& args) {
   std::vector<std::uint8_t> packet;
   const std::int64_t start = port::monotonic_ns();
   for (std::uint64_t loop = 0; loop < loops && !g_stop; ++loop) {
-    if (loop > 0 && file.open(capture) != Error::ok) return kExitInput;
+    if (loop > 0 && file.open(capture) != port::CaptureError::ok) {
+      std::fprintf(stderr, "hesai: %s\n", file.message().c_str());
+      return kExitInput;
+    }
     port::UdpDatagram d;
     std::int64_t first_record = -1, loop_start = port::monotonic_ns();
     for (;;) {

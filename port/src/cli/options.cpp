@@ -125,16 +125,17 @@ bool parse_decode_option(Args& args, DecodeOptions& o, std::string& error) {
     return true;
   }
   if (opt == "--cut-angle") {
-    if (need(v) && (!parse_float(v, o.cut_deg) || o.cut_deg < 0 || o.cut_deg >= 360))
+    float deg = 0;
+    if (need(v) && (!parse_float(v, deg) || o.frames.set_cut_deg(deg) != Error::ok))
       error = "--cut-angle takes degrees in [0, 360), got '" + v + "'";
     return true;
   }
   if (opt == "--fov") {
     std::string a, b;
-    if (need(v) && (!split_pair(v, a, b) || !parse_float(a, o.fov_start) || !parse_float(b, o.fov_end) ||
-                    o.fov_start < 0 || o.fov_start >= 360 || o.fov_end < 0 || o.fov_end > 360 || o.fov_start == o.fov_end))
+    float start = 0, end = 0;
+    if (need(v) && (!split_pair(v, a, b) || !parse_float(a, start) || !parse_float(b, end) ||
+                    o.frames.set_fov_deg(start, end) != Error::ok))
       error = "--fov takes START:END in degrees (0..360, START != END), got '" + v + "'";
-    o.has_fov = true;
     return true;
   }
   if (opt == "--min-range" || opt == "--max-range") {

@@ -7,6 +7,7 @@
 
 #include "hesai/calibration.h"
 #include "hesai/gps.h"
+#include "options.h"
 
 namespace hesai::cli {
 
@@ -24,25 +25,30 @@ bool read_text_file(const std::string& path, std::string& out, std::string& erro
 
 Pipeline::Pipeline(const DecodeOptions& options, Sink* sink) : options_(options), sink_(sink) {}
 
-bool Pipeline::load_files(std::string& error) {
-  if (!options_.calibration_path.empty() && !read_text_file(options_.calibration_path, angles_text_, error)) return false;
-  if (!options_.firetimes_path.empty() && !read_text_file(options_.firetimes_path, firetimes_text_, error)) return false;
-  if (!options_.channel_config_path.empty()) {
-    if (!read_text_file(options_.channel_config_path, channel_config_text_, error)) return false;
-    ChannelConfig config;
-    const ParseResult r = parse_channel_config_csv(
-        ByteView{reinterpret_cast<const std::uint8_t*>(channel_config_text_.data()), channel_config_text_.size()}, config);
-    if (r.error != Error::ok) {
-      error = options_.channel_config_path + ": line " + std::to_string(r.line) + ": " + error_name(r.error);
-      return false;
-    }
-  }
-  return true;
-}
-
 namespace {
 ByteView text_view(const std::string& s) { return {reinterpret_cast<const std::uint8_t*>(s.data()), s.size()}; }
+
+// "FILE: line N: error_name (why)": the line when the parser gave one, the reason when there is one.
+std::string calibration_error(const std::string& path, std::uint32_t line, Error e, const std::string& why = "") {
+  return path + ": " + (line != 0 ? "line " + std::to_string(line) + ": " : "") + error_name(e) +
+         (why.empty() ? "" : " (" + why + ")");
+}
 }  // namespace
+
+int Pipeline::load_files(std::string& error) {
+  if (!options_.calibration_path.empty() && !read_text_file(options_.calibration_path, angles_text_, error)) return kExitInput;
+  if (!options_.firetimes_path.empty() && !read_text_file(options_.firetimes_path, firetimes_text_, error)) return kExitInput;
+  if (!options_.channel_config_path.empty()) {
+    if (!read_text_file(options_.channel_config_path, channel_config_text_, error)) return kExitInput;
+    ChannelConfig config;
+    const ParseResult r = parse_channel_config_csv(text_view(channel_config_text_), config);
+    if (r.error != Error::ok) {
+      error = calibration_error(options_.channel_config_path, r.line, r.error);
+      return kExitUsage;
+    }
+  }
+  return kExitOk;
+}
 
 Pipeline::Source* Pipeline::source_for(std::uint64_t key, Model model) {
   auto it = sources_.find(key);
@@ -54,24 +60,27 @@ Pipeline::Source* Pipeline::source_for(std::uint64_t key, Model model) {
   s.decoder = std::make_unique<Decoder>(model);
   Decoder& d = *s.decoder;
   const std::size_t channels = channel_count(model);
+  const std::string fits = "the capture holds " + std::string(model_name(model)) + " packets, " +
+                           std::to_string(channels) + " channels";
   if (!angles_text_.empty()) {
     AngleCorrection a;
     const ParseResult r = parse_angle_csv(text_view(angles_text_), channels, a);
-    if (r.error != Error::ok) {
-      error_ = options_.calibration_path + ": " + (r.line ? "line " + std::to_string(r.line) + ": " : "") +
-               error_name(r.error) + " (the capture holds " + model_name(model) + " packets, " +
-               std::to_string(channels) + " channels)";
+    const Error e = r.error != Error::ok ? r.error : d.set_angles(a);
+    if (e != Error::ok) {
+      error_ = calibration_error(options_.calibration_path, r.line, e,
+                                 e == Error::invalid_argument
+                                     ? "an elevation outside [-90, 90] degrees or an azimuth offset outside [-360, 360] degrees"
+                                     : fits);
       return nullptr;
     }
-    d.set_angles(a);
   }
   if (!firetimes_text_.empty()) {
     FiretimeCorrection f;
     const ParseResult r = parse_firetime_csv(text_view(firetimes_text_), channels, f);
-    if (r.error != Error::ok || d.set_firetimes(f) != Error::ok) {
-      error_ = options_.firetimes_path + ": " + (r.line ? "line " + std::to_string(r.line) + ": " : "") +
-               error_name(r.error != Error::ok ? r.error : Error::calib_channel_count) + " (the capture holds " +
-               model_name(model) + " packets)";
+    const Error e = r.error != Error::ok ? r.error : d.set_firetimes(f);
+    if (e != Error::ok) {
+      error_ = calibration_error(options_.firetimes_path, r.line, e,
+                                 e == Error::invalid_argument ? "a firing time outside [-1000, 1000] us" : fits);
       return nullptr;
     }
   }
@@ -79,8 +88,7 @@ Pipeline::Source* Pipeline::source_for(std::uint64_t key, Model model) {
   if (options_.has_key) d.set_session_key(options_.session_key.data());
   d.set_allow_unsigned(options_.allow_unsigned);
   if (have_gps_) d.update_gps(last_gps_);
-  if (options_.cut_deg != 0) s.frames.set_cut_deg(options_.cut_deg);
-  if (options_.has_fov) s.frames.set_fov_deg(options_.fov_start, options_.fov_end);
+  s.frames = options_.frames;
   return &sources_.emplace(key, std::move(s)).first->second;
 }
 
@@ -164,7 +172,7 @@ bool Pipeline::feed(ByteView payload, std::uint64_t source_key) {
       const Point& p = points_.points[next];
       ++stats_.points;
       if (!keep || p.distance_m < options_.min_range || p.distance_m > options_.max_range) continue;
-      if (options_.has_fov && !src->frames.in_fov(p.azimuth_deg)) continue;
+      if (!src->frames.in_fov(p.azimuth_deg)) continue;
       ++in_block;
       if (sink_) sink_->point(OutPoint{p, frame_id, index});
     }

@@ -26,9 +26,7 @@ struct DecodeOptions {
   bool firetime_azimuth = true;     ///< off with --no-firetime-azimuth
   std::uint64_t first_packet = 0;   ///< --packets FIRST:END, point-cloud packet indices
   std::uint64_t end_packet = UINT64_MAX;
-  float cut_deg = 0;                ///< --cut-angle
-  bool has_fov = false;             ///< --fov START:END
-  float fov_start = 0, fov_end = 360;
+  FrameAssembler frames;            ///< --cut-angle and --fov set; each source starts from a copy
   float min_range = 0;              ///< --min-range, metres
   float max_range = 1e9f;           ///< --max-range, metres
   bool has_key = false;             ///< --session-key, or --secret with the two randoms
@@ -58,12 +56,15 @@ class Pipeline {
  public:
   Pipeline(const DecodeOptions& options, Sink* sink);
 
-  /// Loads the calibration files (parsed when the first packet of a model shows their channel
-  /// count). Returns false with a message for a missing or unreadable file.
-  bool load_files(std::string& error);
+  /// Loads the calibration files (the angle and firing-time files are parsed and applied when the
+  /// first packet of a model shows their channel count; feed() then fails with the file's error).
+  /// Returns the exit status: kExitOk, kExitInput (with a message) for a missing or unreadable
+  /// file, kExitUsage (with a message) for a channel configuration that does not parse.
+  int load_files(std::string& error);
 
   /// One UDP payload; `source` identifies the sender (address and port). Returns false on a
-  /// fatal configuration error (message in error()).
+  /// fatal configuration error: a calibration file that does not parse, does not fit the model or
+  /// holds a value the decoder refuses (message in error(), naming the file and the Error).
   bool feed(ByteView payload, std::uint64_t source);
   /// Closes the open frames at the end of the input.
   void finish();

@@ -1,0 +1,108 @@
+// The live UDP receiver and sender over 127.0.0.1, on the receive path the build chose
+// (recvmmsg on Linux, recvfrom with -DHESAI_PORTABLE_UDP=ON or elsewhere).
+#include <gtest/gtest.h>
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "hesai_port/udp.h"
+
+using hesai::port::Datagram;
+using hesai::port::UdpReceiver;
+using hesai::port::UdpSender;
+
+namespace {
+
+// A receiver on 127.0.0.1 (any free port) and a sender to it.
+struct Loopback {
+  UdpReceiver rx;
+  UdpSender tx;
+  bool open() {
+    std::string error;
+    EXPECT_TRUE(rx.open("127.0.0.1", 0, error)) << error;
+    EXPECT_TRUE(tx.open("127.0.0.1:" + std::to_string(rx.port()), error)) << error;
+    return error.empty();
+  }
+  // Receives until `n` datagrams came (copied out) or none came for 1 s.
+  std::vector<std::vector<std::uint8_t>> receive(std::size_t n, std::vector<Datagram>* meta = nullptr) {
+    std::vector<std::vector<std::uint8_t>> got;
+    std::vector<Datagram> batch;
+    while (got.size() < n) {
+      EXPECT_GE(rx.receive(batch, 1000), 0);
+      if (batch.empty()) break;
+      for (const Datagram& d : batch) {
+        got.emplace_back(d.data, d.data + d.size);
+        if (meta) meta->push_back(d);
+      }
+    }
+    return got;
+  }
+};
+
+std::vector<std::uint8_t> pattern(std::size_t size, std::uint8_t seed) {
+  std::vector<std::uint8_t> v(size);
+  for (std::size_t i = 0; i < size; ++i) v[i] = static_cast<std::uint8_t>(seed + i * 7);
+  return v;
+}
+
+}  // namespace
+
+// The path is the one configured: recvfrom when forced by HESAI_PORTABLE_UDP, recvmmsg on Linux
+// otherwise (tests/CMakeLists.txt states the expectation from the option and the system name).
+TEST(Udp, ReceivePathIsTheConfiguredOne) {
+  EXPECT_STREQ(UdpReceiver::method(), HESAI_TEST_UDP_METHOD);
+  EXPECT_EQ(UdpReceiver::kernel_drops_known(), std::string(HESAI_TEST_UDP_METHOD) == "recvmmsg");
+}
+
+// Sizes from 1 byte to kMaxDatagram arrive whole, in order, stamped between the send and the
+// receive; a datagram larger than kMaxDatagram is flagged truncated and cut to kMaxDatagram.
+TEST(Udp, ReceivesWhatWasSent) {
+  Loopback l;
+  ASSERT_TRUE(l.open());
+  const std::vector<std::size_t> sizes = {1, 1200, UdpReceiver::kMaxDatagram, UdpReceiver::kMaxDatagram + 100};
+  const std::int64_t before = hesai::port::realtime_ns();
+  for (std::size_t i = 0; i < sizes.size(); ++i)
+    ASSERT_TRUE(l.tx.send(pattern(sizes[i], static_cast<std::uint8_t>(i)).data(), sizes[i]));
+  std::vector<Datagram> meta;
+  const auto got = l.receive(sizes.size(), &meta);
+  const std::int64_t after = hesai::port::realtime_ns();
+  ASSERT_EQ(got.size(), sizes.size());
+  for (std::size_t i = 0; i < sizes.size(); ++i) {
+    const bool too_big = sizes[i] > UdpReceiver::kMaxDatagram;
+    EXPECT_EQ(meta[i].truncated, too_big) << i;
+    std::vector<std::uint8_t> expected = pattern(sizes[i], static_cast<std::uint8_t>(i));
+    expected.resize(too_big ? UdpReceiver::kMaxDatagram : sizes[i]);
+    EXPECT_EQ(got[i], expected) << i;
+#if !defined(HESAI_CLI_EMULATOR)  // qemu-user need not translate the kernel's timestamp message
+    EXPECT_GE(meta[i].time_ns, before) << i;
+    EXPECT_LE(meta[i].time_ns, after) << i;
+#endif
+  }
+}
+
+// More datagrams than the socket buffer holds, sent before any is read: every one is either
+// received or counted by the kernel (recvmmsg path), exactly. The counter travels with the next
+// datagram queued, so one more is sent once the socket is drained. The portable path has no
+// counter: it reports 0, and receives no more than was sent.
+TEST(Udp, KernelDropsAccountForEveryDatagram) {
+#if defined(HESAI_CLI_EMULATOR)
+  GTEST_SKIP() << "qemu-user need not translate the kernel's drop-counter message: runs natively only";
+#endif
+  Loopback l;
+  ASSERT_TRUE(l.open());
+  const std::size_t flood = 10000;  // 12 MB of payload: beyond the buffer net.core.rmem_max allows here
+  const std::vector<std::uint8_t> p = pattern(1200, 1);
+  for (std::size_t i = 0; i < flood; ++i) ASSERT_TRUE(l.tx.send(p.data(), p.size()));
+  std::size_t received = l.receive(flood).size();
+  ASSERT_TRUE(l.tx.send(p.data(), p.size()));
+  received += l.receive(1).size();
+  RecordProperty("received", std::to_string(received));
+  RecordProperty("kernel_drops", std::to_string(l.rx.kernel_drops()));
+  if (UdpReceiver::kernel_drops_known()) {
+    EXPECT_EQ(received + l.rx.kernel_drops(), flood + 1) << received << " received";
+  } else {
+    EXPECT_EQ(l.rx.kernel_drops(), 0u);
+    EXPECT_LE(received, flood + 1);
+  }
+}
