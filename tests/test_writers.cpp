@@ -106,6 +106,47 @@ TEST(CsvWriter, FormatsRowsWithFixedDecimals) {
   std::remove(path.c_str());
 }
 
+// The fixed-point fields against the C library's printf ("%.3f", "%.4f"; a value that rounds to
+// zero printed without its minus sign): floats spread over every exponent (a stride through all
+// 2^32 bit patterns), and the exact ties, where rounding to even matters: n/16 for odd n is
+// halfway at 3 decimals (n * 62.5), n/32 at 4 decimals (n * 312.5).
+TEST(CsvWriter, FixedDecimalsRoundAsPrintf) {
+  auto printf_fixed = [](float v, int decimals) {
+    char s[64];
+    std::snprintf(s, sizeof s, "%.*f", decimals, static_cast<double>(v));
+    std::string t = s;
+    if (t[0] == '-' && t.find_first_not_of("0.", 1) == std::string::npos) t.erase(0, 1);
+    return t;
+  };
+  std::vector<float> values;
+  for (std::uint64_t bits = 0; bits <= 0xFFFFFFFFu; bits += 4099) {
+    float v;
+    const auto b = static_cast<std::uint32_t>(bits);
+    std::memcpy(&v, &b, sizeof v);
+    values.push_back(v);
+  }
+  for (int n = -(1 << 18) + 1; n < (1 << 18); n += 2) {
+    values.push_back(static_cast<float>(n) / 16.0f);
+    values.push_back(static_cast<float>(n) / 32.0f);
+  }
+  char row[port::kCsvMaxRow];
+  std::size_t checked = 0;
+  for (const float v : values) {
+    Point p;
+    p.azimuth_deg = v;  // 3 decimals
+    p.x = v;            // 4 decimals
+    const std::string s(row, port::format_csv_row(row, p, 0, 0));
+    std::vector<std::string> fields;
+    std::stringstream ss(s);
+    for (std::string f; std::getline(ss, f, ',');) fields.push_back(f);
+    ASSERT_EQ(fields.size(), 13u) << s;
+    ASSERT_EQ(fields[5], printf_fixed(v, 3)) << "bits of v: " << std::hex << [&] { std::uint32_t b; std::memcpy(&b, &v, 4); return b; }();
+    ASSERT_EQ(fields[8], printf_fixed(v, 4)) << fields[5];
+    ++checked;
+  }
+  EXPECT_GT(checked, 1500000u);
+}
+
 TEST(CsvWriter, ManyRowsCrossBufferBlocks) {
   const std::string path = temp_path("many.csv");
   constexpr std::size_t kRows = 60000;  // about 5 MB: several 1 MiB blocks
