@@ -1126,6 +1126,55 @@ TEST(CaptureFile, NonCaptureAndEmptyFile) {
   std::remove(empty.c_str());
 }
 
+// Resident kilobytes of the mapping that starts at `start`, as /proc/self/smaps counts them.
+long mapping_rss_kb(const void* start) {
+  std::ifstream smaps("/proc/self/smaps");
+  char head[32];
+  std::snprintf(head, sizeof head, "%lx-", reinterpret_cast<unsigned long>(start));
+  bool inside = false;
+  for (std::string line; std::getline(smaps, line);) {
+    if (line.rfind(head, 0) == 0) inside = true;
+    else if (inside && line.rfind("Rss:", 0) == 0) return std::stol(line.substr(4));
+  }
+  return -1;
+}
+
+// A 48 MB capture (16 copies of the bundled Pandar64 records) read through CaptureFile::next:
+// the same datagrams as a parser over the bytes in memory, and at the end no more than two
+// release steps of the file resident (without the release, all 48 MB would be).
+TEST(CaptureFile, NextReleasesConsumedPages) {
+  const Bytes one = read_file(std::string(HESAI_DATA_DIR) + "/pandar64_dual.pcap");
+  Bytes big(one.begin(), one.begin() + 24);
+  for (int i = 0; i < 16; ++i) big.insert(big.end(), one.begin() + 24, one.end());
+  const std::string path = temp_path("big.pcap");
+  std::ofstream(path, std::ios::binary).write(reinterpret_cast<const char*>(big.data()), static_cast<long>(big.size()));
+
+  CaptureFile f;
+  ASSERT_EQ(f.open(path), CaptureError::ok) << f.message();
+  CaptureParser reference;
+  ASSERT_EQ(reference.open(view(big)), CaptureError::ok);
+  UdpDatagram d, r;
+  std::size_t n = 0;
+  while (f.next(d) == CaptureStatus::datagram) {
+    ASSERT_EQ(reference.next(r), CaptureStatus::datagram);
+    ASSERT_EQ(d.file_offset, r.file_offset);
+    ASSERT_EQ(d.time_ns, r.time_ns);
+    ASSERT_EQ(d.payload.size, r.payload.size);
+    ASSERT_EQ(std::memcmp(d.payload.data, r.payload.data, d.payload.size), 0) << "datagram " << n;
+    ++n;
+  }
+  EXPECT_EQ(reference.next(r), CaptureStatus::end);
+  EXPECT_EQ(n, 16u * 2400u);
+  EXPECT_EQ(f.parser().error(), CaptureError::ok);
+  const long rss_kb = mapping_rss_kb(f.bytes().data);
+  ASSERT_GE(rss_kb, 0) << "mapping not found in /proc/self/smaps";
+  EXPECT_LE(rss_kb, static_cast<long>(2 * CaptureFile::kReleaseBytes / 1024)) << "of " << big.size() / 1024 << " kB";
+  // Released pages read back from the file when touched again.
+  EXPECT_EQ(std::memcmp(f.bytes().data, big.data(), big.size()), 0);
+  f.close();
+  std::remove(path.c_str());
+}
+
 // ---- tshark cross-check -------------------------------------------------------------------------
 
 bool have_tshark() { return std::system("command -v tshark >/dev/null 2>&1") == 0; }

@@ -552,7 +552,21 @@ void CaptureFile::close() {
   if (map_ != nullptr) munmap(map_, size_);
   map_ = nullptr;
   size_ = 0;
+  released_ = 0;
   parser_ = CaptureParser{};
+}
+
+CaptureStatus CaptureFile::next(UdpDatagram& out) {
+  const CaptureStatus st = parser_.next(out);
+  if (st == CaptureStatus::datagram && out.file_offset - released_ >= kReleaseBytes) {
+    // Up to the page that holds the current record: its payload stays mapped.
+    const auto page = static_cast<std::size_t>(sysconf(_SC_PAGESIZE));
+    const std::size_t upto = static_cast<std::size_t>(out.file_offset) / page * page;
+    // Advisory: should it fail, the pages merely stay resident.
+    (void)madvise(static_cast<std::uint8_t*>(map_) + released_, upto - released_, MADV_DONTNEED);
+    released_ = upto;
+  }
+  return st;
 }
 
 CaptureError CaptureFile::open(const std::string& path) {

@@ -3,7 +3,8 @@
 // CaptureParser reads a whole capture held in memory (a ByteView), so it runs the same over a
 // mapped file, a test buffer or fuzzer input. It never allocates, never reads outside the view,
 // and reports a damaged file as an error code with the byte offset of the damaged record.
-// CaptureFile maps a file read-only and feeds a CaptureParser.
+// CaptureFile maps a file read-only and feeds a CaptureParser; it hands the pages it has read back
+// to the kernel as it goes, so its resident memory stays bounded whatever the file's size.
 //
 // Formats (see the pcap and pcapng specifications, draft-ietf-opsawg-pcap / -pcapng):
 //   - classic pcap, magic 0xA1B2C3D4 (microsecond) and 0xA1B23C4D (nanosecond), either byte order;
@@ -176,6 +177,10 @@ class CaptureParser {
 };
 
 /// A capture file mapped read-only into memory, with its parser.
+/// Read it with next(): every kReleaseBytes consumed, the pages before the current record leave
+/// the process (madvise MADV_DONTNEED), so a capture of any size is read in about that much
+/// resident memory (a run of frames without a UDP datagram stays resident until the next one).
+/// Released pages read back from the file if touched again: every ByteView stays valid.
 class CaptureFile {
  public:
   CaptureFile() = default;
@@ -188,6 +193,10 @@ class CaptureFile {
   CaptureError open(const std::string& path);
   /// Unmaps the file.
   void close();
+  /// The next UDP datagram (as parser().next()), releasing the pages already consumed.
+  CaptureStatus next(UdpDatagram& out);
+  /// Bytes consumed between two releases of pages.
+  static constexpr std::size_t kReleaseBytes = std::size_t{8} << 20;
 
   /// A human-readable account of the last open() or next() failure ("" when none).
   std::string message() const;
@@ -203,6 +212,7 @@ class CaptureFile {
  private:
   void* map_ = nullptr;
   std::size_t size_ = 0;
+  std::size_t released_ = 0;  // bytes at the start of the mapping handed back (a page multiple)
   int os_error_ = 0;
   std::string os_what_;
   std::string path_;

@@ -62,7 +62,7 @@ int run_capture(const std::string& path, Pipeline& pipeline, bool quiet) {
   port::UdpDatagram d;
   std::uint64_t n = 0;
   for (;;) {
-    const port::CaptureStatus st = file.parser().next(d);
+    const port::CaptureStatus st = file.next(d);
     if (st == port::CaptureStatus::end) break;
     if (st == port::CaptureStatus::error) {
       std::fprintf(stderr, "hesai: %s\n", file.message().c_str());
@@ -373,7 +373,7 @@ int cmd_replay(Args& args) {
     port::UdpDatagram d;
     std::int64_t first_record = -1, loop_start = port::monotonic_ns();
     for (;;) {
-      const port::CaptureStatus st = file.parser().next(d);
+      const port::CaptureStatus st = file.next(d);
       if (st == port::CaptureStatus::end || g_stop) break;
       if (st == port::CaptureStatus::error) {
         std::fprintf(stderr, "hesai: %s\n", file.message().c_str());
