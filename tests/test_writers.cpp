@@ -427,6 +427,90 @@ TEST(PlyWriter, HeaderAndBinaryRecordsReadBack) {
   std::remove(path.c_str());
 }
 
+// ---------------------------------------------------------------- Streamed PCD and PLY
+
+// What write_pcd / write_ply give for `pts`, with the count in the header as 20 zero-padded digits.
+std::string known_count_file(port::CloudFormat f, const std::vector<Point>& pts, const std::string& path) {
+  const bool pcd = f == port::CloudFormat::pcd;
+  EXPECT_TRUE((pcd ? port::write_pcd(path, pts) : port::write_ply(path, pts)).ok());
+  std::string text = read_text(path);
+  std::remove(path.c_str());
+  std::string n = std::to_string(pts.size());
+  n.insert(0, 20 - n.size(), '0');
+  for (const char* key : {"\nWIDTH ", "\nPOINTS ", "\nelement vertex "}) {
+    const std::size_t at = text.find(key);
+    if (at == std::string::npos) continue;
+    const std::size_t from = at + std::strlen(key);
+    text.replace(from, text.find('\n', from) - from, n);
+  }
+  return text;
+}
+
+// A streamed file is the known-count file but for the padded count: 3 points, and 100 000
+// (2.7 MB of PCD records, across several 1 MiB blocks).
+TEST(CloudWriter, StreamedFileIsTheKnownCountFileWithAPaddedCount) {
+  std::vector<Point> many(100000);
+  for (std::size_t i = 0; i < many.size(); ++i) {
+    many[i] = make_point(static_cast<float>(i) * 0.001f, -1.0f, 0.5f, static_cast<std::uint8_t>(i));
+    many[i].channel = static_cast<std::uint8_t>(i % 128 + 1);
+    many[i].time_ns = 1700000000000000000 + static_cast<std::int64_t>(i) * 1000;
+  }
+  for (const port::CloudFormat f : {port::CloudFormat::pcd, port::CloudFormat::ply}) {
+    for (const std::vector<Point>& pts : {record_points(), many}) {
+      const std::string path = temp_path(f == port::CloudFormat::pcd ? "s.pcd" : "s.ply");
+      port::CloudWriter w;
+      ASSERT_TRUE(w.open(path, f).ok());
+      for (const Point& p : pts) w.write(p);
+      EXPECT_EQ(w.count(), pts.size());
+      ASSERT_TRUE(w.close().ok());
+      EXPECT_FALSE(w.is_open());
+      EXPECT_TRUE(read_text(path) == known_count_file(f, pts, temp_path("known"))) << path << ", " << pts.size();
+      std::remove(path.c_str());
+    }
+  }
+  // PCL reads the padded count.
+  if (!on_path("pcl_pcd2ply")) GTEST_SKIP() << "pcl_pcd2ply not installed (Debian package pcl-tools)";
+  const std::string pcd = temp_path("pcl.pcd");
+  const std::string ply = temp_path("pcl.ply");
+  port::CloudWriter w;
+  ASSERT_TRUE(w.open(pcd, port::CloudFormat::pcd).ok());
+  for (const Point& p : many) w.write(p);
+  ASSERT_TRUE(w.close().ok());
+  const std::string cmd = "pcl_pcd2ply -format 0 -use_camera 0 '" + pcd + "' '" + ply + "' >/dev/null 2>&1";
+  ASSERT_EQ(std::system(cmd.c_str()), 0) << cmd;
+  EXPECT_NE(read_text(ply).find("\nelement vertex 100000\n"), std::string::npos);
+  std::remove(pcd.c_str());
+  std::remove(ply.c_str());
+}
+
+TEST(CloudWriter, RefusesAPipeAndReportsFailures) {
+  int fds[2];
+  ASSERT_EQ(::pipe(fds), 0);
+  port::CloudWriter w;
+  const port::WriteResult piped = w.open("/proc/self/fd/" + std::to_string(fds[1]), port::CloudFormat::pcd);
+  EXPECT_FALSE(piped.ok());
+  EXPECT_EQ(piped.os_error(), ESPIPE) << piped.message();
+  EXPECT_FALSE(w.is_open());
+  ::close(fds[0]);
+  ::close(fds[1]);
+
+  const port::WriteResult missing = w.open("/nonexistent-dir/x.ply", port::CloudFormat::ply);
+  EXPECT_FALSE(missing.ok());
+  EXPECT_EQ(missing.os_error(), ENOENT);
+  EXPECT_FALSE(w.close().ok());  // not open
+
+  ASSERT_TRUE(w.open("/dev/null", port::CloudFormat::ply).ok());  // seekable, so accepted
+  w.write(make_point(1, 2, 3, 4));
+  EXPECT_TRUE(w.close().ok());
+
+  if (::access("/dev/full", W_OK) != 0) GTEST_SKIP() << "no /dev/full";
+  ASSERT_TRUE(w.open("/dev/full", port::CloudFormat::pcd).ok());
+  for (int i = 0; i < 50000; ++i) w.write(make_point(1, 2, 3, 4));  // 1.35 MB: one block fails
+  const port::WriteResult full = w.close();
+  EXPECT_FALSE(full.ok());
+  EXPECT_EQ(full.os_error(), ENOSPC) << full.message();
+}
+
 // ---------------------------------------------------------------- PNG: an independent decoder
 
 // Reflected CRC-32, bit by bit (no table), as PNG's annex D describes it.

@@ -101,6 +101,25 @@ class FileSink {
     return buffer_.data() + used_;
   }
   void commit(std::size_t n) { used_ += n; }
+  // Fails with ESPIPE unless the file can be rewound (a pipe, FIFO, socket or terminal cannot).
+  WriteResult check_seekable() {
+    if (ftello(f_) < 0) {
+      const int err = errno;
+      return WriteResult::failure("cannot write '" + name_ + "': " + std::strerror(err) +
+                                      " (PCD and PLY headers hold the point count, written at the end: give a file)",
+                                  err);
+    }
+    return {};
+  }
+  // Writes what is buffered, then overwrites the first n bytes of the file with `data`.
+  void rewrite_start(const void* data, std::size_t n) {
+    drain();
+    if (!result_.ok()) return;
+    if (fseeko(f_, 0, SEEK_SET) != 0 || std::fwrite(data, 1, n, f_) != n) {
+      const int err = errno;
+      result_ = WriteResult::failure(os_message("cannot write", name_, err), err);
+    }
+  }
   void append(const void* data, std::size_t n) {
     const auto* b = static_cast<const std::uint8_t*>(data);
     while (n > 0) {
@@ -263,10 +282,55 @@ WriteResult CsvWriter::close() {
   return r;
 }
 
-// ---- PCD ----
+// ---- PCD and PLY ----
 
-std::string pcd_header(std::size_t n) {
-  const std::string count = std::to_string(n);
+namespace {
+
+std::string count_text(std::uint64_t n, int digits) {
+  std::string t = std::to_string(n);
+  if (t.size() < static_cast<std::size_t>(digits)) t.insert(0, static_cast<std::size_t>(digits) - t.size(), '0');
+  return t;
+}
+
+void encode_pcd(std::uint8_t* q, const Point& pt) {
+  put_f32(q, pt.x);
+  put_f32(q, pt.y);
+  put_f32(q, pt.z);
+  put_f32(q, static_cast<float>(pt.intensity));
+  store_le16(q, pt.channel);
+  q += 2;
+  *q++ = pt.return_index;
+  put_f64(q, seconds(pt.time_ns));
+}
+
+void encode_ply(std::uint8_t* q, const Point& pt) {
+  put_f32(q, pt.x);
+  put_f32(q, pt.y);
+  put_f32(q, pt.z);
+  *q++ = pt.intensity;
+  *q++ = pt.channel;
+  *q++ = pt.return_index;
+  put_f64(q, seconds(pt.time_ns));
+}
+
+// The whole file when the count is known before the first point.
+WriteResult write_cloud(const std::string& path, const std::string& header, const Point* points, std::size_t count,
+                        std::size_t record_bytes, void (*encode)(std::uint8_t*, const Point&)) {
+  FileSink sink;
+  WriteResult r = sink.open(path);
+  if (!r) return r;
+  sink.append(header.data(), header.size());
+  for (std::size_t i = 0; i < count; ++i) {
+    encode(sink.reserve(record_bytes), points[i]);
+    sink.commit(record_bytes);
+  }
+  return sink.close();
+}
+
+}  // namespace
+
+std::string pcd_header(std::uint64_t n, int digits) {
+  const std::string count = count_text(n, digits);
   return "# .PCD v0.7 - Point Cloud Data file format\n"
          "VERSION 0.7\n"
          "FIELDS x y z intensity ring return timestamp\n"
@@ -281,39 +345,18 @@ std::string pcd_header(std::size_t n) {
 }
 
 WriteResult write_pcd(const std::string& path, const Point* points, std::size_t count) {
-  FileSink sink;
-  WriteResult r = sink.open(path);
-  if (!r) return r;
-  const std::string header = pcd_header(count);
-  sink.append(header.data(), header.size());
-  for (std::size_t i = 0; i < count; ++i) {
-    const Point& pt = points[i];
-    std::uint8_t* const start = sink.reserve(kPcdPointBytes);
-    std::uint8_t* q = start;
-    put_f32(q, pt.x);
-    put_f32(q, pt.y);
-    put_f32(q, pt.z);
-    put_f32(q, static_cast<float>(pt.intensity));
-    store_le16(q, pt.channel);
-    q += 2;
-    *q++ = pt.return_index;
-    put_f64(q, seconds(pt.time_ns));
-    sink.commit(static_cast<std::size_t>(q - start));
-  }
-  return sink.close();
+  return write_cloud(path, pcd_header(count), points, count, kPcdPointBytes, encode_pcd);
 }
 
 WriteResult write_pcd(const std::string& path, const std::vector<Point>& points) {
   return write_pcd(path, points.data(), points.size());
 }
 
-// ---- PLY ----
-
-std::string ply_header(std::size_t n) {
+std::string ply_header(std::uint64_t n, int digits) {
   return "ply\n"
          "format binary_little_endian 1.0\n"
          "comment hesai point cloud: metres; ring = channel; timestamp = s since 1970-01-01 UTC\n"
-         "element vertex " + std::to_string(n) + "\n"
+         "element vertex " + count_text(n, digits) + "\n"
          "property float x\n"
          "property float y\n"
          "property float z\n"
@@ -325,29 +368,65 @@ std::string ply_header(std::size_t n) {
 }
 
 WriteResult write_ply(const std::string& path, const Point* points, std::size_t count) {
-  FileSink sink;
-  WriteResult r = sink.open(path);
-  if (!r) return r;
-  const std::string header = ply_header(count);
-  sink.append(header.data(), header.size());
-  for (std::size_t i = 0; i < count; ++i) {
-    const Point& pt = points[i];
-    std::uint8_t* const start = sink.reserve(kPlyPointBytes);
-    std::uint8_t* q = start;
-    put_f32(q, pt.x);
-    put_f32(q, pt.y);
-    put_f32(q, pt.z);
-    *q++ = pt.intensity;
-    *q++ = pt.channel;
-    *q++ = pt.return_index;
-    put_f64(q, seconds(pt.time_ns));
-    sink.commit(static_cast<std::size_t>(q - start));
-  }
-  return sink.close();
+  return write_cloud(path, ply_header(count), points, count, kPlyPointBytes, encode_ply);
 }
 
 WriteResult write_ply(const std::string& path, const std::vector<Point>& points) {
   return write_ply(path, points.data(), points.size());
+}
+
+// ---- CloudWriter ----
+
+struct CloudWriter::File {
+  FileSink sink;
+};
+
+CloudWriter::CloudWriter() = default;
+
+CloudWriter::~CloudWriter() {
+  if (file_) (void)close();
+}
+
+bool CloudWriter::is_open() const { return file_ != nullptr; }
+
+namespace {
+std::string stream_header(CloudFormat format, std::uint64_t n) {
+  return format == CloudFormat::pcd ? pcd_header(n, CloudWriter::kStreamCountDigits)
+                                    : ply_header(n, CloudWriter::kStreamCountDigits);
+}
+}  // namespace
+
+WriteResult CloudWriter::open(const std::string& path, CloudFormat format) {
+  if (file_) return WriteResult::failure("CloudWriter: a file is still open");
+  auto file = std::make_unique<File>();
+  WriteResult r = file->sink.open(path);
+  if (r) r = file->sink.check_seekable();
+  if (!r) return r;  // the FileSink closes the file
+  format_ = format;
+  count_ = 0;
+  const std::string header = stream_header(format_, 0);
+  file->sink.append(header.data(), header.size());
+  file_ = std::move(file);
+  return {};
+}
+
+void CloudWriter::write(const Point& p) {
+  if (!file_) return;
+  const std::size_t n = format_ == CloudFormat::pcd ? kPcdPointBytes : kPlyPointBytes;
+  std::uint8_t* q = file_->sink.reserve(n);
+  if (format_ == CloudFormat::pcd) encode_pcd(q, p);
+  else encode_ply(q, p);
+  file_->sink.commit(n);
+  ++count_;
+}
+
+WriteResult CloudWriter::close() {
+  if (!file_) return WriteResult::failure("CloudWriter: not open");
+  const std::string header = stream_header(format_, count_);
+  file_->sink.rewrite_start(header.data(), header.size());
+  const WriteResult r = file_->sink.close();
+  file_.reset();
+  return r;
 }
 
 // ---- whole files ----

@@ -28,6 +28,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <limits>
+#include <memory>
 #include <string>
 #include <utility>
 #include <vector>
@@ -112,21 +113,58 @@ class CsvWriter {
 inline constexpr std::size_t kCsvMaxRow = 640;
 std::size_t format_csv_row(char* out, const Point& p, std::uint32_t frame, std::uint64_t packet);
 
-/// The PCD header for `n` points (see the layout above), ending with "DATA binary\n".
-std::string pcd_header(std::size_t n);
+/// The PCD header for `n` points (see the layout above), ending with "DATA binary\n". The count
+/// is printed with at least `digits` digits, zero-padded (PCL and other readers parse "0042" as 42).
+std::string pcd_header(std::uint64_t n, int digits = 0);
 /// Bytes of one PCD record (x, y, z, intensity: 4 each; ring 2; return 1; timestamp 8).
 inline constexpr std::size_t kPcdPointBytes = 27;
 /// Writes `points` as a binary PCD file (unorganised: WIDTH n, HEIGHT 1).
 WriteResult write_pcd(const std::string& path, const Point* points, std::size_t count);
 WriteResult write_pcd(const std::string& path, const std::vector<Point>& points);
 
-/// The PLY header for `n` vertices, ending with "end_header\n".
-std::string ply_header(std::size_t n);
+/// The PLY header for `n` vertices, ending with "end_header\n"; the count zero-padded to `digits`.
+std::string ply_header(std::uint64_t n, int digits = 0);
 /// Bytes of one PLY vertex (x, y, z: float; intensity, ring, return: uchar; timestamp: double).
 inline constexpr std::size_t kPlyPointBytes = 23;
 /// Writes `points` as a binary little-endian PLY file of one vertex element.
 WriteResult write_ply(const std::string& path, const Point* points, std::size_t count);
 WriteResult write_ply(const std::string& path, const std::vector<Point>& points);
+
+/// File format of a CloudWriter.
+enum class CloudFormat : std::uint8_t { pcd, ply };
+
+/// Writes one PCD or PLY file point by point, in memory bounded by one 1 MiB block whatever the
+/// number of points. The header goes out first with the count as kStreamCountDigits zero-padded
+/// digits, and close() rewrites it with the final count. So the destination must be seekable (a
+/// regular file; /dev/null): open() refuses a pipe, FIFO, socket or terminal with os_error()
+/// ESPIPE. Not copyable; closes on destruction (errors then lost: call close() to see them).
+class CloudWriter {
+ public:
+  /// Digits of the count in the header: every 64-bit count fits.
+  static constexpr int kStreamCountDigits = 20;
+
+  CloudWriter();
+  ~CloudWriter();
+  CloudWriter(const CloudWriter&) = delete;
+  CloudWriter& operator=(const CloudWriter&) = delete;
+
+  /// Creates (truncates) `path` and writes the header for a count of 0.
+  WriteResult open(const std::string& path, CloudFormat format);
+  /// One record. A failed block write is kept and reported by close().
+  void write(const Point& p);
+  /// Writes what is buffered, rewrites the header with count() and closes; reports any failure.
+  WriteResult close();
+
+  bool is_open() const;
+  /// Points written since open.
+  std::uint64_t count() const { return count_; }
+
+ private:
+  struct File;
+  std::unique_ptr<File> file_;
+  CloudFormat format_ = CloudFormat::pcd;
+  std::uint64_t count_ = 0;
+};
 
 /// What colours the points of the bird's-eye view.
 enum class ColorBy : std::uint8_t {
