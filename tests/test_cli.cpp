@@ -44,19 +44,33 @@ std::string cli() {
 struct CmdResult {
   int status = -1;
   std::string out;
+  std::string err;
 };
 
-// Runs the program; `out` is its standard output, followed by its standard error with `with_stderr`.
-CmdResult run(const std::string& args, bool with_stderr = false) {
+std::string read_text(const std::string& path) {
+  std::ifstream f(path, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(f), std::istreambuf_iterator<char>());
+}
+
+// Runs the program with `args` (shell words) and `env` ("NAME=value ...", or empty) as its only
+// key variables: HESAI_SESSION_KEY and HESAI_SECRET of the test's own environment are removed.
+CmdResult run(const std::string& args, const std::string& env = "") {
   CmdResult r;
-  const std::string cmd = cli() + " " + args + (with_stderr ? " 2>&1" : " 2>/dev/null");
+  char err_path[] = "/tmp/hesai_cli_err_XXXXXX";
+  const int fd = mkstemp(err_path);
+  if (fd < 0) return r;
+  close(fd);
+  const std::string cmd = "env -u HESAI_SESSION_KEY -u HESAI_SECRET " + env + " " + cli() + " " + args + " 2>" + err_path;
   FILE* p = popen(cmd.c_str(), "r");
-  if (!p) return r;
-  char buf[65536];
-  std::size_t n;
-  while ((n = std::fread(buf, 1, sizeof buf, p)) > 0) r.out.append(buf, n);
-  const int st = pclose(p);
-  r.status = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
+  if (p) {
+    char buf[65536];
+    std::size_t n;
+    while ((n = std::fread(buf, 1, sizeof buf, p)) > 0) r.out.append(buf, n);
+    const int st = pclose(p);
+    r.status = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
+  }
+  r.err = read_text(err_path);
+  std::remove(err_path);
   return r;
 }
 
@@ -208,9 +222,9 @@ TEST(Cli, CaptureErrorMessages) {
       {dir + "/none.pcap", dir + "/none.pcap: open failed: " + std::strerror(ENOENT)},
   };
   for (const auto& [file, message] : cases) {
-    const CmdResult r = run("stats --json " + file, true);
-    EXPECT_EQ(r.status, 2) << r.out;
-    EXPECT_NE(r.out.find("hesai: " + message + "\n"), std::string::npos) << r.out;
+    const CmdResult r = run("stats --json " + file);
+    EXPECT_EQ(r.status, 2) << r.err;
+    EXPECT_NE(r.err.find("hesai: " + message + "\n"), std::string::npos) << r.err;
   }
 }
 
@@ -258,10 +272,10 @@ TEST(Cli, CalibrationValueOutOfRangeIsAConfigurationError) {
     // The bundled file itself is accepted.
     EXPECT_EQ(run(stats + data_path(std::string("calibration/") + c.file)).status, 0);
     const std::string path = altered_calibration(c.file, c.from, c.to);
-    const CmdResult r = run(stats + path, true);
-    EXPECT_EQ(r.status, 1) << r.out;
-    EXPECT_NE(r.out.find(path + ": " + c.error), std::string::npos) << r.out;
-    EXPECT_NE(r.out.find(c.why), std::string::npos) << r.out;
+    const CmdResult r = run(stats + path);
+    EXPECT_EQ(r.status, 1) << r.err;
+    EXPECT_NE(r.err.find(path + ": " + c.error), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find(c.why), std::string::npos) << r.err;
     EXPECT_EQ(r.out.find("\"packets\""), std::string::npos) << r.out;  // no statistics
   }
   // The ends of the ranges are accepted: elevation 90 degrees, a firing time of -1000 us.
@@ -412,6 +426,89 @@ TEST(Cli, PacketRangeAndRangeFilter) {
   }
   EXPECT_GT(near_rows, 0u);
   EXPECT_LT(near_rows, rows);
+}
+
+// ---- Outputs ----
+
+// The data after a PCD or PLY header (`end` its last line).
+std::string records(const std::string& file, const std::string& end) {
+  const std::size_t at = file.find(end);
+  return at == std::string::npos ? std::string() : file.substr(at + end.size());
+}
+
+// One PCD or PLY file for the whole capture is written as a stream: its header gives the
+// capture's point count (test_golden.cpp counts 337 108) as 20 zero-padded digits, and its records
+// are those of the per-frame files (whose count is known when they are written), in order.
+TEST(Cli, OneCloudFileIsStreamedAndItsCountWrittenAtTheEnd) {
+  const std::string dir = temp_dir();
+  for (const char* format_name : {"pcd", "ply"}) {
+    const std::string format = format_name;
+    const std::string one = dir + "/one." + format;
+    const CmdResult r = run("decode " + data_path("qt128c2x_dual.pcap") + " --quiet --format " + format + " --out " + one);
+    ASSERT_EQ(r.status, 0) << r.err;
+    ASSERT_EQ(run("decode " + data_path("qt128c2x_dual.pcap") + " --quiet --per-frame --format " + format + " --out " +
+                  dir + "/" + format).status, 0);
+    const std::string end = format == "pcd" ? "DATA binary\n" : "end_header\n";
+    std::string frames;
+    for (int id = 1;; ++id) {
+      char name[64];
+      std::snprintf(name, sizeof name, "/frame_%06d.", id);
+      std::ifstream f(dir + "/" + format + name + format);
+      if (!f) break;
+      frames += records(read_text(dir + "/" + format + name + format), end);
+    }
+    const std::string text = read_text(one);
+    const std::size_t record_bytes = format == "pcd" ? 27 : 23;
+    EXPECT_EQ(records(text, end).size(), 337108 * record_bytes) << format;
+    EXPECT_TRUE(records(text, end) == frames) << format;
+    if (format == "pcd") {
+      EXPECT_NE(text.find("\nWIDTH 00000000000000337108\n"), std::string::npos);
+      EXPECT_NE(text.find("\nPOINTS 00000000000000337108\n"), std::string::npos);
+    } else {
+      EXPECT_NE(text.find("\nelement vertex 00000000000000337108\n"), std::string::npos);
+    }
+  }
+}
+
+// A pipe cannot take a PCD or PLY file (its header's count is written last): a usage error that
+// says so, before any decoding.
+TEST(Cli, OneCloudFileRefusesAPipe) {
+  for (const char* format : {"pcd", "ply"}) {
+    const CmdResult r = run("decode " + data_path("qt128c2x_dual.pcap") + " --quiet --format " + format + " --out /dev/stdout");
+    EXPECT_EQ(r.status, 1) << format;
+    EXPECT_TRUE(r.out.empty()) << format;
+    EXPECT_NE(r.err.find("give a file"), std::string::npos) << r.err;
+  }
+}
+
+// An output that cannot be created is an I/O failure: exit 2, whatever the format.
+TEST(Cli, OutputThatCannotBeCreatedExits2) {
+  const std::string capture = data_path("qt128c2x_dual.pcap");
+  for (const char* out : {"--per-frame --out /nonexistent-hesai/frames", "--format pcd --out /nonexistent-hesai/x.pcd",
+                                "--format ply --out /nonexistent-hesai/x.ply", "--out /nonexistent-hesai/x.csv",
+                                "--format png --out /nonexistent-hesai/x.png"}) {
+    const CmdResult r = run("decode " + capture + " --quiet " + std::string(out));
+    EXPECT_EQ(r.status, 2) << out;
+    EXPECT_NE(r.err.find("/nonexistent-hesai/"), std::string::npos) << r.err;
+    EXPECT_EQ(r.err.find("--help"), std::string::npos) << "not a usage error: " << r.err;
+  }
+}
+
+// stats on a capture it cannot read prints the error alone: no table of zeros on stdout.
+// decode of one leaves an existing output as it was.
+TEST(Cli, UnreadableCaptureGivesOnlyItsError) {
+  for (const std::string& input : {std::string("/nonexistent-hesai/file.pcap"), data_path("calibration/pandar64_unit_a_angles.csv")}) {
+    for (const char* json : {"", " --json"}) {
+      const CmdResult r = run("stats " + input + json);
+      EXPECT_EQ(r.status, 2) << input;
+      EXPECT_EQ(r.out, "") << input;
+      EXPECT_NE(r.err.find(input), std::string::npos) << r.err;
+    }
+  }
+  const std::string out = temp_dir() + "/kept.csv";
+  std::ofstream(out) << "kept\n";
+  EXPECT_EQ(run("decode /nonexistent-hesai/file.pcap --out " + out).status, 2);
+  EXPECT_EQ(read_text(out), "kept\n");
 }
 
 // ---- Built captures with known faults ----

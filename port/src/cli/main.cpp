@@ -44,19 +44,29 @@ int usage_error(const std::string& command, const std::string& message) {
   return kExitUsage;
 }
 
+// Reports a failure with exit status `status`: a usage error with the hint to --help, any other
+// with the message alone.
+int fail(const std::string& command, int status, const std::string& message) {
+  if (status == kExitUsage) return usage_error(command, message);
+  std::fprintf(stderr, "hesai %s: %s\n", command.c_str(), message.c_str());
+  return status;
+}
+
 std::uint64_t source_key(const port::UdpDatagram& d) {
   std::uint64_t h = 1469598103934665603ull;  // FNV-1a over the address, then the port
   for (std::uint8_t b : d.src_addr) h = (h ^ b) * 1099511628211ull;
   return h ^ d.src_port;
 }
 
-// Feeds every datagram of a capture to the pipeline. Returns an exit status.
-int run_capture(const std::string& path, Pipeline& pipeline, bool quiet) {
-  port::CaptureFile file;
-  if (file.open(path) != port::CaptureError::ok) {
-    std::fprintf(stderr, "hesai: %s\n", file.message().c_str());
-    return kExitInput;
-  }
+// Opens a capture; false, after saying why, when it cannot be read.
+bool open_capture(const std::string& path, port::CaptureFile& file) {
+  if (file.open(path) == port::CaptureError::ok) return true;
+  std::fprintf(stderr, "hesai: %s\n", file.message().c_str());
+  return false;
+}
+
+// Feeds every datagram of an open capture to the pipeline. Returns an exit status.
+int run_capture(port::CaptureFile& file, Pipeline& pipeline, bool quiet) {
   const bool progress = !quiet && isatty(STDERR_FILENO);
   const std::size_t total = file.bytes().size;
   port::UdpDatagram d;
@@ -111,14 +121,17 @@ int cmd_decode(Args& args) {
   if (capture.empty()) return usage_error("decode", "missing CAPTURE");
   if (!finish_key_options(o, error)) return usage_error("decode", error);
 
+  // The input first: an unreadable capture leaves any existing output untouched.
+  port::CaptureFile file;
+  if (!open_capture(capture, file)) return kExitInput;
   OutputSink sink(out);
   Pipeline pipeline(o, &sink);
   if (const int rc = pipeline.load_files(error); rc != kExitOk) {
     std::fprintf(stderr, "hesai decode: %s\n", error.c_str());
     return rc;
   }
-  if (!sink.open(error)) return usage_error("decode", error);
-  const int rc = run_capture(capture, pipeline, quiet);
+  if (const int st = sink.open(error); st != kExitOk) return fail("decode", st, error);
+  const int rc = run_capture(file, pipeline, quiet);
   if (!sink.close(error)) {
     std::fprintf(stderr, "hesai decode: %s\n", error.c_str());
     return kExitInput;
@@ -172,12 +185,15 @@ int cmd_stats(Args& args) {
   }
   if (capture.empty()) return usage_error("stats", "missing CAPTURE");
   if (!finish_key_options(o, error)) return usage_error("stats", error);
+  // An unreadable capture gets its error alone; one damaged part-way, the counts up to the damage.
+  port::CaptureFile file;
+  if (!open_capture(capture, file)) return kExitInput;
   Pipeline pipeline(o, nullptr);
   if (const int rc = pipeline.load_files(error); rc != kExitOk) {
     std::fprintf(stderr, "hesai stats: %s\n", error.c_str());
     return rc;
   }
-  const int rc = run_capture(capture, pipeline, quiet);
+  const int rc = run_capture(file, pipeline, quiet);
   if (rc == kExitUsage) return rc;
   if (json) std::printf("%s\n", stats_json(pipeline.stats()).c_str());
   else std::printf("%s\n%s", capture.c_str(), stats_text(pipeline).c_str());
@@ -239,7 +255,7 @@ int cmd_listen(Args& args) {
   std::unique_ptr<OutputSink> sink;
   if (!out.out.empty()) {
     sink = std::make_unique<OutputSink>(out);
-    if (!sink->open(error)) return usage_error("listen", error);
+    if (const int st = sink->open(error); st != kExitOk) return fail("listen", st, error);
   }
   Pipeline pipeline(o, sink.get());
   if (const int rc = pipeline.load_files(error); rc != kExitOk) {
@@ -356,10 +372,7 @@ int cmd_replay(Args& args) {
   port::UdpSender sender;
   if (!sender.open(to, error)) return usage_error("replay", error);
   port::CaptureFile file;
-  if (file.open(capture) != port::CaptureError::ok) {
-    std::fprintf(stderr, "hesai: %s\n", file.message().c_str());
-    return kExitInput;
-  }
+  if (!open_capture(capture, file)) return kExitInput;
   std::signal(SIGINT, on_signal);
   std::uint64_t sent = 0, failed = 0;
   std::uint32_t next_sequence = 0;

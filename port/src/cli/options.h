@@ -9,7 +9,8 @@
 
 namespace hesai::cli {
 
-/// Exit statuses: 0 success, 1 usage (or a calibration file the decoder cannot use), 2 unreadable input.
+/// Exit statuses: 0 success, 1 usage (or a calibration file the decoder cannot use), 2 unreadable
+/// input or an output that cannot be written.
 inline constexpr int kExitOk = 0;
 inline constexpr int kExitUsage = 1;
 inline constexpr int kExitInput = 2;

@@ -6,33 +6,36 @@
 
 namespace hesai::cli {
 
-bool OutputSink::open(std::string& error) {
+int OutputSink::open(std::string& error) {
+  const bool to_stdout = options_.out.empty() || options_.out == "-";
   if (options_.per_frame) {
-    if (options_.out.empty() || options_.out == "-") {
+    if (to_stdout) {
       error = "--per-frame needs --out DIRECTORY";
-      return false;
+      return kExitUsage;
     }
     if (mkdir(options_.out.c_str(), 0777) != 0 && errno != EEXIST) {
       error = "cannot create directory '" + options_.out + "': " + std::strerror(errno);
-      return false;
+      return kExitInput;
     }
-    return true;
+    return kExitOk;
   }
-  if (options_.format == "csv") {
-    const port::WriteResult r = (options_.out.empty() || options_.out == "-") ? csv_.open(stdout, "stdout") : csv_.open(options_.out);
-    if (!r) {
-      error = r.message();
-      return false;
-    }
-    csv_open_ = true;
-    if (!options_.out.empty() && options_.out != "-") files_.push_back(options_.out);
-    return true;
-  }
-  if (options_.out.empty() || options_.out == "-") {
+  if (options_.format != "csv" && to_stdout) {
     error = "--format " + options_.format + " needs --out FILE";
-    return false;
+    return kExitUsage;
   }
-  return true;
+  port::WriteResult r;
+  if (options_.format == "csv") {
+    r = to_stdout ? csv_.open(stdout, "stdout") : csv_.open(options_.out);
+    csv_open_ = r.ok();
+  } else if (options_.format == "pcd" || options_.format == "ply") {
+    r = stream_.open(options_.out, options_.format == "pcd" ? port::CloudFormat::pcd : port::CloudFormat::ply);
+  }
+  if (!r) {
+    error = r.message();
+    return r.os_error() == ESPIPE ? kExitUsage : kExitInput;
+  }
+  if ((csv_open_ || stream_.is_open()) && !to_stdout) files_.push_back(options_.out);  // one PNG: at close
+  return kExitOk;
 }
 
 std::string OutputSink::frame_path(std::uint64_t id) const {
@@ -46,6 +49,10 @@ void OutputSink::point(const OutPoint& p) {
   if (csv_open_ && !options_.per_frame) {
     const port::WriteResult r = csv_.write(p.point, static_cast<std::uint32_t>(p.frame), p.packet);
     if (!r && deferred_error_.empty()) deferred_error_ = r.message();
+    return;
+  }
+  if (stream_.is_open()) {
+    stream_.write(p.point);
     return;
   }
   cloud_.push_back(p.point);
@@ -91,8 +98,8 @@ bool OutputSink::write_cloud(const std::string& path, std::string& error) {
 }
 
 bool OutputSink::close(std::string& error) {
-  if (csv_open_) {
-    const port::WriteResult r = csv_.close();
+  if (csv_open_ || stream_.is_open()) {
+    const port::WriteResult r = csv_open_ ? csv_.close() : stream_.close();
     if (!r && deferred_error_.empty()) deferred_error_ = r.message();
   } else if (!options_.per_frame && !write_cloud(options_.out, error)) {
     return false;

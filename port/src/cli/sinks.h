@@ -17,11 +17,14 @@ namespace hesai::cli {
 class OutputSink : public Sink {
  public:
   explicit OutputSink(const OutputOptions& o) : options_(o) {}
-  /// Prepares the destination (creates the --per-frame directory, opens the CSV file).
-  bool open(std::string& error);
+  /// Prepares the destination: creates the --per-frame directory, opens the CSV file or the PCD/PLY
+  /// file (written as a stream, its header's count rewritten by close()). Returns kExitOk,
+  /// kExitUsage (no --out where one is needed; a pipe for PCD/PLY) or kExitInput (the output
+  /// cannot be created), with a message.
+  int open(std::string& error);
   void point(const OutPoint& p) override;
   void frame_closed(const FrameInfo& frame) override;
-  /// Writes what is still held (the single cloud). Returns false with a message.
+  /// Writes what is still held (the single PNG), closes the file. Returns false with a message.
   bool close(std::string& error);
   /// Files written so far.
   const std::vector<std::string>& files() const { return files_; }
@@ -34,7 +37,8 @@ class OutputSink : public Sink {
   OutputOptions options_;
   port::CsvWriter csv_;
   bool csv_open_ = false;
-  std::vector<Point> cloud_;    // the current frame (--per-frame) or every point
+  port::CloudWriter stream_;    // the single PCD or PLY file
+  std::vector<Point> cloud_;    // the current frame (--per-frame) or every point (one PNG)
   std::vector<std::uint64_t> packets_;  // packet index of each point in cloud_ (per-frame CSV)
   std::vector<std::string> files_;
   std::uint64_t points_written_ = 0;
