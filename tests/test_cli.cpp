@@ -2,9 +2,13 @@
 // with known drops, duplicates, late packets, corrupted CRCs and signatures.
 #include <gtest/gtest.h>
 #include <arpa/inet.h>
+#include <fcntl.h>
 #include <netinet/in.h>
 #include <sys/socket.h>
+#include <signal.h>
+#include <spawn.h>
 #include <sys/stat.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include <cerrno>
@@ -549,18 +553,36 @@ TEST(Cli, StatsCountsDropsDuplicatesLateAndCrcErrors) {
   EXPECT_NE(r.out.find("\"QT128C2X\":19"), std::string::npos) << r.out;
 }
 
-TEST(Cli, StatsCountsSignatures) {
+std::string hex32(const std::uint8_t* b) {
+  std::string s;
+  char h[3];
+  for (int i = 0; i < 32; ++i) {
+    std::snprintf(h, sizeof h, "%02x", b[i]);
+    s += h;
+  }
+  return s;
+}
+
+// A QT128 capture of 11 packets: 6 signed under a session key derived from a secret and two
+// randoms, 2 with a flipped signature bit, 3 unsigned (all-zero signature).
+struct SignedCapture {
+  std::string path, secret, key_hex, lidar_hex, client_hex;
+  std::string randoms() const { return " --lidar-random " + lidar_hex + " --client-random " + client_hex; }
+};
+SignedCapture make_signed_capture() {
   const auto real = pcap_payloads("qt128c2x_dual.pcap");
-  ASSERT_GT(real.size(), 10u);
+  SignedCapture c;
+  EXPECT_GT(real.size(), 10u);
+  if (real.size() <= 10) return c;  // a missing capture: the callers' checks fail
   std::uint8_t lidar[32], client[32], key[32];
   for (int i = 0; i < 32; ++i) {
     lidar[i] = static_cast<std::uint8_t>(0x10 + i);
     client[i] = static_cast<std::uint8_t>(0x80 + i);
   }
-  const std::string secret = "hesai-secret-01";
-  ASSERT_EQ(hesai_session_key(ByteView{reinterpret_cast<const std::uint8_t*>(secret.data()), secret.size()}, lidar, client, key),
+  c.secret = "hesai-secret-01";
+  EXPECT_EQ(hesai_session_key(ByteView{reinterpret_cast<const std::uint8_t*>(c.secret.data()), c.secret.size()}, lidar,
+                              client, key),
             Error::ok);
-  // 6 signed, 2 with a flipped signature bit, 3 unsigned (all-zero signature).
   std::vector<std::vector<std::uint8_t>> out;
   for (std::size_t k = 0; k < 11; ++k) {
     auto p = real[k];
@@ -568,32 +590,30 @@ TEST(Cli, StatsCountsSignatures) {
     if (k == 6 || k == 7) p[1100] ^= 0x04;
     out.push_back(p);
   }
-  const std::string dir = temp_dir();
-  write_pcap(dir + "/signed.pcap", out);
-  auto hex = [](const std::uint8_t* b) {
-    std::string s;
-    char h[3];
-    for (int i = 0; i < 32; ++i) {
-      std::snprintf(h, sizeof h, "%02x", b[i]);
-      s += h;
-    }
-    return s;
-  };
-  const std::string by_secret = " --secret " + secret + " --lidar-random " + hex(lidar) + " --client-random " + hex(client);
-  auto j = json_numbers(run("stats " + dir + "/signed.pcap --json" + by_secret).out);
+  c.path = temp_dir() + "/signed.pcap";
+  write_pcap(c.path, out);
+  c.key_hex = hex32(key);
+  c.lidar_hex = hex32(lidar);
+  c.client_hex = hex32(client);
+  return c;
+}
+
+TEST(Cli, StatsCountsSignatures) {
+  const SignedCapture c = make_signed_capture();
+  auto j = json_numbers(run("stats " + c.path + " --json --secret " + c.secret + c.randoms()).out);
   EXPECT_EQ(j["signature_valid"], 6);
   EXPECT_EQ(j["signature_invalid"], 2);
   EXPECT_EQ(j["signature_missing"], 3);
   EXPECT_EQ(j["signature_unverified"], 0);
   const long long points_checked = j["points"];
 
-  j = json_numbers(run("stats " + dir + "/signed.pcap --json --session-key " + hex(key) + " --allow-unsigned").out);
+  j = json_numbers(run("stats " + c.path + " --json --session-key " + c.key_hex + " --allow-unsigned").out);
   EXPECT_EQ(j["signature_valid"], 6);
   EXPECT_EQ(j["signature_invalid"], 2);
   EXPECT_EQ(j["signature_missing"], 3);  // accepted, and still counted as unsigned
   EXPECT_GT(j["points"], points_checked);  // the 3 unsigned packets now contribute points
 
-  j = json_numbers(run("stats " + dir + "/signed.pcap --json").out);  // no key
+  j = json_numbers(run("stats " + c.path + " --json").out);  // no key
   EXPECT_EQ(j["signature_unverified"], 8);
   EXPECT_EQ(j["signature_valid"], 0);
   EXPECT_EQ(j["signature_invalid"], 0);
@@ -679,7 +699,160 @@ TEST(Cli, StatsReportsHighTemperatureAndGpsLock) {
   EXPECT_EQ(text_number(t.out, "gps_position_invalid"), 2) << t.out;
 }
 
+// Writes `text` to `path` with permission bits `mode` (chmod, so the umask does not interfere).
+void write_key_file(const std::string& path, const std::string& text, mode_t mode) {
+  std::ofstream(path, std::ios::binary) << text;
+  ASSERT_EQ(chmod(path.c_str(), mode), 0);
+}
+
+// Every way of giving the key verifies the signed capture as the --session-key flag does (6 valid,
+// 2 invalid, 3 missing); the command-line flags warn and name the safer ways; no output ever
+// holds the key or the secret.
+TEST(Cli, KeysFromFilesAndEnvironmentVerifyAsTheFlags) {
+  const SignedCapture c = make_signed_capture();
+  const std::string dir = temp_dir();
+  write_key_file(dir + "/key", c.key_hex + "\n", 0600);
+  write_key_file(dir + "/key_crlf", c.key_hex + "\r\nsecond line\n", 0600);
+  write_key_file(dir + "/key_no_newline", c.key_hex, 0400);
+  write_key_file(dir + "/secret", c.secret + "\n", 0600);
+  struct Case {
+    std::string args, env;
+    const char* warning;  // a text the warning must hold, or nullptr: stderr stays empty
+    std::vector<std::string> names;  // what the warning must name
+  };
+  const std::vector<Case> cases = {
+      {"--session-key " + c.key_hex, "", "--session-key puts key material on the command line",
+       {"--session-key-file", "HESAI_SESSION_KEY"}},
+      {"--secret " + c.secret + c.randoms(), "", "--secret puts key material on the command line",
+       {"--secret-file", "HESAI_SECRET"}},
+      {"--session-key-file " + dir + "/key", "", nullptr, {}},
+      {"--session-key-file " + dir + "/key_crlf", "", nullptr, {}},
+      {"--session-key-file " + dir + "/key_no_newline", "", nullptr, {}},
+      {"--secret-file " + dir + "/secret" + c.randoms(), "", nullptr, {}},
+      {"", "HESAI_SESSION_KEY=" + c.key_hex, nullptr, {}},
+      {"" + c.randoms(), "HESAI_SECRET=" + c.secret, nullptr, {}},
+      // A key option takes precedence over the environment (here a wrong key).
+      {"--session-key-file " + dir + "/key", "HESAI_SESSION_KEY=" + std::string(64, '0'), nullptr, {}},
+  };
+  for (const Case& k : cases) {
+    SCOPED_TRACE(k.args + " " + k.env);
+    const CmdResult r = run("stats " + c.path + " --json --quiet " + k.args, k.env);
+    ASSERT_EQ(r.status, 0) << r.err;
+    auto j = json_numbers(r.out);
+    EXPECT_EQ(j["signature_valid"], 6);
+    EXPECT_EQ(j["signature_invalid"], 2);
+    EXPECT_EQ(j["signature_missing"], 3);
+    EXPECT_EQ(j["signature_unverified"], 0);
+    if (k.warning == nullptr) {
+      EXPECT_EQ(r.err, "");
+    } else {
+      EXPECT_NE(r.err.find(std::string("hesai: warning: ") + k.warning), std::string::npos) << r.err;
+      for (const std::string& name : k.names) EXPECT_NE(r.err.find(name), std::string::npos) << name << ": " << r.err;
+    }
+    for (const std::string* secret : {&c.key_hex, &c.secret}) {
+      EXPECT_EQ(r.err.find(*secret), std::string::npos) << r.err;
+      EXPECT_EQ(r.out.find(*secret), std::string::npos) << r.out;
+    }
+  }
+}
+
+// A key file that group or others may read is used, with a warning (as ssh warns of a private
+// key file); mode 0600 or 0400 gets none.
+TEST(Cli, KeyFileReadableByOthersWarns) {
+  const SignedCapture c = make_signed_capture();
+  const std::string file = temp_dir() + "/key";
+  for (const mode_t mode : {0644u, 0640u, 0604u, 0660u, 0600u, 0400u}) {
+    SCOPED_TRACE(mode);
+    write_key_file(file, c.key_hex + "\n", mode);
+    const CmdResult r = run("stats " + c.path + " --json --quiet --session-key-file " + file);
+    ASSERT_EQ(r.status, 0) << r.err;
+    EXPECT_EQ(json_numbers(r.out)["signature_valid"], 6);
+    if ((mode & 077) != 0) {
+      char text[16];
+      std::snprintf(text, sizeof text, "%04o", static_cast<unsigned>(mode));
+      EXPECT_NE(r.err.find("hesai: warning: key file '" + file + "' is accessible by group or others (mode " + text + ")"),
+                std::string::npos) << r.err;
+    } else {
+      EXPECT_EQ(r.err, "");
+    }
+  }
+}
+
+// Ambiguous, malformed or unreadable keys: usage errors (1), an unreadable key file an I/O failure
+// (2); no message shows what the file or variable held.
+TEST(Cli, KeyErrors) {
+  const SignedCapture c = make_signed_capture();
+  const std::string dir = temp_dir();
+  write_key_file(dir + "/key", c.key_hex + "\n", 0600);
+  const std::string almost = c.key_hex.substr(0, 63) + "g";  // not hex
+  write_key_file(dir + "/bad", almost + "\n", 0600);
+  write_key_file(dir + "/empty", "", 0600);
+  write_key_file(dir + "/secret", c.secret + "\n", 0600);
+  const std::string short_secret = "short77";  // 7 characters: HKDF input the sensor refuses
+  write_key_file(dir + "/short", short_secret + "\n", 0600);
+  struct Case {
+    std::string args, env;
+    int status;
+  };
+  const std::vector<Case> cases = {
+      {"--session-key-file " + dir + "/key --secret-file " + dir + "/secret" + c.randoms(), "", 1},
+      {"--session-key-file " + dir + "/key --session-key-file " + dir + "/key", "", 1},
+      {"--session-key " + c.key_hex + " --secret " + c.secret + c.randoms(), "", 1},
+      {"", "HESAI_SESSION_KEY=" + c.key_hex + " HESAI_SECRET=" + c.secret, 1},
+      {"--session-key-file " + dir + "/bad", "", 1},
+      {"--session-key-file " + dir + "/empty", "", 1},
+      {"", "HESAI_SESSION_KEY=" + almost, 1},
+      {"--secret-file " + dir + "/secret", "", 1},  // no randoms
+      {"", "HESAI_SECRET=" + c.secret, 1},          // no randoms
+      {"--session-key-file " + dir + "/key" + c.randoms(), "", 1},  // randoms without a secret
+      {"--secret-file " + dir + "/short" + c.randoms(), "", 1},
+      {"--session-key-file " + dir + "/missing", "", 2},
+      {"--secret-file " + dir + c.randoms(), "", 2},  // a directory
+  };
+  for (const Case& k : cases) {
+    SCOPED_TRACE(k.args + " " + k.env);
+    const CmdResult r = run("stats " + c.path + " --json " + k.args, k.env);
+    EXPECT_EQ(r.status, k.status) << r.err;
+    EXPECT_EQ(r.out, "");
+    EXPECT_NE(r.err.find("hesai stats: "), std::string::npos) << r.err;
+    for (const std::string* secret : {&almost, &c.secret, &short_secret}) EXPECT_EQ(r.err.find(*secret), std::string::npos) << r.err;
+  }
+}
+
 // ---- Live: replay into listen on 127.0.0.1 ----
+
+// A key given on the command line is wiped from the program's argv once read: a running
+// `listen` no longer shows it in /proc/PID/cmdline (it did for the moment before).
+TEST(Cli, CommandLineKeyLeavesTheProcessArguments) {
+#if defined(HESAI_CLI_EMULATOR)
+  GTEST_SKIP() << "/proc/PID/cmdline shows the emulator's own arguments";
+#endif
+  const SignedCapture c = make_signed_capture();
+  const int port = free_udp_port();
+  ASSERT_NE(port, 0);
+  const std::string port_text = std::to_string(port);
+  std::vector<std::string> words = {HESAI_CLI_PATH, "listen", "--bind", "127.0.0.1", "--port", port_text, "--gps-port", "0",
+                                    "--seconds", "20", "--quiet", "--session-key", c.key_hex};
+  std::vector<char*> argv;
+  for (std::string& w : words) argv.push_back(&w[0]);
+  argv.push_back(nullptr);
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_addopen(&actions, 1, "/dev/null", O_WRONLY, 0);
+  posix_spawn_file_actions_addopen(&actions, 2, "/dev/null", O_WRONLY, 0);
+  pid_t pid = 0;
+  ASSERT_EQ(posix_spawn(&pid, HESAI_CLI_PATH, &actions, nullptr, argv.data(), environ), 0);
+  posix_spawn_file_actions_destroy(&actions);
+  const bool listening = wait_for_listener(port);  // the options were read before the socket opened
+  const std::string cmdline = read_text("/proc/" + std::to_string(pid) + "/cmdline");
+  kill(pid, SIGTERM);
+  int status = 0;
+  waitpid(pid, &status, 0);
+  ASSERT_TRUE(listening);
+  EXPECT_NE(cmdline.find("--session-key"), std::string::npos);
+  EXPECT_EQ(cmdline.find(c.key_hex), std::string::npos);
+  EXPECT_EQ(cmdline.find(c.key_hex.substr(0, 8)), std::string::npos);
+}
 
 TEST(Cli, ListenReceivesEveryReplayedPacket) {
   const int port = free_udp_port();

@@ -119,13 +119,14 @@ int cmd_decode(Args& args) {
     else return usage_error("decode", "one capture at a time ('" + a + "')");
   }
   if (capture.empty()) return usage_error("decode", "missing CAPTURE");
-  if (!finish_key_options(o, error)) return usage_error("decode", error);
+  if (const int st = finish_key_options(o, error); st != kExitOk) return fail("decode", st, error);
 
   // The input first: an unreadable capture leaves any existing output untouched.
   port::CaptureFile file;
   if (!open_capture(capture, file)) return kExitInput;
   OutputSink sink(out);
   Pipeline pipeline(o, &sink);
+  wipe_key(o);
   if (const int rc = pipeline.load_files(error); rc != kExitOk) {
     std::fprintf(stderr, "hesai decode: %s\n", error.c_str());
     return rc;
@@ -184,11 +185,12 @@ int cmd_stats(Args& args) {
     else return usage_error("stats", "one capture at a time ('" + a + "')");
   }
   if (capture.empty()) return usage_error("stats", "missing CAPTURE");
-  if (!finish_key_options(o, error)) return usage_error("stats", error);
+  if (const int st = finish_key_options(o, error); st != kExitOk) return fail("stats", st, error);
   // An unreadable capture gets its error alone; one damaged part-way, the counts up to the damage.
   port::CaptureFile file;
   if (!open_capture(capture, file)) return kExitInput;
   Pipeline pipeline(o, nullptr);
+  wipe_key(o);
   if (const int rc = pipeline.load_files(error); rc != kExitOk) {
     std::fprintf(stderr, "hesai stats: %s\n", error.c_str());
     return rc;
@@ -250,7 +252,7 @@ int cmd_listen(Args& args) {
       if (!args.value(a, v) || !parse_float(v, target) || target <= 0) return usage_error("listen", a + " needs a positive number");
     } else return usage_error("listen", "unknown option " + a);
   }
-  if (!finish_key_options(o, error)) return usage_error("listen", error);
+  if (const int st = finish_key_options(o, error); st != kExitOk) return fail("listen", st, error);
 
   std::unique_ptr<OutputSink> sink;
   if (!out.out.empty()) {
@@ -258,6 +260,7 @@ int cmd_listen(Args& args) {
     if (const int st = sink->open(error); st != kExitOk) return fail("listen", st, error);
   }
   Pipeline pipeline(o, sink.get());
+  wipe_key(o);
   if (const int rc = pipeline.load_files(error); rc != kExitOk) {
     std::fprintf(stderr, "hesai listen: %s\n", error.c_str());
     return rc;

@@ -33,9 +33,14 @@ class Args {
   std::string take() { return args_[pos_++]; }
   /// The value of the option just taken; false (with a message) when missing.
   bool value(const std::string& option, std::string& out);
+  /// As value(), for key material: the copy here and the program's argv string are wiped
+  /// (so /proc/PID/cmdline no longer shows it, though it did until now).
+  bool secret_value(std::string& out);
 
  private:
   std::vector<std::string> args_;
+  char** argv_;
+  int first_;
   std::size_t pos_ = 0;
 };
 
@@ -43,8 +48,16 @@ class Args {
 /// it consumed it. `error` is set when the option is malformed.
 bool parse_decode_option(Args& args, DecodeOptions& o, std::string& error);
 bool parse_output_option(Args& args, OutputOptions& o, std::string& error);
-/// Derives the session key once all options are read (--secret with the two randoms).
-bool finish_key_options(DecodeOptions& o, std::string& error);
+/// Sets the session key once all options are read, from one source in this order of precedence:
+/// a key option (--session-key-file, --secret-file, --session-key or --secret, at most one), else
+/// the environment (HESAI_SESSION_KEY or HESAI_SECRET, not both); a secret with --lidar-random and
+/// --client-random. Warns on stderr about a key on the command line and about a key file that
+/// group or others may read; wipes the text it read. Returns kExitOk, kExitUsage (a malformed or
+/// ambiguous key) or kExitInput (a key file that cannot be read), with a message that never holds
+/// key material.
+int finish_key_options(DecodeOptions& o, std::string& error);
+/// Wipes the session key of `o` (once the pipeline holds its copy).
+void wipe_key(DecodeOptions& o);
 
 /// Help text of the decode options, the key options and the output options.
 extern const char* const kDecodeOptionsHelp;

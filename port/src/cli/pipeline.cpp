@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "hesai/calibration.h"
+#include "hesai/ct.h"
 #include "hesai/gps.h"
 #include "options.h"
 
@@ -24,6 +25,11 @@ bool read_text_file(const std::string& path, std::string& out, std::string& erro
 }
 
 Pipeline::Pipeline(const DecodeOptions& options, Sink* sink) : options_(options), sink_(sink) {}
+
+Pipeline::~Pipeline() {
+  secure_wipe(options_.session_key.data(), options_.session_key.size());
+  for (auto& [key, s] : sources_) s.decoder->clear_session_key();
+}
 
 namespace {
 ByteView text_view(const std::string& s) { return {reinterpret_cast<const std::uint8_t*>(s.data()), s.size()}; }
@@ -54,6 +60,7 @@ Pipeline::Source* Pipeline::source_for(std::uint64_t key, Model model) {
   auto it = sources_.find(key);
   if (it != sources_.end()) {
     if (it->second.decoder->model() == model) return &it->second;
+    it->second.decoder->clear_session_key();
     sources_.erase(it);  // another sensor now sends from this address: start over
   }
   Source s;

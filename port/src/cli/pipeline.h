@@ -55,6 +55,10 @@ class Sink {
 class Pipeline {
  public:
   Pipeline(const DecodeOptions& options, Sink* sink);
+  /// Wipes the session key (the pipeline's copy and its decoders').
+  ~Pipeline();
+  Pipeline(const Pipeline&) = delete;
+  Pipeline& operator=(const Pipeline&) = delete;
 
   /// Loads the calibration files (the angle and firing-time files are parsed and applied when the
   /// first packet of a model shows their channel count; feed() then fails with the file's error).
