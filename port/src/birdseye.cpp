@@ -1,5 +1,6 @@
 // Bird's-eye view of a point cloud, with range rings, a scale bar and a colour legend drawn in a
 // built-in 5x7 bitmap font (digits, '-', '.', 'm').
+#include <algorithm>
 #include <array>
 #include <charconv>
 #include <cmath>
@@ -134,10 +135,11 @@ void color_ramp(float t, std::uint8_t rgb[3]) {
   rgb[2] = static_cast<std::uint8_t>(std::lround(a.b + (b.b - a.b) * u));
 }
 
-RgbImage render_birdseye(const Point* points, std::size_t count, const PngOptions& o, std::string* error) {
+bool BirdseyeView::reset(const PngOptions& o, std::string* error) {
+  value_.clear();
   auto fail = [&](const char* why) {
     if (error != nullptr) *error = std::string("invalid PNG options: ") + why;
-    return RgbImage();
+    return false;
   };
   if (o.width < 64 || o.width > 16384 || o.height < 64 || o.height > 16384) {
     return fail("width and height must be 64..16384 pixels");
@@ -145,28 +147,33 @@ RgbImage render_birdseye(const Point* points, std::size_t count, const PngOption
   if (!std::isfinite(o.range_m) || !(o.range_m > 0.0f)) return fail("range_m must be a positive number");
   if (o.point_radius_px > 16) return fail("point_radius_px must be 0..16");
   const bool by_height = o.color_by == ColorBy::height;
-  double lo = by_height ? -3.0 : 0.0;
-  double hi = by_height ? 3.0 : 255.0;
+  lo_ = by_height ? -3.0 : 0.0;
+  hi_ = by_height ? 3.0 : 255.0;
   if (!std::isnan(o.color_min) || !std::isnan(o.color_max)) {
     if (!std::isfinite(o.color_min) || !std::isfinite(o.color_max) || !(o.color_min < o.color_max)) {
       return fail("color_min and color_max must both be set, finite, and min < max");
     }
-    lo = o.color_min;
-    hi = o.color_max;
+    lo_ = o.color_min;
+    hi_ = o.color_max;
   }
   if (error != nullptr) error->clear();
-
-  const auto w = static_cast<long>(o.width);  // <= 16384 (checked above): fits a 32-bit long
-  const auto h = static_cast<long>(o.height);
-  const double ppm = static_cast<double>(w < h ? w : h) / (2.0 * o.range_m);  // pixels per metre
-  const double cx = static_cast<double>(w) / 2.0;
-  const double cy = static_cast<double>(h) / 2.0;
-  const long s = (w < h ? w : h) >= 1024 ? 2 : 1;  // scale of text and decorations
-  const double step_m = nice_step(o.range_m / 3.0);
-
+  options_ = o;
+  const double w = o.width, h = o.height;
+  ppm_ = (w < h ? w : h) / (2.0 * o.range_m);
+  cx_ = w / 2.0;
+  cy_ = h / 2.0;
   // Largest colour value per pixel (-inf: no point).
-  const float kEmpty = -std::numeric_limits<float>::infinity();
-  std::vector<float> value(static_cast<std::size_t>(w) * static_cast<std::size_t>(h), kEmpty);
+  value_.assign(static_cast<std::size_t>(o.width) * o.height, -std::numeric_limits<float>::infinity());
+  return true;
+}
+
+void BirdseyeView::add(const Point* points, std::size_t count) {
+  if (value_.empty()) return;
+  const PngOptions& o = options_;
+  const bool by_height = o.color_by == ColorBy::height;
+  const auto w = static_cast<long>(o.width);  // <= 16384 (checked by reset): fits a 32-bit long
+  const auto h = static_cast<long>(o.height);
+  const double ppm = ppm_, cx = cx_, cy = cy_;
   const auto r = static_cast<long>(o.point_radius_px);
   for (std::size_t i = 0; i < count; ++i) {
     const Point& p = points[i];
@@ -184,11 +191,30 @@ RgbImage render_birdseye(const Point* points, std::size_t count, const PngOption
       if (y < 0 || y >= h) continue;
       for (long x = px - r; x <= px + r; ++x) {
         if (x < 0 || x >= w) continue;
-        float& cell = value[static_cast<std::size_t>(y * w + x)];
+        float& cell = value_[static_cast<std::size_t>(y * w + x)];
         if (v > cell) cell = v;
       }
     }
   }
+}
+
+void BirdseyeView::clear() {
+  std::fill(value_.begin(), value_.end(), -std::numeric_limits<float>::infinity());
+}
+
+RgbImage BirdseyeView::render() const {
+  if (value_.empty()) return RgbImage();
+  const PngOptions& o = options_;
+  const bool by_height = o.color_by == ColorBy::height;
+  const double lo = lo_;
+  const double hi = hi_;
+  const auto w = static_cast<long>(o.width);
+  const auto h = static_cast<long>(o.height);
+  const double ppm = ppm_, cx = cx_, cy = cy_;
+  const long s = (w < h ? w : h) >= 1024 ? 2 : 1;  // scale of text and decorations
+  const double step_m = nice_step(o.range_m / 3.0);
+  const float kEmpty = -std::numeric_limits<float>::infinity();
+  const std::vector<float>& value = value_;
 
   RgbImage img(o.width, o.height, kBackground[0], kBackground[1], kBackground[2]);
   Canvas canvas(img);
@@ -285,13 +311,27 @@ RgbImage render_birdseye(const Point* points, std::size_t count, const PngOption
   return img;
 }
 
-WriteResult write_png(const std::string& path, const Point* points, std::size_t count, const PngOptions& options) {
-  std::string why;
-  const RgbImage img = render_birdseye(points, count, options, &why);
-  if (img.rgb.empty()) return WriteResult::failure("cannot write '" + path + "': " + why);
-  const std::vector<std::uint8_t> png = encode_png(img, options.deflate);
+RgbImage render_birdseye(const Point* points, std::size_t count, const PngOptions& options, std::string* error) {
+  BirdseyeView view;
+  if (!view.reset(options, error)) return RgbImage();
+  view.add(points, count);
+  return view.render();
+}
+
+WriteResult write_png(const std::string& path, const BirdseyeView& view) {
+  const RgbImage img = view.render();
+  if (img.rgb.empty()) return WriteResult::failure("cannot write '" + path + "': no valid PNG options");
+  const std::vector<std::uint8_t> png = encode_png(img, view.options().deflate);
   if (png.empty()) return WriteResult::failure("cannot write '" + path + "': PNG encoding failed");
   return write_file(path, png.data(), png.size());
+}
+
+WriteResult write_png(const std::string& path, const Point* points, std::size_t count, const PngOptions& options) {
+  BirdseyeView view;
+  std::string why;
+  if (!view.reset(options, &why)) return WriteResult::failure("cannot write '" + path + "': " + why);
+  view.add(points, count);
+  return write_png(path, view);
 }
 
 WriteResult write_png(const std::string& path, const std::vector<Point>& points, const PngOptions& options) {

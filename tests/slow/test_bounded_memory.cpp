@@ -1,12 +1,12 @@
 // Peak memory of the hesai program on a capture of more than 1 GiB, made here from the bundled
-// QT128C2X packets and deleted after: reading it (stats) and decoding it to CSV, one PCD file and
-// one PLY file must each stay under 256 MiB of peak resident memory, as the kernel reports it for
-// the child (wait4's rusage: ru_maxrss counts mapped file pages too). The time of each run gives
-// the throughput table of the README; a plain read() of the file is the baseline.
+// QT128C2X packets and deleted after: reading it (stats) and decoding it to CSV, one PCD file, one
+// PLY file and one bird's-eye PNG must each stay under 256 MiB of peak resident memory, as the
+// kernel reports it for the child (wait4's rusage: ru_maxrss counts mapped file pages too). The
+// time of each run gives the throughput table of the README; a plain read() is the baseline.
 //
-// Label "slow" (ctest -L slow). Needs the capture's size free in the temporary directory; the
-// outputs go to /dev/null (a seekable device: the PCD/PLY header is rewritten there as in a file),
-// so that the disk's speed does not count. Native unsanitized builds only (tests/CMakeLists.txt).
+// Label "slow" (ctest -L slow). Needs the capture's size free in the temporary directory. The
+// outputs but the PNG go to /dev/null, so that the disk's speed does not count; it is seekable,
+// so the PCD/PLY header is rewritten there as in a file. Native unsanitized builds only.
 #include <gtest/gtest.h>
 
 #include <fcntl.h>
@@ -116,6 +116,7 @@ TEST(BoundedMemory, DecodesAOneGibCaptureInEveryFormatUnder256MiB) {
       {"decode csv", {HESAI_CLI_PATH, "decode", capture, "--quiet", "--out", "-"}, "/dev/null"},
       {"decode pcd", {HESAI_CLI_PATH, "decode", capture, "--quiet", "--format", "pcd", "--out", "/dev/null"}, "/dev/null"},
       {"decode ply", {HESAI_CLI_PATH, "decode", capture, "--quiet", "--format", "ply", "--out", "/dev/null"}, "/dev/null"},
+      {"decode png", {HESAI_CLI_PATH, "decode", capture, "--quiet", "--format", "png", "--out", dir + "/one.png"}, "/dev/null"},
   };
   const double mb = static_cast<double>(size) / 1e6;
   std::printf("%.0f MB capture (%llu copies of qt128c2x_dual.pcap)\n", mb, static_cast<unsigned long long>(copies));
@@ -138,6 +139,7 @@ TEST(BoundedMemory, DecodesAOneGibCaptureInEveryFormatUnder256MiB) {
   // Every packet decodes: 337 108 points per copy (test_golden.cpp counts them in the bundled file).
   EXPECT_EQ(points, static_cast<long long>(copies) * 337108);
   std::remove(json.c_str());
+  std::remove((dir + "/one.png").c_str());
   std::remove(capture.c_str());
   ::rmdir(dir.c_str());
 }

@@ -198,11 +198,38 @@ inline constexpr std::uint8_t kBackground[3] = {12, 14, 20};
 /// yellow (250, 220, 30) at 0.75 and red (240, 40, 30) at 1.
 void color_ramp(float t, std::uint8_t rgb[3]);
 
+/// The bird's-eye view built point by point, in the image's memory (a float per pixel) whatever
+/// the number of points: reset() with the options, add() the points, render() the image.
+class BirdseyeView {
+ public:
+  /// Starts an empty view. False (and `error` says why) for invalid options: add() then does
+  /// nothing and render() gives an empty image.
+  bool reset(const PngOptions& options, std::string* error = nullptr);
+  /// Each pixel keeps the largest colour value (intensity or z) of the points that fall on it;
+  /// points with non-finite x/y are skipped.
+  void add(const Point* points, std::size_t count);
+  void add(const Point& p) { add(&p, 1); }
+  /// Removes the points, keeps the options.
+  void clear();
+  /// The image: background, range rings, the points, the sensor, scale bar and legend.
+  RgbImage render() const;
+  const PngOptions& options() const { return options_; }
+
+ private:
+  PngOptions options_;
+  double lo_ = 0, hi_ = 255;  // colour values at the two ends of the scale
+  double ppm_ = 0;            // pixels per metre
+  double cx_ = 0, cy_ = 0;    // the sensor's position in the image, pixels
+  std::vector<float> value_;  // per pixel, row by row; empty until a valid reset()
+};
+
 /// Draws the bird's-eye view of `points` into an image. Each pixel shows the largest colour
 /// value (intensity or z) of the points that fall on it; points with non-finite x/y are skipped.
 /// Invalid options give an empty image and `error` says why.
 RgbImage render_birdseye(const Point* points, std::size_t count, const PngOptions& options, std::string* error = nullptr);
 
+/// Renders and writes the bird's-eye PNG of a view.
+WriteResult write_png(const std::string& path, const BirdseyeView& view);
 /// Renders and writes the bird's-eye PNG.
 WriteResult write_png(const std::string& path, const Point* points, std::size_t count, const PngOptions& options = {});
 WriteResult write_png(const std::string& path, const std::vector<Point>& points, const PngOptions& options = {});

@@ -8,6 +8,12 @@ namespace hesai::cli {
 
 int OutputSink::open(std::string& error) {
   const bool to_stdout = options_.out.empty() || options_.out == "-";
+  if (options_.format == "png") {
+    port::PngOptions png;
+    png.range_m = options_.png_range_m;
+    png.color_by = options_.png_height ? port::ColorBy::height : port::ColorBy::intensity;
+    if (!png_.reset(png, &error)) return kExitUsage;
+  }
   if (options_.per_frame) {
     if (to_stdout) {
       error = "--per-frame needs --out DIRECTORY";
@@ -46,13 +52,17 @@ std::string OutputSink::frame_path(std::uint64_t id) const {
 
 void OutputSink::point(const OutPoint& p) {
   ++points_written_;
-  if (csv_open_ && !options_.per_frame) {
-    const port::WriteResult r = csv_.write(p.point, static_cast<std::uint32_t>(p.frame), p.packet);
-    if (!r && deferred_error_.empty()) deferred_error_ = r.message();
+  if (options_.format == "png") {
+    png_.add(p.point);
     return;
   }
-  if (stream_.is_open()) {
-    stream_.write(p.point);
+  if (!options_.per_frame) {
+    if (csv_open_) {
+      const port::WriteResult r = csv_.write(p.point, static_cast<std::uint32_t>(p.frame), p.packet);
+      if (!r && deferred_error_.empty()) deferred_error_ = r.message();
+    } else {
+      stream_.write(p.point);
+    }
     return;
   }
   cloud_.push_back(p.point);
@@ -77,18 +87,14 @@ void OutputSink::frame_closed(const FrameInfo& frame) {
   }
   cloud_.clear();
   packets_.clear();
+  png_.clear();
 }
 
 bool OutputSink::write_cloud(const std::string& path, std::string& error) {
   port::WriteResult r;
   if (options_.format == "pcd") r = port::write_pcd(path, cloud_);
   if (options_.format == "ply") r = port::write_ply(path, cloud_);
-  if (options_.format == "png") {
-    port::PngOptions png;
-    png.range_m = options_.png_range_m;
-    png.color_by = options_.png_height ? port::ColorBy::height : port::ColorBy::intensity;
-    r = port::write_png(path, cloud_, png);
-  }
+  if (options_.format == "png") r = port::write_png(path, png_);
   if (!r) {
     error = r.message();
     return false;

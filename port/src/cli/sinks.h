@@ -1,5 +1,5 @@
-// Where decoded points go: CSV rows, or point clouds written as PCD, PLY or PNG per frame or
-// once at the end.
+// Where decoded points go: CSV rows and PCD/PLY records written as they come, or bird's-eye PNG
+// views; one file for the whole input, or one per frame.
 #pragma once
 
 #include <cstdio>
@@ -25,6 +25,8 @@ class OutputSink : public Sink {
   void point(const OutPoint& p) override;
   void frame_closed(const FrameInfo& frame) override;
   /// Writes what is still held (the single PNG), closes the file. Returns false with a message.
+  /// Memory: one frame's points with --per-frame (CSV, PCD, PLY); otherwise a block of output or
+  /// the PNG's pixels, whatever the number of points.
   bool close(std::string& error);
   /// Files written so far.
   const std::vector<std::string>& files() const { return files_; }
@@ -38,7 +40,8 @@ class OutputSink : public Sink {
   port::CsvWriter csv_;
   bool csv_open_ = false;
   port::CloudWriter stream_;    // the single PCD or PLY file
-  std::vector<Point> cloud_;    // the current frame (--per-frame) or every point (one PNG)
+  port::BirdseyeView png_;      // the PNG of the current frame (--per-frame) or of every point
+  std::vector<Point> cloud_;    // the current frame (--per-frame CSV, PCD, PLY)
   std::vector<std::uint64_t> packets_;  // packet index of each point in cloud_ (per-frame CSV)
   std::vector<std::string> files_;
   std::uint64_t points_written_ = 0;
