@@ -15,6 +15,7 @@
 #include <chrono>
 #include <cstdio>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <iterator>
 #include <map>
@@ -472,6 +473,7 @@ TEST(Cli, OneCloudFileIsStreamedAndItsCountWrittenAtTheEnd) {
       EXPECT_NE(text.find("\nelement vertex 00000000000000337108\n"), std::string::npos);
     }
   }
+  std::filesystem::remove_all(dir);  // 36 MB of clouds
 }
 
 // A pipe cannot take a PCD or PLY file (its header's count is written last): a usage error that
@@ -754,6 +756,7 @@ TEST(Cli, KeysFromFilesAndEnvironmentVerifyAsTheFlags) {
       EXPECT_EQ(r.out.find(*secret), std::string::npos) << r.out;
     }
   }
+  std::filesystem::remove_all(dir);
 }
 
 // A key file that group or others may read is used, with a warning (as ssh warns of a private
@@ -776,6 +779,7 @@ TEST(Cli, KeyFileReadableByOthersWarns) {
       EXPECT_EQ(r.err, "");
     }
   }
+  std::remove(file.c_str());
 }
 
 // Ambiguous, malformed or unreadable keys: usage errors (1), an unreadable key file an I/O failure
@@ -817,6 +821,7 @@ TEST(Cli, KeyErrors) {
     EXPECT_NE(r.err.find("hesai stats: "), std::string::npos) << r.err;
     for (const std::string* secret : {&almost, &c.secret, &short_secret}) EXPECT_EQ(r.err.find(*secret), std::string::npos) << r.err;
   }
+  std::filesystem::remove_all(dir);
 }
 
 // ---- Live: replay into listen on 127.0.0.1 ----
