@@ -95,7 +95,7 @@ inline void check_points(hesai::Model model, const hesai::PacketInfo& info, cons
 }
 
 /// Decodes `payload` twice with `decoder` and checks every invariant. Returns the error.
-inline hesai::Error decode_checked(hesai::Decoder& decoder, hesai::ByteView payload) {
+[[nodiscard]] inline hesai::Error decode_checked(hesai::Decoder& decoder, hesai::ByteView payload) {
   static hesai::PacketPoints out1, out2;  // 16 KiB each: off the stack
   hesai::PacketInfo info1, info2, info3;
   out1.count = 12345;

@@ -31,7 +31,7 @@ const char* const kRmc74Hash = "$GPRMC,065829.00,A,3121.86377,N,12114.68322,E,0.
 const char* const kGga47 = "$GPGGA,123519,4807.038,N,01131.000,E,1,08,0.9,545.4,M,46.9,M,,*47";
 const char* const kGga60Printed = "$GPGGA,134658.00,5106.9792,N,11402.3003,W,2,09,1.0,1048.47,M,-6.27,M,08,AAAA*60";
 
-Error parse(const Packet& p, GpsPacket& out) { return hesai::parse_gps_packet(ByteView{p.data(), p.size()}, out); }
+[[nodiscard]] Error parse(const Packet& p, GpsPacket& out) { return hesai::parse_gps_packet(ByteView{p.data(), p.size()}, out); }
 
 void expect_time(const hesai::DateTime& t, int y, int mo, int d, int h, int mi, int s) {
   EXPECT_EQ(t.year, y);

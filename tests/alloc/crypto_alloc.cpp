@@ -14,6 +14,7 @@ TEST(ZeroAllocation, Crypto) {
   const hesai::ByteView msg(data, sizeof data);
   const hesai::ByteView long_key(data, 131);  // hashed first
   std::uint8_t out[64];
+  hesai::Error expanded = hesai::Error::truncated, derived = hesai::Error::truncated, session = hesai::Error::truncated;
 
   const std::size_t n = hesai_test::allocations_during([&] {
     for (hesai::Sha256Path path : {hesai::Sha256Path::portable, hesai::Sha256Path::hardware}) {
@@ -36,9 +37,12 @@ TEST(ZeroAllocation, Crypto) {
 
     std::uint8_t prk[32];
     hesai::hkdf_sha256_extract(msg.sub(0, 13), msg.sub(13, 22), prk);
-    (void)hesai::hkdf_sha256_expand({prk, sizeof prk}, msg.sub(40, 10), out, sizeof out);
-    (void)hesai::hkdf_sha256(msg.sub(0, 64), msg.sub(64, 16), msg.sub(80, 18), out, 42);
-    (void)hesai::hesai_session_key(msg.sub(0, 16), data + 32, data + 64, out);
+    expanded = hesai::hkdf_sha256_expand({prk, sizeof prk}, msg.sub(40, 10), out, sizeof out);
+    derived = hesai::hkdf_sha256(msg.sub(0, 64), msg.sub(64, 16), msg.sub(80, 18), out, 42);
+    session = hesai::hesai_session_key(msg.sub(0, 16), data + 32, data + 64, out);  // 16-byte secret: 8..32
   });
   EXPECT_EQ(n, 0u);
+  EXPECT_EQ(expanded, hesai::Error::ok);  // 64 bytes <= 255 * 32
+  EXPECT_EQ(derived, hesai::Error::ok);
+  EXPECT_EQ(session, hesai::Error::ok);
 }

@@ -13,9 +13,10 @@ TEST(ZeroAllocation, FramesSequenceStats) {
   hesai::SequenceTracker seq;
   hesai::Stats stats{};
   std::uint64_t frames = 0;
+  hesai::Error cut = hesai::Error::truncated, fov = hesai::Error::truncated;
   const std::size_t n = hesai_test::allocations_during([&] {
-    (void)fa.set_cut_deg(37.0f);
-    (void)fa.set_fov_deg(300.0f, 60.0f);
+    cut = fa.set_cut_deg(37.0f);
+    fov = fa.set_fov_deg(300.0f, 60.0f);
     // Three turns of 10-block packets with one packet in 50 dropped, a far jump and a restart.
     for (std::uint32_t p = 0; p < 540; ++p) {
       if (p % 50 == 49) continue;
@@ -39,6 +40,8 @@ TEST(ZeroAllocation, FramesSequenceStats) {
     hesai::count_model(stats, hesai::Model::pandar40p);
   });
   EXPECT_EQ(n, 0u);
+  EXPECT_EQ(cut, hesai::Error::ok);
+  EXPECT_EQ(fov, hesai::Error::ok);
   // Azimuths 0 .. 3 turns from 0: the cut at 37 degrees is crossed 3 times, plus finish: 4.
   EXPECT_EQ(frames, 4u);
   // Packets 49, 99, ..., 499, 549 > 539: 10 dropped within 0..539 (49 + 50 i, i = 0..9).

@@ -24,15 +24,16 @@ TEST(ZeroAllocation, GpsPacket) {
 
   const hesai::ByteView view{p.data(), p.size()};
   hesai::GpsPacket g;
-  hesai::Error e = hesai::Error::truncated;
+  hesai::Error e = hesai::Error::truncated, short_packet = hesai::Error::ok;
   bool recognised = false;
   const std::size_t n = hesai_test::allocations_during([&] {
     recognised = hesai::is_gps_packet(view);
     e = hesai::parse_gps_packet(view, g);
-    (void)hesai::parse_gps_packet(hesai::ByteView{p.data(), 511}, g);  // an error path too
+    short_packet = hesai::parse_gps_packet(hesai::ByteView{p.data(), 511}, g);  // an error path too
   });
   EXPECT_EQ(n, 0u);
   EXPECT_TRUE(recognised);
   EXPECT_EQ(e, hesai::Error::ok);
+  EXPECT_EQ(short_packet, hesai::Error::bad_length);  // GPS packets are 512 bytes
   EXPECT_TRUE(g.nmea_checksum_ok);
 }

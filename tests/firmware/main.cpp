@@ -317,6 +317,9 @@ __attribute__((noinline)) std::uint32_t stack_used(F f) {
   return static_cast<std::uint32_t>(top - reinterpret_cast<std::uintptr_t>(p));
 }
 
+// The Error of the call stack_used() measures, checked (then reset) by report_stack().
+Error measured = Error::ok;
+
 void report_stack(const char* name, std::uint32_t bytes) {
   print("  ");
   print(name);
@@ -324,6 +327,8 @@ void report_stack(const char* name, std::uint32_t bytes) {
   print_int(bytes);
   print(" bytes\n");
   check(bytes <= 1024, "stack per call <= 1 KiB");
+  check(measured == Error::ok, name);
+  measured = Error::ok;
 }
 
 void stack_use() {
@@ -333,18 +338,18 @@ void stack_use() {
   static PacketInfo info;
   const ByteView bqt{kQt128, sizeof kQt128};
   print("stack used per call (painted stack):\n");
-  report_stack("Decoder::decode Pandar40P", stack_used([] { (void)decoders[1].decode({kPandar40P, sizeof kPandar40P}, info, points); }));
-  report_stack("Decoder::decode Pandar64", stack_used([] { (void)decoders[2].decode({kPandar64, sizeof kPandar64}, info, points); }));
-  report_stack("Decoder::decode QT128C2X", stack_used([&] { (void)decoders[3].decode(bqt, info, points); }));
-  report_stack("Decoder::validate QT128C2X", stack_used([&] { (void)decoders[3].validate(bqt, info); }));
+  report_stack("Decoder::decode Pandar40P", stack_used([] { measured = decoders[1].decode({kPandar40P, sizeof kPandar40P}, info, points); }));
+  report_stack("Decoder::decode Pandar64", stack_used([] { measured = decoders[2].decode({kPandar64, sizeof kPandar64}, info, points); }));
+  report_stack("Decoder::decode QT128C2X", stack_used([&] { measured = decoders[3].decode(bqt, info, points); }));
+  report_stack("Decoder::validate QT128C2X", stack_used([&] { measured = decoders[3].validate(bqt, info); }));
   report_stack("crc32_mpeg2 (1095 B)", stack_used([] { (void)crc32_mpeg2({data, sizeof data}); }));
   report_stack("sha256 (1095 B)", stack_used([] { sha256({data, sizeof data}, out); }));
   report_stack("hmac_sha256 (1095 B)", stack_used([] { hmac_sha256({data, 32}, {data, sizeof data}, out); }));
-  report_stack("hkdf_sha256 (42 B)", stack_used([] { (void)hkdf_sha256({data, 13}, {data, 22}, {data, 10}, out, 42); }));
-  report_stack("hesai_session_key", stack_used([] { (void)hesai_session_key({data, 32}, data, data + 32, out); }));
+  report_stack("hkdf_sha256 (42 B)", stack_used([] { measured = hkdf_sha256({data, 13}, {data, 22}, {data, 10}, out, 42); }));
+  report_stack("hesai_session_key", stack_used([] { measured = hesai_session_key({data, 32}, data, data + 32, out); }));
   report_stack("hesai_decoder_decode (C) QT128C2X", stack_used([] {
     std::size_t count = 0;
-    (void)firmware_c_decode(kQt128, sizeof kQt128, c_points(), 256, &count);
+    measured = static_cast<Error>(firmware_c_decode(kQt128, sizeof kQt128, c_points(), 256, &count));  // hesai_error: the same values
   }));
   // The constructor, rebuilding the QT128 decoder in place (no fifth decoder in RAM for it).
   decoders[3].~Decoder();

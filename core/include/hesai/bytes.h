@@ -67,7 +67,7 @@ class ByteReader {
   constexpr std::size_t position() const { return pos_; }
   constexpr std::size_t remaining() const { return view_.size - pos_; }
   /// Error::truncated once any read has failed, Error::ok otherwise.
-  constexpr Error error() const { return error_; }
+  [[nodiscard]] constexpr Error error() const { return error_; }
 
   constexpr bool u8(std::uint8_t& out) { return fixed(1) && (out = view_.data[take(1)], true); }
   constexpr bool le16(std::uint16_t& out) { return fixed(2) && (out = load_le16(view_.data + take(2)), true); }

@@ -52,8 +52,8 @@ struct ChannelConfig {
   std::uint8_t hash_length = 0;
 };
 
-/// Outcome of a calibration parse.
-struct ParseResult {
+/// Outcome of a calibration parse. [[nodiscard]]: a dropped parse result is a compile error.
+struct [[nodiscard]] ParseResult {
   Error error = Error::ok;
   /// 1-based line of the first bad row, 0 when ok. For a missing row (calib_channel_count with
   /// too few rows) the line after the last row; for a missing header, the line after the file.
@@ -68,7 +68,7 @@ struct ParseResult {
 /// calib_bad_row (not 3 fields), calib_bad_number, calib_bad_channel (outside 1..expected or
 /// repeated), calib_channel_count (more or fewer rows than expected_channels).
 /// On error `out.channels` is 0 and the rest of `out` is unspecified.
-ParseResult parse_angle_csv(ByteView text, std::size_t expected_channels, AngleCorrection& out) noexcept;
+[[nodiscard]] ParseResult parse_angle_csv(ByteView text, std::size_t expected_channels, AngleCorrection& out) noexcept;
 
 /// Parses a firetime correction CSV, either form:
 /// - Pandar40P/64: `Channel,fire time(us)` (or `(μs)`), then `channel,time_us` rows, one per
@@ -79,7 +79,7 @@ ParseResult parse_angle_csv(ByteView text, std::size_t expected_channels, AngleC
 ///   listed in no row of a loop does not fire in it; every channel must fire in some loop; at most
 ///   expected_channels rows.
 /// Errors as for parse_angle_csv. On error `out.channels` is 0.
-ParseResult parse_firetime_csv(ByteView text, std::size_t expected_channels, FiretimeCorrection& out) noexcept;
+[[nodiscard]] ParseResult parse_firetime_csv(ByteView text, std::size_t expected_channels, FiretimeCorrection& out) noexcept;
 
 /// Parses a QT128 channel configuration CSV: `EEFF,major,minor`, `LaserNum,N,BlockNum,B`
 /// (N = 1..kMaxChannels, B = 1..255, both decimal), `Loop1[,Loop2]`, then N rows of one channel
@@ -88,6 +88,6 @@ ParseResult parse_firetime_csv(ByteView text, std::size_t expected_channels, Fir
 /// Errors: calib_bad_header, calib_bad_row, calib_bad_number, calib_bad_channel, calib_channel_count
 /// (fewer than N channel rows, or any row after them but a single hash line). A hash line of more
 /// than 64 characters is calib_bad_row. On error `out.laser_num` is 0.
-ParseResult parse_channel_config_csv(ByteView text, ChannelConfig& out) noexcept;
+[[nodiscard]] ParseResult parse_channel_config_csv(ByteView text, ChannelConfig& out) noexcept;
 
 }  // namespace hesai

@@ -12,6 +12,6 @@ namespace hesai {
 /// 19 significant digits (the rest are dropped), is subnormal (rounded twice), or lies within about
 /// 2^-100 (relative) of a tie between two doubles. Digits that form an integer up to 2^53, scaled
 /// by 10^k with |k| <= 22 (every calibration value), take one exact IEEE operation: always nearest.
-bool parse_decimal(const char* begin, const char* end, double& out) noexcept;
+[[nodiscard]] bool parse_decimal(const char* begin, const char* end, double& out) noexcept;
 
 }  // namespace hesai

@@ -22,7 +22,7 @@ enum class PacketKind : std::uint8_t { point_cloud, gps };
 /// Identifies a payload by its length, magic bytes and header fields (never by length alone).
 /// Point cloud packets set `model`; GPS packets (512 bytes, FF EE) set kind = gps and model = unknown.
 /// Errors: bad_length, bad_magic, unsupported_version, unsupported_model, flags_length_mismatch.
-Error identify(ByteView payload, Model& model, PacketKind& kind) noexcept;
+[[nodiscard]] Error identify(ByteView payload, Model& model, PacketKind& kind) noexcept;
 
 /// Return-mode bytes of the manuals.
 enum class ReturnMode : std::uint8_t {
@@ -106,11 +106,11 @@ class Decoder {
   /// Uses a unit's angle corrections. Error::calib_channel_count if the channel count differs;
   /// Error::invalid_argument (and no change) if an elevation lies outside [-90, 90] degrees or an
   /// azimuth offset outside [-360, 360] degrees.
-  Error set_angles(const AngleCorrection& angles) noexcept;
+  [[nodiscard]] Error set_angles(const AngleCorrection& angles) noexcept;
   /// Uses a firing-time file. Error::calib_channel_count if the channel count differs, or if a
   /// QT128 decoder is given a one-loop file; Error::invalid_argument (and no change) if a firing
   /// time lies outside [-1000, 1000] us.
-  Error set_firetimes(const FiretimeCorrection& firetimes) noexcept;
+  [[nodiscard]] Error set_firetimes(const FiretimeCorrection& firetimes) noexcept;
   /// Azimuth firing-time correction (on by default): adds firing time x spin rate to each point.
   void set_firetime_correction(bool on) noexcept { firetime_correction_ = on; }
 
@@ -125,14 +125,14 @@ class Decoder {
   void update_gps(const GpsPacket& gps) noexcept;
 
   /// Runs every check (length, header, flags, CRCs, signature, fields) and fills `info`.
-  Error validate(ByteView payload, PacketInfo& info) noexcept;
+  [[nodiscard]] Error validate(ByteView payload, PacketInfo& info) noexcept;
   /// validate(), then the points: distance 0 yields no point. On error out.count is 0.
-  Error decode(ByteView payload, PacketInfo& info, PacketPoints& out) noexcept;
+  [[nodiscard]] Error decode(ByteView payload, PacketInfo& info, PacketPoints& out) noexcept;
   /// decode() into caller-owned storage for `capacity` points, sized for this decoder's model
   /// (max_points(model()): 400, 384 or 256). Error::buffer_too_small, before the packet is read,
   /// when capacity is below that. `count` gets the number of points, 0 on error; the entries from
   /// `count` up to max_points(model()) may be overwritten too.
-  Error decode(ByteView payload, PacketInfo& info, Point* points, std::size_t capacity, std::size_t& count) noexcept;
+  [[nodiscard]] Error decode(ByteView payload, PacketInfo& info, Point* points, std::size_t capacity, std::size_t& count) noexcept;
 
  private:
   // Per-channel geometry from the tables or calibration files, one array per quantity.
@@ -156,9 +156,9 @@ class Decoder {
   void set_channel_angle(std::size_t ch, double elevation_deg, double azimuth_deg) noexcept;
   void set_channel_firetime(std::size_t ch, double loop1_us, double loop2_us) noexcept;
   void update_spin(std::uint16_t rpm) noexcept;
-  Error validate_pandar40(ByteView p, PacketInfo& info) noexcept;
-  Error validate_pandar64(ByteView p, PacketInfo& info) noexcept;
-  Error validate_qt128(ByteView p, PacketInfo& info) noexcept;
+  [[nodiscard]] Error validate_pandar40(ByteView p, PacketInfo& info) noexcept;
+  [[nodiscard]] Error validate_pandar64(ByteView p, PacketInfo& info) noexcept;
+  [[nodiscard]] Error validate_qt128(ByteView p, PacketInfo& info) noexcept;
   // Each sensor's block walk (in its file under core/src/sensors/), after validation: appends to
   // out[count...], at most max_points(model_) points in all.
   void decode_pandar40(const std::uint8_t* p, const PacketInfo& info, Point* out, std::size_t& count) const noexcept;

@@ -11,8 +11,9 @@ namespace hesai {
 
 /// Outcome of every fallible core operation. `ok` is zero; every other value names one cause
 /// (the list and what each code means: hesai/error_list.h). Bad input is a normal outcome:
-/// callers count it, nothing asserts or throws.
-enum class Error : std::uint8_t {
+/// callers count it, nothing asserts or throws. [[nodiscard]]: a call whose Error is dropped does
+/// not compile (warnings are errors).
+enum class [[nodiscard]] Error : std::uint8_t {
 #define HESAI_ERROR_ENUMERATOR(name) name,
   HESAI_ERROR_LIST(HESAI_ERROR_ENUMERATOR)
 #undef HESAI_ERROR_ENUMERATOR

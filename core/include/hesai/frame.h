@@ -60,14 +60,14 @@ class FrameAssembler {
 
   /// Cut angle in degrees, [0, 360), rounded to 0.01 degree; default 0. Applies from the next block.
   /// Error::invalid_argument (and no change) outside the range or NaN.
-  Error set_cut_deg(float degrees) noexcept;
+  [[nodiscard]] Error set_cut_deg(float degrees) noexcept;
   /// The cut angle in 0.01 degree (0..35999).
   std::uint16_t cut_cdeg() const noexcept { return cut_cdeg_; }
 
   /// Field of view [start, end) in degrees for in_fov(); start in [0, 360), end in [0, 360],
   /// start != end. start > end wraps through 0 (300, 60: from 300 to 360 and 0 to 60).
   /// Error::invalid_argument (and no change) otherwise.
-  Error set_fov_deg(float start_degrees, float end_degrees) noexcept;
+  [[nodiscard]] Error set_fov_deg(float start_degrees, float end_degrees) noexcept;
   /// No field of view: in_fov() is true for every azimuth.
   void clear_fov() noexcept { has_fov_ = false; }
   /// True when a point azimuth (degrees) lies in the field of view. An azimuth within one turn

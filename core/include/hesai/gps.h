@@ -86,7 +86,7 @@ static_assert(sizeof(GpsPacket::nmea) == gps_wire::kNmeaSize64 + 1, "room for th
 /// a Pandar40 us time >= 3 600 000 000, a status byte other than 'A'/'V'/0 (Pandar64 also '0'..'9'),
 /// a PPS byte other than 0/1). A missing or malformed NMEA sentence is not an error: it leaves
 /// `nmea` empty and `nmea_checksum_ok` false. `out` is written only on success.
-Error parse_gps_packet(ByteView payload, GpsPacket& out) noexcept;
+[[nodiscard]] Error parse_gps_packet(ByteView payload, GpsPacket& out) noexcept;
 
 /// Cheap recognition: 512 bytes starting FF EE. A true result does not promise parse success.
 bool is_gps_packet(ByteView payload) noexcept;

@@ -18,10 +18,10 @@ void hkdf_sha256_extract(ByteView salt, ByteView ikm, std::uint8_t prk[kSha256Si
 
 /// HKDF-Expand: `len` bytes of output keying material from `prk` and `info` into `out`.
 /// Error::invalid_argument when len > 8160 (255 * 32).
-Error hkdf_sha256_expand(ByteView prk, ByteView info, std::uint8_t* out, std::size_t len) noexcept;
+[[nodiscard]] Error hkdf_sha256_expand(ByteView prk, ByteView info, std::uint8_t* out, std::size_t len) noexcept;
 
 /// Extract then expand. Error::invalid_argument when len > 8160.
-Error hkdf_sha256(ByteView salt, ByteView ikm, ByteView info, std::uint8_t* out,
+[[nodiscard]] Error hkdf_sha256(ByteView salt, ByteView ikm, ByteView info, std::uint8_t* out,
                   std::size_t len) noexcept;
 
 /// Shortest and longest shared secret the Hesai session-key derivation accepts, bytes.
@@ -31,7 +31,7 @@ inline constexpr std::size_t kHesaiSecretMax = 32;
 /// The Hesai session key: HKDF-SHA256 with IKM = `secret` (8 to 32 bytes), salt =
 /// lidar_random || client_random (64 bytes), info = "finish session key" (18 ASCII bytes),
 /// L = 32. Error::invalid_argument for a secret of another length (then `key` is untouched).
-Error hesai_session_key(ByteView secret, const std::uint8_t lidar_random[32],
+[[nodiscard]] Error hesai_session_key(ByteView secret, const std::uint8_t lidar_random[32],
                         const std::uint8_t client_random[32], std::uint8_t key[32]) noexcept;
 
 }  // namespace hesai

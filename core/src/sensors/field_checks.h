@@ -9,7 +9,7 @@
 namespace hesai::detail {
 
 /// Pandar40/40P/64 return modes: 0x37 strongest, 0x38 last, 0x39 last + strongest (dual).
-inline Error pandar_return_mode(PacketInfo& info) {
+[[nodiscard]] inline Error pandar_return_mode(PacketInfo& info) {
   const auto mode = static_cast<ReturnMode>(info.return_mode);
   if (mode != ReturnMode::strongest && mode != ReturnMode::last && mode != ReturnMode::last_strongest)
     return Error::bad_return_mode;
@@ -20,13 +20,13 @@ inline Error pandar_return_mode(PacketInfo& info) {
 /// The manuals' spin rates are 600 and 1200 rpm; 1500 leaves room for a motor settling. Beyond
 /// it the field is corrupt (and the firing-time correction, a short series, would lose accuracy).
 inline constexpr std::uint16_t kMaxMotorRpm = 1500;
-inline Error motor_speed(const PacketInfo& info) {
+[[nodiscard]] inline Error motor_speed(const PacketInfo& info) {
   return info.motor_rpm > kMaxMotorRpm ? Error::bad_motor_speed : Error::ok;
 }
 
 /// Reads the block azimuths (u16 LE at `first`, then every `stride` bytes): each below 360.00
 /// degrees, and the two blocks of a dual-return firing at one azimuth.
-inline Error block_azimuths(const std::uint8_t* first, std::size_t stride, PacketInfo& info) {
+[[nodiscard]] inline Error block_azimuths(const std::uint8_t* first, std::size_t stride, PacketInfo& info) {
   for (std::size_t b = 0; b < info.blocks; ++b) {
     info.block_azimuth[b] = load_le16(first + b * stride);
     if (info.block_azimuth[b] >= 36000) return Error::bad_azimuth;
@@ -39,7 +39,7 @@ inline Error block_azimuths(const std::uint8_t* first, std::size_t stride, Packe
 
 /// t0 from a tail's date-time (6 bytes: year - year_base, month, day, hour, minute, second) and
 /// its microseconds (at most max_us).
-inline Error tail_time(const std::uint8_t* dt, std::int32_t year_base, std::uint32_t max_us, PacketInfo& info) {
+[[nodiscard]] inline Error tail_time(const std::uint8_t* dt, std::int32_t year_base, std::uint32_t max_us, PacketInfo& info) {
   info.date_time = DateTime{year_base + dt[0], dt[1], dt[2], dt[3], dt[4], dt[5]};
   if (!is_valid(info.date_time)) return Error::bad_date_time;
   if (info.timestamp_us > max_us) return Error::bad_timestamp;

@@ -116,13 +116,13 @@ class CaptureParser {
   /// Starts reading `file`: checks the pcap global header or the first pcapng section header.
   /// CaptureError::ok, truncated, bad_magic, bad_record or unsupported_link (pcap); the same
   /// code stays in error().
-  CaptureError open(ByteView file);
+  [[nodiscard]] CaptureError open(ByteView file);
 
   /// The next UDP datagram. Frames without one are counted in stats() and skipped.
   CaptureStatus next(UdpDatagram& out);
 
   /// The error that stopped the parse, CaptureError::ok if none.
-  CaptureError error() const { return error_; }
+  [[nodiscard]] CaptureError error() const { return error_; }
   /// Byte offset of the record, block or header where the error was found.
   std::uint64_t error_offset() const { return error_offset_; }
   /// Counters since open().
@@ -155,8 +155,8 @@ class CaptureParser {
 
   Step next_pcap_record(Record& rec);
   Step next_pcapng_record(Record& rec);
-  CaptureError read_section_header(std::size_t at, std::size_t& length);
-  CaptureError read_interface(ByteView body);
+  [[nodiscard]] CaptureError read_section_header(std::size_t at, std::size_t& length);
+  [[nodiscard]] CaptureError read_interface(ByteView body);
   Step fail(CaptureError e, std::uint64_t offset);
   std::uint16_t u16(const std::uint8_t* p) const { return big_endian_ ? load_be16(p) : load_le16(p); }
   std::uint32_t u32(const std::uint8_t* p) const { return big_endian_ ? load_be32(p) : load_le32(p); }
@@ -190,7 +190,7 @@ class CaptureFile {
 
   /// Maps `path` and opens the parser on it. CaptureError::io when the file cannot be opened
   /// or mapped (errno in os_error()), otherwise CaptureParser::open's result. message() says why.
-  CaptureError open(const std::string& path);
+  [[nodiscard]] CaptureError open(const std::string& path);
   /// Unmaps the file.
   void close();
   /// The next UDP datagram (as parser().next()), releasing the pages already consumed.
