@@ -4,7 +4,8 @@ belongs to one concern, and includes only headers of its own concern or of the c
 
     base <- crc, crypto, calibration <- sensors <- streams <- capi
 
-A public header's concern is given below; a file under core/src/<folder>/ has that folder's.
+A public header's concern is given below; a file under core/src/<folder>/ has that folder's, and
+so has a private header reached from another folder as "../<folder>/name.h".
 Exits 1 and names each include that reaches upward (or sideways) and each file of no concern.
 """
 import os
@@ -60,9 +61,15 @@ def main(core):
             continue
         for line in open(path, encoding='utf-8'):
             m = INCLUDE.match(line)
-            if not m or not m.group(1).startswith('hesai/'):
-                continue  # a header of the file's own folder, or a system header
-            target = header_concern(m.group(1)[len('hesai/'):])
+            if not m:
+                continue  # a system header
+            if m.group(1).startswith('../'):
+                target = m.group(1).split('/')[1]  # another folder's private header
+                target = target if target in BELOW else None
+            elif m.group(1).startswith('hesai/'):
+                target = header_concern(m.group(1)[len('hesai/'):])
+            else:
+                continue  # a header of the file's own folder
             if target is None:
                 problems.append('%s includes %s, which belongs to no concern' % (name, m.group(1)))
             elif target != concern and target not in BELOW[concern]:

@@ -13,6 +13,7 @@
 
 #include "hesai/bytes.h"
 #include "hesai/crc32.h"
+#include "hesai/sha256.h"
 
 namespace {
 
@@ -109,12 +110,21 @@ TEST(Crc32Mpeg2, TablesComeFromThePolynomial) {
   }
 }
 
-#if defined(__x86_64__) && defined(__GNUC__)
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(HESAI_NO_GNU_EXTENSIONS)
 TEST(Crc32Mpeg2, HardwareDetectionAgreesWithTheCompiler) {
   __builtin_cpu_init();
   const bool expected = __builtin_cpu_supports("pclmul") && __builtin_cpu_supports("ssse3") &&
                         __builtin_cpu_supports("sse4.1");
   EXPECT_EQ(hesai::crc32_hardware_available(), expected);
+}
+#endif
+
+// The portable core (HESAI_NO_GNU_EXTENSIONS, hesai_portable_tests): the x86-64 folding and SHA-NI
+// paths need GNU target attributes and <cpuid.h>, so they are left out and every path is portable.
+#if defined(__x86_64__) && defined(HESAI_NO_GNU_EXTENSIONS)
+TEST(Crc32Mpeg2, PortableCoreHasNoX86HardwarePaths) {
+  EXPECT_FALSE(hesai::crc32_hardware_available());
+  EXPECT_FALSE(hesai::sha256_hardware_available());
 }
 #endif
 

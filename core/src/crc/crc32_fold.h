@@ -15,14 +15,15 @@
 #include <cstddef>
 #include <cstdint>
 
+#include "../base/compiler.h"
 #include "hesai/bytes.h"
 #include "hesai/crc32.h"
 
-#if defined(__x86_64__) && defined(__GNUC__)
-#define HESAI_CRC32_FOLD_X86 1  // PCLMULQDQ, chosen at run time by CPUID
+#if defined(__x86_64__) && HESAI_GNU
+#define HESAI_CRC32_FOLD_X86 1  // PCLMULQDQ, chosen at run time by CPUID (GNU target attributes)
 #elif defined(__aarch64__) && (defined(__ARM_FEATURE_CRYPTO) || defined(__ARM_FEATURE_AES)) && \
-    defined(__BYTE_ORDER__) && __BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__
-#define HESAI_CRC32_FOLD_ARM 1  // PMULL, chosen at compile time
+    !defined(__ARM_BIG_ENDIAN)
+#define HESAI_CRC32_FOLD_ARM 1  // PMULL (ACLE intrinsics), chosen at compile time
 #endif
 
 namespace hesai::crc32_fold {

@@ -4,9 +4,10 @@
 
 #include <cstring>
 
+#include "../base/compiler.h"
 #include "hesai/ct.h"
 
-#if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
+#if defined(__x86_64__) && HESAI_GNU
 #define HESAI_SHA256_X86 1
 #include <atomic>
 #include <cpuid.h>
@@ -43,7 +44,7 @@ constexpr std::uint32_t rotr(std::uint32_t x, unsigned n) { return (x >> n) | (x
 // One round of FIPS 180-4 section 6.2.2 step 3. Instead of shifting the eight working
 // variables, the caller rotates the arguments: after the round, `h` holds the new `a` and `d`
 // the new `e`. Always inlined: as a call (-Os) it would force the eight variables into memory.
-[[gnu::always_inline]] inline void one_round(std::uint32_t a, std::uint32_t b, std::uint32_t c, std::uint32_t& d, std::uint32_t e,
+HESAI_ALWAYS_INLINE inline void one_round(std::uint32_t a, std::uint32_t b, std::uint32_t c, std::uint32_t& d, std::uint32_t e,
                       std::uint32_t f, std::uint32_t g, std::uint32_t& h, std::uint32_t k_plus_w) noexcept {
   const std::uint32_t t1 = h + (rotr(e, 6) ^ rotr(e, 11) ^ rotr(e, 25)) + ((e & f) ^ (~e & g)) + k_plus_w;
   const std::uint32_t t2 = (rotr(a, 2) ^ rotr(a, 13) ^ rotr(a, 22)) + ((a & b) ^ (a & c) ^ (b & c));
@@ -59,7 +60,7 @@ void compress_portable(std::uint32_t state[8], const std::uint8_t* p, std::size_
     std::uint32_t a = state[0], b = state[1], c = state[2], d = state[3];
     std::uint32_t e = state[4], f = state[5], g = state[6], h = state[7];
     // W[t] for t >= 16: s1(W[t-2]) + W[t-7] + s0(W[t-15]) + W[t-16], written over W[t-16].
-    auto schedule = [&w](std::size_t t) __attribute__((always_inline)) {
+    auto schedule = [&w](std::size_t t) HESAI_ALWAYS_INLINE {
       if (t >= 16) {
         const std::uint32_t w15 = w[(t + 1) & 15], w2 = w[(t + 14) & 15];
         w[t & 15] += (rotr(w15, 7) ^ rotr(w15, 18) ^ (w15 >> 3)) + w[(t + 9) & 15] +

@@ -1,0 +1,21 @@
+// Compiler extensions the core uses where they exist, each with a portable path (private to the core).
+//
+// HESAI_GNU is 1 with GNU C++ (GCC, Clang and compilers that emulate them) unless
+// HESAI_NO_GNU_EXTENSIONS is defined. It enables: the empty-asm optimisation barriers of ct.cpp,
+// always_inline in sha256.cpp, and the x86-64 SHA-NI and PCLMULQDQ paths (target attributes,
+// <cpuid.h>). Any other compiler takes the portable paths, which ISO C++17 alone defines; CI
+// compiles and tests them by defining HESAI_NO_GNU_EXTENSIONS (the hesai_portable_tests target).
+#pragma once
+
+#if (defined(__GNUC__) || defined(__clang__)) && !defined(HESAI_NO_GNU_EXTENSIONS)
+#define HESAI_GNU 1
+#else
+#define HESAI_GNU 0
+#endif
+
+/// Forces inlining where the compiler can be told (a speed hint only: plain `inline` elsewhere).
+#if HESAI_GNU
+#define HESAI_ALWAYS_INLINE __attribute__((always_inline))
+#else
+#define HESAI_ALWAYS_INLINE
+#endif
