@@ -14,13 +14,13 @@
 namespace hesai::detail {
 
 /// Pandar40 (1256 bytes) or Pandar40P (1262/1266): a payload starting FF EE that is not GPS.
-Error identify_pandar40(ByteView p, Model& model) noexcept;
+[[nodiscard]] Error identify_pandar40(ByteView p, Model& model) noexcept;
 /// True when an EE FF header names 64 lasers and 6 blocks (Pandar64).
 bool is_pandar64_header(ByteView p) noexcept;
 /// Pandar64 by length (1194, or 1198 with UDP sequence), once is_pandar64_header() holds.
-Error identify_pandar64(ByteView p, Model& model) noexcept;
+[[nodiscard]] Error identify_pandar64(ByteView p, Model& model) noexcept;
 /// QT128C2X: EE FF, protocol 3.2, 128 lasers, 2 blocks, the length the flags imply.
-Error identify_qt128(ByteView p, Model& model) noexcept;
+[[nodiscard]] Error identify_qt128(ByteView p, Model& model) noexcept;
 
 constexpr std::int32_t round_to_int(double v) {
   return static_cast<std::int32_t>(v < 0 ? v - 0.5 : v + 0.5);
