@@ -14,8 +14,8 @@ struct Keyed {
   Keyed() {
     std::uint8_t key[32];
     for (std::size_t i = 0; i < sizeof key; ++i) key[i] = static_cast<std::uint8_t>(i);
-    strict.set_session_key(key);
-    lenient.set_session_key(key);
+    hesai_fuzz::check(strict.set_session_key(key) == hesai::Error::ok);
+    hesai_fuzz::check(lenient.set_session_key(key) == hesai::Error::ok);
     lenient.set_allow_unsigned(true);
   }
 };

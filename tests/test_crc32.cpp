@@ -94,6 +94,19 @@ TEST(Crc32Mpeg2, HandDerivedValues) {
   EXPECT_EQ(hesai::crc32_mpeg2(ByteView{zero, 1}), 0x4E08BFB4u);
 }
 
+// The slicing size this build was configured with (hesai/config.h): the default, or the one a
+// configuration's test program (tests/CMakeLists.txt) asks for.
+#if defined(HESAI_TEST_CRC_SLICING)
+constexpr std::size_t kConfiguredSlices = HESAI_TEST_CRC_SLICING;
+#else
+constexpr std::size_t kConfiguredSlices = sizeof(void*) >= 8 ? 16 : 8;
+#endif
+
+TEST(Crc32Mpeg2, SlicingTablesAsConfigured) {
+  EXPECT_EQ(hesai::kCrc32Mpeg2Slices, kConfiguredSlices);
+  EXPECT_EQ(hesai::crc32_mpeg2_make_slicing_tables().size(), kConfiguredSlices);
+}
+
 TEST(Crc32Mpeg2, TablesComeFromThePolynomial) {
   constexpr auto table = hesai::crc32_mpeg2_make_table();
   static_assert(table[0] == 0);

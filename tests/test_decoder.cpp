@@ -626,7 +626,7 @@ TEST_F(Signature, ValidInvalidMissingUnverified) {
   ASSERT_EQ(dec.decode(view(packet), info, pts), Error::ok);
   EXPECT_EQ(info.signature, SignatureStatus::unverified);  // no key: not checked, and said so
 
-  dec.set_session_key(key);
+  ASSERT_EQ(dec.set_session_key(key), Error::ok);
   ASSERT_EQ(dec.decode(view(packet), info, pts), Error::ok);
   EXPECT_EQ(info.signature, SignatureStatus::valid);
   EXPECT_GT(pts.count, 0u);
@@ -652,7 +652,7 @@ TEST_F(Signature, ValidInvalidMissingUnverified) {
 
   // A wrong key.
   key[0] ^= 1;
-  dec.set_session_key(key);
+  ASSERT_EQ(dec.set_session_key(key), Error::ok);
   EXPECT_EQ(dec.decode(view(packet), info, pts), Error::signature_invalid);
 }
 
@@ -661,7 +661,7 @@ TEST_F(Signature, FlagClearedIsMissingWithKey) {
   auto q = qt128_packet(0x05, 0x37, 1, s);  // no signature section at all
   qt128_seal(q);
   Decoder dec(Model::qt128c2x);
-  dec.set_session_key(key);
+  ASSERT_EQ(dec.set_session_key(key), Error::ok);
   EXPECT_EQ(dec.decode(view(q), info, pts), Error::signature_missing);
 }
 

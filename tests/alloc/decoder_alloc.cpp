@@ -47,7 +47,7 @@ TEST(ZeroAllocation, SignedQt128WithKey) {
   Error worst = Error::ok;
   const std::size_t n = hesai_test::allocations_during([&] {
     Decoder dec(Model::qt128c2x);
-    dec.set_session_key(key);
+    worst = dec.set_session_key(key);
     dec.set_allow_unsigned(true);
     for (const auto& p : packets) {
       const Error e = dec.decode(ByteView{p.data(), p.size()}, info, pts);

@@ -96,6 +96,7 @@ void known_answers() {
   for (const auto path : {hesai::CrcPath::bitwise, hesai::CrcPath::table, hesai::CrcPath::slicing, hesai::CrcPath::hardware})
     check(hesai::crc32_mpeg2_update(path, hesai::kCrc32Mpeg2Init, digits) == 0x0376E6E7u, "CRC-32/MPEG-2 of 123456789");
 
+#if HESAI_SIGNATURE
   std::uint8_t out[64];
   // FIPS 180-4 examples (one block, two blocks).
   hesai::sha256(text("abc"), out);
@@ -123,6 +124,7 @@ void known_answers() {
   check(hesai::hkdf_sha256({salt, 13}, {ikm, 22}, {info, 10}, out, 42) == Error::ok, "HKDF-SHA256 status");
   check(equal_hex(out, "3cb25f25faacd57a90434f64d0362f2a2d2d0a90cf1a5a4c5db02d56ecc4c5bf34007208d5b887185865", 42),
         "HKDF-SHA256 RFC 5869 case 1");
+#endif
 }
 
 // ---- Real packets -------------------------------------------------------------------------------
@@ -217,16 +219,25 @@ void real_packets() {
   check_packet("QT128C2X", decoders[3], bqt, nonzero_distances(bqt, 12 + 2, 514, 2, 128, 4, 2), qt, 2);
 
   // Integrity on the target: a flipped body byte fails CRC1; a session key with an unsigned packet
-  // fails as signature_missing.
+  // fails as signature_missing (without signature support: no key, a signed packet is unverified).
   std::memcpy(shifted, kQt128, sizeof kQt128);
   shifted[100] ^= 0x01;
   PacketInfo info;
   check(decoders[3].decode({shifted, sizeof kQt128}, info, points) == Error::crc_body && points.count == 0,
         "QT128 flipped body byte -> crc_body");
   std::uint8_t key[32] = {};
-  decoders[3].set_session_key(key);
+#if HESAI_SIGNATURE
+  check(decoders[3].set_session_key(key) == Error::ok, "QT128 session key");
   check(decoders[3].decode(bqt, info, points) == Error::signature_missing, "QT128 unsigned packet with a key");
   decoders[3].clear_session_key();
+#else
+  check(decoders[3].set_session_key(key) == Error::unsupported_feature, "no session key without HESAI_SIGNATURE");
+  std::memcpy(shifted, kQt128, sizeof kQt128);
+  shifted[sizeof kQt128 - 1] = 0x5A;  // a signature byte: the last 32 bytes, after CRC3, which does not cover them
+  check(decoders[3].decode({shifted, sizeof kQt128}, info, points) == Error::ok &&
+            info.signature == hesai::SignatureStatus::unverified,
+        "QT128 signed packet without signature support -> unverified");
+#endif
 }
 
 // ---- The C path ---------------------------------------------------------------------------------
@@ -334,7 +345,7 @@ void report_stack(const char* name, std::uint32_t bytes) {
 void stack_use() {
   using namespace hesai;
   static const std::uint8_t data[1095] = {1, 2, 3};
-  static std::uint8_t out[42];
+  [[maybe_unused]] static std::uint8_t out[42];  // the crypto calls (HESAI_SIGNATURE 1)
   static PacketInfo info;
   const ByteView bqt{kQt128, sizeof kQt128};
   print("stack used per call (painted stack):\n");
@@ -343,10 +354,12 @@ void stack_use() {
   report_stack("Decoder::decode QT128C2X", stack_used([&] { measured = decoders[3].decode(bqt, info, points); }));
   report_stack("Decoder::validate QT128C2X", stack_used([&] { measured = decoders[3].validate(bqt, info); }));
   report_stack("crc32_mpeg2 (1095 B)", stack_used([] { (void)crc32_mpeg2({data, sizeof data}); }));
+#if HESAI_SIGNATURE
   report_stack("sha256 (1095 B)", stack_used([] { sha256({data, sizeof data}, out); }));
   report_stack("hmac_sha256 (1095 B)", stack_used([] { hmac_sha256({data, 32}, {data, sizeof data}, out); }));
   report_stack("hkdf_sha256 (42 B)", stack_used([] { measured = hkdf_sha256({data, 13}, {data, 22}, {data, 10}, out, 42); }));
   report_stack("hesai_session_key", stack_used([] { measured = hesai_session_key({data, 32}, data, data + 32, out); }));
+#endif
   report_stack("hesai_decoder_decode (C) QT128C2X", stack_used([] {
     std::size_t count = 0;
     measured = static_cast<Error>(firmware_c_decode(kQt128, sizeof kQt128, c_points(), 256, &count));  // hesai_error: the same values
@@ -360,6 +373,11 @@ void stack_use() {
 
 int main() {
   print("hesai firmware test: " HESAI_FIRMWARE_TARGET "\n");
+  print("configuration: HESAI_CRC_SLICING ");
+  print_int(HESAI_CRC_SLICING);
+  print(", HESAI_SIGNATURE ");
+  print_int(HESAI_SIGNATURE);
+  print("\n");
   alignment_trap_armed();
 #if defined(__ARM_ARCH_6M__)
   print("alignment trap armed: an unaligned load faults; every packet below is decoded at offsets 0..3\n");

@@ -4,6 +4,7 @@
 #include <cstddef>
 #include <cstdint>
 
+#include "hesai/config.h"
 #include "hesai/error.h"
 
 namespace hesai {
@@ -16,8 +17,11 @@ struct ByteView {
   constexpr ByteView() = default;
   constexpr ByteView(const std::uint8_t* d, std::size_t n) : data(d), size(n) {}
 
-  /// The bytes [offset, offset + count); the caller has checked the range.
-  constexpr ByteView sub(std::size_t offset, std::size_t count) const { return {data + offset, count}; }
+  /// The bytes [offset, offset + count); the caller has checked the range (HESAI_ASSERT).
+  constexpr ByteView sub(std::size_t offset, std::size_t count) const {
+    HESAI_ASSERT(offset <= size && count <= size - offset);
+    return {data + offset, count};
+  }
   constexpr const std::uint8_t& operator[](std::size_t i) const { return data[i]; }
 };
 

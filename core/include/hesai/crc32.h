@@ -8,6 +8,7 @@
 #include <cstdint>
 
 #include "hesai/bytes.h"
+#include "hesai/config.h"
 
 namespace hesai {
 
@@ -39,13 +40,13 @@ constexpr std::array<std::uint32_t, 256> crc32_mpeg2_make_table() noexcept {
   return t;
 }
 
-/// Number of slicing tables: the slicing path consumes this many bytes per step. 16 (16 KiB of
-/// tables) on 64-bit targets; 8 (8 KiB) on 32-bit ones, microcontrollers among them, where flash
-/// is scarce.
-inline constexpr std::size_t kCrc32Mpeg2Slices = sizeof(void*) >= 8 ? 16 : 8;
+/// Number of slicing tables, 1 KiB each (HESAI_CRC_SLICING in hesai/config.h: 16 on 64-bit
+/// targets, 8 on 32-bit ones, or 4 or 1 where flash is scarce): the slicing path consumes this many
+/// bytes per step. With 1 it is the byte table.
+inline constexpr std::size_t kCrc32Mpeg2Slices = HESAI_CRC_SLICING;
 
 /// Slicing tables: table k, entry b is the register that byte b followed by k zero bytes yields
-/// from a zero register (table 0 is the byte table).
+/// from a zero register (table 0 is the byte table, the only one the table path uses).
 constexpr std::array<std::array<std::uint32_t, 256>, kCrc32Mpeg2Slices> crc32_mpeg2_make_slicing_tables() noexcept {
   std::array<std::array<std::uint32_t, 256>, kCrc32Mpeg2Slices> t{};
   t[0] = crc32_mpeg2_make_table();
@@ -70,7 +71,7 @@ std::uint32_t crc32_mpeg2(ByteView data) noexcept;
 enum class CrcPath : std::uint8_t {
   bitwise,   ///< the definition, 8 shifts per byte
   table,     ///< one 256-entry table lookup per byte
-  slicing,   ///< slicing-by-16 (64-bit targets) or -by-8: a table lookup per byte, one dependent step per 16 or 8 bytes
+  slicing,   ///< slicing-by-kCrc32Mpeg2Slices: a table lookup per byte, one dependent step per 16, 8 or 4 bytes (1: as table)
   hardware,  ///< PCLMULQDQ (x86-64) or PMULL (AArch64) folding; slicing when unavailable or short
 };
 

@@ -8,6 +8,7 @@
 #include "hesai/bytes.h"
 #include "hesai/calibration.h"
 #include "hesai/civil_time.h"
+#include "hesai/config.h"
 #include "hesai/error.h"
 #include "hesai/gps.h"
 #include "hesai/hmac.h"
@@ -115,7 +116,8 @@ class Decoder {
   void set_firetime_correction(bool on) noexcept { firetime_correction_ = on; }
 
   /// Verifies QT128 signatures with this 32-byte session key (see hesai_session_key()).
-  void set_session_key(const std::uint8_t key[32]) noexcept;
+  /// Error::unsupported_feature (and no key) in a core built with HESAI_SIGNATURE 0.
+  [[nodiscard]] Error set_session_key(const std::uint8_t key[32]) noexcept;
   void clear_session_key() noexcept;
   /// With a key: accept packets that carry no signature instead of rejecting them
   /// (Error::signature_missing). Off by default.
@@ -177,7 +179,9 @@ class Decoder {
   DateTime gps_time_;            // Pandar40: last GPS date-time
   Geometry geo_;
   SpinCache spin_;
+#if HESAI_SIGNATURE
   HmacSha256Key key_;
+#endif
 };
 
 // The budget for a decoder context, also what a firmware image can afford per sensor.

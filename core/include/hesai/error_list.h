@@ -37,6 +37,7 @@
   X(model_mismatch)           /* the packet is of another model than the decoder's calibration */              \
   X(invalid_argument)         /* a parameter outside its documented range */                                   \
   X(buffer_too_small)         /* the caller's point storage holds fewer than max_points(model) */              \
+  X(unsupported_feature)      /* the feature is configured out of this build (config.h: HESAI_SIGNATURE 0) */  \
   /* GPS packets. */                                                                                           \
   X(bad_gps_field)            /* a GPS date/time digit or status byte outside its range */                     \
   /* Calibration files. */                                                                                     \

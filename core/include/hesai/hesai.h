@@ -214,7 +214,8 @@ hesai_error hesai_decoder_set_firetimes(hesai_decoder* decoder, const double* lo
 hesai_error hesai_decoder_set_firetime_correction(hesai_decoder* decoder, int on) HESAI_NOEXCEPT;
 
 /* Verifies QT128 signatures (HMAC-SHA256) with this 32-byte session key; the decoder keeps its
- * own prepared copy, the caller may wipe `key` after the call. */
+ * own prepared copy, the caller may wipe `key` after the call. unsupported_feature (and no key)
+ * in a core built with HESAI_SIGNATURE 0 (hesai/config.h). */
 hesai_error hesai_decoder_set_session_key(hesai_decoder* decoder, const uint8_t key[32]) HESAI_NOEXCEPT;
 /* Forgets the key and wipes the decoder's copy of it. */
 hesai_error hesai_decoder_clear_session_key(hesai_decoder* decoder) HESAI_NOEXCEPT;

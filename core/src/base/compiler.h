@@ -7,6 +7,8 @@
 // compiles and tests them by defining HESAI_NO_GNU_EXTENSIONS (the hesai_portable_tests target).
 #pragma once
 
+#include "hesai/config.h"  // HESAI_NO_GNU_EXTENSIONS may come from the configuration header
+
 #if (defined(__GNUC__) || defined(__clang__)) && !defined(HESAI_NO_GNU_EXTENSIONS)
 #define HESAI_GNU 1
 #else

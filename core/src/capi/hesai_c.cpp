@@ -257,8 +257,7 @@ hesai_error hesai_decoder_set_firetime_correction(hesai_decoder* decoder, int on
 
 hesai_error hesai_decoder_set_session_key(hesai_decoder* decoder, const std::uint8_t key[32]) noexcept {
   if (decoder == nullptr || key == nullptr) return HESAI_ERROR_invalid_argument;
-  decoder_in(decoder).set_session_key(key);
-  return HESAI_ERROR_ok;
+  return c_error(decoder_in(decoder).set_session_key(key));
 }
 
 hesai_error hesai_decoder_clear_session_key(hesai_decoder* decoder) noexcept {

@@ -8,12 +8,12 @@
 namespace hesai {
 namespace {
 
-constexpr std::array<std::uint32_t, 256> kTable = crc32_mpeg2_make_table();
+// kCrc32Mpeg2Slices KiB of flash; table 0 is the byte table of the table path.
 constexpr std::array<std::array<std::uint32_t, 256>, kCrc32Mpeg2Slices> kSlicing =
     crc32_mpeg2_make_slicing_tables();
 
 constexpr std::uint32_t table_update(std::uint32_t crc, const std::uint8_t* p, std::size_t n) noexcept {
-  for (std::size_t i = 0; i < n; ++i) crc = (crc << 8) ^ kTable[(crc >> 24) ^ p[i]];
+  for (std::size_t i = 0; i < n; ++i) crc = (crc << 8) ^ kSlicing[0][(crc >> 24) ^ p[i]];
   return crc;
 }
 
@@ -38,19 +38,21 @@ constexpr std::uint32_t slicing_step(std::uint32_t crc, const std::uint8_t* p, s
 
 constexpr std::uint32_t slicing_update(std::uint32_t crc, const std::uint8_t* p, std::size_t n) noexcept {
   constexpr std::size_t kStep = kCrc32Mpeg2Slices;
-  static_assert(kStep % 4 == 0 && kStep >= 8, "whole words per step");
-  for (; n >= kStep; p += kStep, n -= kStep) crc = slicing_step(crc, p, kStep);
-  // The rest (short packet sections such as the QT128 tail): a step of 8 and one of 4 where they
-  // fit, as the same tables serve any step, then single bytes.
-  if (kStep > 8 && n >= 8) {
-    crc = slicing_step(crc, p, 8);
-    p += 8;
-    n -= 8;
-  }
-  if (n >= 4) {
-    crc = slicing_step(crc, p, 4);
-    p += 4;
-    n -= 4;
+  static_assert(kStep == 1 || kStep % 4 == 0, "whole words per step, or the byte table alone");
+  if constexpr (kStep >= 4) {
+    for (; n >= kStep; p += kStep, n -= kStep) crc = slicing_step(crc, p, kStep);
+    // The rest (short packet sections such as the QT128 tail): a step of 8 and one of 4 where
+    // they fit, as the same tables serve any step, then single bytes.
+    if (kStep > 8 && n >= 8) {
+      crc = slicing_step(crc, p, 8);
+      p += 8;
+      n -= 8;
+    }
+    if (kStep > 4 && n >= 4) {
+      crc = slicing_step(crc, p, 4);
+      p += 4;
+      n -= 4;
+    }
   }
   return table_update(crc, p, n);
 }

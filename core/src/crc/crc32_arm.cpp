@@ -56,6 +56,7 @@ inline std::uint32_t reduce(uint64x2_t r) noexcept {
 bool fold_available() noexcept { return true; }
 
 std::uint32_t fold_blocks(std::uint32_t crc, const std::uint8_t* p, std::size_t n) noexcept {
+  HESAI_ASSERT(n >= kMinBytes);
   const uint64x2_t k512 = pair(kFold576, kFold512);
   const uint64x2_t k128 = pair(kFold192, kFold128);
 

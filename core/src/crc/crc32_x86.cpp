@@ -68,6 +68,7 @@ bool fold_available() noexcept {
 }
 
 HESAI_CLMUL_TARGET std::uint32_t fold_blocks(std::uint32_t crc, const std::uint8_t* p, std::size_t n) noexcept {
+  HESAI_ASSERT(n >= kMinBytes);
   const __m128i reverse = _mm_set_epi8(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15);
   const __m128i k512 = _mm_set_epi64x(as_ll(kFold576), as_ll(kFold512));
   const __m128i k128 = _mm_set_epi64x(as_ll(kFold192), as_ll(kFold128));

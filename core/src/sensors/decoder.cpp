@@ -160,13 +160,21 @@ Error Decoder::set_firetimes(const FiretimeCorrection& f) noexcept {
   return Error::ok;
 }
 
-void Decoder::set_session_key(const std::uint8_t key[32]) noexcept {
+Error Decoder::set_session_key(const std::uint8_t key[32]) noexcept {
+#if HESAI_SIGNATURE
   key_.set(ByteView{key, 32});
   has_key_ = true;
+  return Error::ok;
+#else
+  (void)key;
+  return Error::unsupported_feature;
+#endif
 }
 
 void Decoder::clear_session_key() noexcept {
+#if HESAI_SIGNATURE
   key_.wipe();
+#endif
   has_key_ = false;
 }
 

@@ -90,7 +90,10 @@ Error Decoder::validate_qt128(ByteView p, PacketInfo& info) noexcept {
   }
 
   // Signature: HMAC-SHA256 of everything before it. All-zero bytes mean signing was not started.
+  // Without a key, or in a core without signature support (HESAI_SIGNATURE 0), it is not checked.
   const bool signed_packet = layout.signature != 0 && !all_zero(p.data + layout.signature, kSignatureBytes);
+  info.signature = signed_packet ? SignatureStatus::unverified : SignatureStatus::not_signed;
+#if HESAI_SIGNATURE
   if (has_key_) {
     if (!signed_packet) {
       if (!allow_unsigned_) return Error::signature_missing;
@@ -105,9 +108,8 @@ Error Decoder::validate_qt128(ByteView p, PacketInfo& info) noexcept {
       if (!ok) return Error::signature_invalid;
       info.signature = SignatureStatus::valid;
     }
-  } else {
-    info.signature = signed_packet ? SignatureStatus::unverified : SignatureStatus::not_signed;
   }
+#endif
 
   // Fields.
   if (layout.fs != 0) {

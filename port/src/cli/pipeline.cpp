@@ -92,7 +92,12 @@ Pipeline::Source* Pipeline::source_for(std::uint64_t key, Model model) {
     }
   }
   d.set_firetime_correction(options_.firetime_azimuth);
-  if (options_.has_key) d.set_session_key(options_.session_key.data());
+  if (options_.has_key) {
+    if (const Error e = d.set_session_key(options_.session_key.data()); e != Error::ok) {
+      error_ = std::string("--session-key: ") + error_name(e);
+      return nullptr;
+    }
+  }
   d.set_allow_unsigned(options_.allow_unsigned);
   if (have_gps_) d.update_gps(last_gps_);
   s.frames = options_.frames;
