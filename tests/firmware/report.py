@@ -6,8 +6,11 @@ image's linker map says each object contributes after --gc-sections (what a prod
 same functions pays). Stack: the worst path from each entry point through the call graph that GCC
 writes with -fcallgraph-info=su (each function's own frame, from -fstack-usage, summed along the
 deepest chain of calls). Budgets: the four decoders with CRC and HMAC (with the C library and
-libgcc routines they pull in) within 48 KiB of flash; at most 1 KiB of stack per call. Prints a
-Markdown report, writes it to --out, and exits 1 when a budget is exceeded.
+libgcc routines they pull in) within 48 KiB of flash; at most 1 KiB of stack per call. With
+--minimal-map, the same image built with the smallest configuration (HESAI_CRC_SLICING 1,
+HESAI_SIGNATURE 0) gets a column too, and must link no crypto/ member (the decoder without
+signature support needs no SHA-256/HMAC). Prints a Markdown report, writes it to --out, and exits 1
+when a budget is exceeded.
 """
 import argparse
 import glob
@@ -92,8 +95,9 @@ def linked_sizes(map_file):
         size, source = int(m.group(3), 16), m.group(4)
         if size == 0:
             continue
-        if 'libhesai_core.a(' in source:
-            owner = source.split('(')[1].split('.')[0]
+        core = re.search(r'libhesai_core\w*\.a\((\w+)\.', source)
+        if core:
+            owner = core.group(1)
         elif 'libgcc.a(' in source:
             owner = 'libgcc'
         elif 'libc.a(' in source:
@@ -166,6 +170,7 @@ def main():
     ap.add_argument('--map', required=True)
     ap.add_argument('--objects', required=True)
     ap.add_argument('--size', required=True)
+    ap.add_argument('--minimal-map', help='linker map of the image built with the smallest configuration')
     ap.add_argument('--out')
     args = ap.parse_args()
     lines, over = [], []
@@ -173,26 +178,42 @@ def main():
     objs, folders = object_sizes(args.size, args.objects)
     over += check_components(folders)
     linked = linked_sizes(args.map)
+    minimal = linked_sizes(args.minimal_map) if args.minimal_map else None
+    flash = lambda sizes, owners: sum(sizes.get(o, [0, 0])[0] for o in owners)
+    extra = ' flash, linked, smallest configuration |' if minimal else ''
     lines += ['### Size of the core (bytes)', '',
-              '| component | archive members | flash, every function (text + data) | flash, linked into the test image | RAM (data + bss) |',
-              '| --- | --- | ---: | ---: | ---: |']
-    budget_flash = 0
-    for name, _, members in COMPONENTS:
+              '| component | archive members | flash, every function (text + data) | flash, linked into the test image | RAM (data + bss) |' + extra,
+              '| --- | --- | ---: | ---: | ---: |' + (' ---: |' if minimal else '')]
+    budget_flash = minimal_flash = 0
+    for name, folder, members in COMPONENTS:
         present = [m for m in members if m in objs]
         whole = sum(objs[m][0] + objs[m][1] for m in present)
-        used = sum(linked.get(m, [0, 0])[0] for m in present)
+        used = flash(linked, present)
         ram = sum(objs[m][1] + objs[m][2] for m in present)
-        lines.append('| %s | %s | %d | %d | %d |' % (name, ', '.join(present), whole, used, ram))
+        row = '| %s | %s | %d | %d | %d |' % (name, ', '.join(present), whole, used, ram)
+        if minimal:
+            row += ' %d |' % flash(minimal, present)
+            if folder == 'crypto' and flash(minimal, present):
+                over.append('HESAI_SIGNATURE 0 image links %s' % name)
+        lines.append(row)
         if name in IN_BUDGET:
             budget_flash += used
-    runtime = linked.get('libgcc', [0, 0])[0] + linked.get('picolibc', [0, 0])[0]
-    lines.append('| libgcc + picolibc routines the image uses (soft-float double, memcpy, ...) | | | %d | |' % runtime)
+            minimal_flash += flash(minimal, present) if minimal else 0
+    runtime = flash(linked, ['libgcc', 'picolibc'])
+    lines.append('| libgcc + picolibc routines the image uses (soft-float double, memcpy, ...) | | | %d | |' % runtime
+                 + (' %d |' % flash(minimal, ['libgcc', 'picolibc']) if minimal else ''))
     lines.append('| the test image itself (known answers, four real packets, startup) | | | %d | %d |'
-                 % (linked.get('test image', [0, 0])[0], linked.get('test image', [0, 0])[1]))
+                 % (linked.get('test image', [0, 0])[0], linked.get('test image', [0, 0])[1])
+                 + (' %d |' % flash(minimal, ['test image']) if minimal else ''))
     budget_flash += runtime
     verdict = 'within' if budget_flash <= FLASH_BUDGET else 'OVER'
     lines += ['', 'Four decoders + CRC + SHA-256/HMAC + the libgcc/picolibc routines linked: **%d bytes (%.1f KiB), %s the 48 KiB budget**.'
-              % (budget_flash, budget_flash / 1024.0, verdict), '']
+              % (budget_flash, budget_flash / 1024.0, verdict)]
+    if minimal:
+        minimal_flash += flash(minimal, ['libgcc', 'picolibc'])
+        lines.append('Smallest configuration (HESAI_CRC_SLICING 1, HESAI_SIGNATURE 0): four decoders + CRC + the '
+                     'libgcc/picolibc routines linked: **%d bytes (%.1f KiB)**.' % (minimal_flash, minimal_flash / 1024.0))
+    lines.append('')
     if budget_flash > FLASH_BUDGET:
         over.append('flash %d > %d' % (budget_flash, FLASH_BUDGET))
 
