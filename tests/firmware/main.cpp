@@ -39,6 +39,9 @@ using hesai::Model;
 
 int failures = 0;
 
+// The figure decoder.h states ("Memory"), on the target.
+static_assert(sizeof(hesai::Decoder) == (HESAI_SIGNATURE ? 6904 : 6680), "decoder.h: Memory");
+
 // ---- Output ---------------------------------------------------------------------------------
 
 void print(const char* s) { semihost_write(s); }

@@ -1,5 +1,9 @@
 // Calibration files: angle correction, firetime correction and QT128 channel configuration CSVs.
 //
+// Contract: the parsers are reentrant and thread-safe; each writes only its output struct
+// (AngleCorrection 2 056 bytes, FiretimeCorrection 2 312, ChannelConfig 326: caller-owned, may be
+// temporaries). Cost: linear in the text, one pass; under 1 KiB of stack on Cortex-M.
+//
 // The core reads no files: the caller loads a file's bytes and passes them as a ByteView; the
 // parsers fill caller-owned fixed-size structs. No heap, no C library (numbers are parsed here).
 //

@@ -1,6 +1,10 @@
 // CRC-32/MPEG-2: polynomial 0x04C11DB7, initial value 0xFFFFFFFF, not reflected (most significant
 // bit first), no final xor. Check value: "123456789" -> 0x0376E6E7. The QT128C2X guards its body,
 // functional-safety section and tail with it (stored as u32 little-endian after each).
+//
+// Contract: every function is reentrant and thread-safe (constant tables in flash,
+// kCrc32Mpeg2Slices KiB of them, see HESAI_CRC_SLICING in hesai/config.h); a Crc32Mpeg2 is 4 bytes,
+// one per message. Cost: linear in the length, no allocation.
 #pragma once
 
 #include <array>

@@ -1,4 +1,7 @@
 // Frame assembly: where one rotation ends and the next begins, from the block azimuths.
+//
+// Contract: a FrameAssembler (184 bytes) follows one packet stream, in one thread; constant work
+// per block, no heap.
 #pragma once
 
 #include <cstdint>

@@ -1,5 +1,6 @@
 // GPS data packets of the Pandar40 and Pandar64: 512-byte UDP payloads (destination port 10110),
-// sent once a second at the PPS edge.
+// sent once a second at the PPS edge. parse_gps_packet() is reentrant and thread-safe, a fixed
+// number of reads; a GpsPacket is 112 bytes.
 //
 // Both layouts share the header, the date-time digits, the end of the 0xDF filler and the last six
 // bytes; they differ in bytes 14..17 (Pandar40 "us time", Pandar64 reserved) and in the length of

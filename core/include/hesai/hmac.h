@@ -1,4 +1,8 @@
 // HMAC-SHA256 (RFC 2104) with the key schedule computed once per key.
+//
+// Contract: an HmacSha256Key (224 bytes) is written by set() and wipe() only; between those it
+// is read-only, and HmacSha256 contexts (120 bytes) in any number of threads may share it. Each
+// context belongs to one thread. hmac_sha256() is reentrant. No heap.
 #pragma once
 
 #include <cstddef>

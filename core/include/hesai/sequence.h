@@ -1,4 +1,8 @@
 // Packet loss, duplicate and reorder accounting from the 32-bit UDP sequence number.
+//
+// Contract: a SequenceTracker (576 bytes: a 4096-bit window) follows one sender, in one thread;
+// no heap. observe() is constant work for the next number; a jump of k numbers ahead clears k
+// bits (k < 4096; a longer jump clears the 128 words at once).
 #pragma once
 
 #include <array>
