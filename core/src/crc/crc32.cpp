@@ -29,8 +29,8 @@ constexpr std::uint32_t word_lookup(std::uint32_t w, std::size_t after) noexcept
 // byte j of the step, followed by step - 1 - j more bytes, contributes slicing table step - 1 - j.
 // Only the first word depends on the register: the other words' lookups run while it waits for
 // the previous step. That one chain (xor, lookup, xor) per step is what bounds the speed, so
-// more bytes per step is faster.
-constexpr std::uint32_t slicing_step(std::uint32_t crc, const std::uint8_t* p, std::size_t step) noexcept {
+// more bytes per step is faster. (Unused with HESAI_CRC_SLICING 1, the byte table alone.)
+[[maybe_unused]] constexpr std::uint32_t slicing_step(std::uint32_t crc, const std::uint8_t* p, std::size_t step) noexcept {
   std::uint32_t ahead = 0;
   for (std::size_t w = 4; w < step; w += 4) ahead ^= word_lookup(load_be32(p + w), step - 1 - w);
   return word_lookup(crc ^ load_be32(p), step - 1) ^ ahead;
