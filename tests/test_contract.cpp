@@ -10,6 +10,7 @@
 #include "hesai/frame.h"
 #include "hesai/gps.h"
 #include "hesai/hmac.h"
+#include "hesai/safety.h"
 #include "hesai/sequence.h"
 #include "hesai/sha256.h"
 
@@ -28,6 +29,7 @@ static_assert(sizeof(Crc32Mpeg2) == 4, "crc32.h: Contract");
 static_assert(sizeof(FrameAssembler) == 184, "frame.h: Contract");
 static_assert(sizeof(SequenceTracker) == 576, "sequence.h: Contract");
 static_assert(sizeof(GpsPacket) == 112, "gps.h");
+static_assert(sizeof(SafetyMonitor) == 136, "safety.h: Cost");
 
 // The per-packet bound of decoder.h: every sensor's blocks x channels fit kMaxPointsPerPacket.
 static_assert(kMaxPointsPerPacket == 400 && kMaxChannels == 128, "decoder.h: Worst-case cost");
