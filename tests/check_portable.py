@@ -20,6 +20,9 @@ TOKENS = re.compile(r"__attribute__|__asm__|__asm\b|\basm\b|__builtin_\w+|__exte
                     r"__declspec|\[\[\s*(?:gnu|clang)::\w+|__restrict\w*|__int128|#\s*pragma\s+(?:GCC|clang)")
 HEADERS = re.compile(r"(?:^|/)(?:\w*intrin\.h|cpuid\.h|arm_neon\.h|arm_acle\.h|intrin\.h)$")
 MARKER = re.compile(r'^#\s+\d+\s+"([^"]*)"((?:\s+\d)*)')
+# What standard macros of the compiler's own headers expand to in the core's lines: not written by
+# the core, and every compiler's <cstddef> gives its own (offsetof -> __builtin_offsetof).
+STANDARD_EXPANSIONS = {"__builtin_offsetof"}
 
 
 def scan(cxx, core, source, portable):
@@ -38,7 +41,7 @@ def scan(cxx, core, source, portable):
             current = os.path.realpath(new) if not new.startswith("<") else new
             continue
         if current.startswith(core):
-            found += [f"{current}: {t.group(0)}" for t in TOKENS.finditer(line)]
+            found += [f"{current}: {t.group(0)}" for t in TOKENS.finditer(line) if t.group(0) not in STANDARD_EXPANSIONS]
     return found
 
 
