@@ -87,7 +87,7 @@ const std::vector<Bytes>& signed_qt128() {
     for (std::size_t i = 0; i < 32; ++i) key[i] = session_key(i);
     std::vector<Bytes> out = sensor(hesai::Model::qt128c2x).packets;
     for (Bytes& p : out) {
-      const std::size_t at = hesai::qt128::Layout::from_flags(p[hesai::qt128::kFlags]).signature;
+      const std::size_t at = hesai::qt128::Layout::from_header(p[hesai::qt128::kLaserNum], p[hesai::qt128::kFlags]).signature;
       if (at == 0 || p.size() != at + hesai::qt128::kSignatureBytes) {
         std::fprintf(stderr, "hesai_bench: QT128 capture packets carry no signature section\n");
         std::exit(1);

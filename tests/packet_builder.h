@@ -70,23 +70,45 @@ inline void pandar40_point(std::vector<std::uint8_t>& p, int block, int channel,
   p[at + 2] = refl;
 }
 
-/// QT128C2X protocol 3.2 packet (manual 3.1.2) with the given flags; CRCs filled by qt128_seal().
+/// Offsets of a QT128 packet's sections from its header's laser num N and flags (protocol notes
+/// table): units of 3 bytes (distance, reflectivity), 4 with flags bit 4 (a confidence byte; the
+/// vendor SDK's unitSize()); blocks of azimuth + N units; then CRC1, the functional-safety
+/// section (bit 2), the 26-byte tail, the UDP sequence (bit 0), CRC3, the signature (bit 3).
+struct QtOffsets {
+  std::size_t unit, block, crc1, fs, tail, crc3, sig, total;
+};
+inline QtOffsets qt128_offsets(std::size_t lasers, std::uint8_t flags) {
+  QtOffsets o{};
+  o.unit = (flags & 0x10) ? 4 : 3;
+  o.block = 2 + lasers * o.unit;
+  o.crc1 = 12 + 2 * o.block;
+  std::size_t at = o.crc1 + 4;
+  o.fs = (flags & 4) ? at : 0;
+  at += (flags & 4) ? 17 : 0;
+  o.tail = at;
+  o.crc3 = at + 26 + ((flags & 1) ? 4 : 0);
+  o.sig = (flags & 8) ? o.crc3 + 4 : 0;
+  o.total = o.crc3 + 4 + ((flags & 8) ? 32 : 0);
+  return o;
+}
+/// The offsets of this packet, from its own header (bytes 6 and 11).
+inline QtOffsets qt128_offsets(const std::vector<std::uint8_t>& p) { return qt128_offsets(p[6], p[11]); }
+
+/// QT128C2X protocol 3.2 packet (manual 3.1.2) with the given flags, 128 units per block; CRCs
+/// filled by qt128_seal().
 inline std::vector<std::uint8_t> qt128_packet(std::uint8_t flags, std::uint8_t return_mode, std::uint8_t mode_flag,
                                               const Stamp& s, std::uint16_t rpm = 600, std::uint32_t seq = 0) {
-  std::size_t len = 12 + 1028 + 4;
-  const std::size_t fs = (flags & 4) ? len : 0;
-  len += (flags & 4) ? 17u : 0u;
-  const std::size_t tail = len;
-  len += 26u + ((flags & 1) ? 4u : 0u) + 4u + ((flags & 8) ? 32u : 0u);
-  std::vector<std::uint8_t> p(len, 0);
+  const QtOffsets o = qt128_offsets(128, flags);
+  std::vector<std::uint8_t> p(o.total, 0);
   p[0] = 0xEE; p[1] = 0xFF; p[2] = 3; p[3] = 2;
   p[6] = 0x80; p[7] = 0x02; p[9] = 0x04;
   const bool dual = return_mode == 0x39 || return_mode == 0x3A || return_mode == 0x3B || return_mode == 0x3C || return_mode == 0x3E;
   p[10] = dual ? 2 : 1;
   p[11] = flags;
   hesai::store_le16(&p[12], 30000);        // 300.00 degrees
-  hesai::store_le16(&p[12 + 514], 30000);
-  if (fs) p[fs] = 1;
+  hesai::store_le16(&p[12 + o.block], 30000);
+  if (o.fs) p[o.fs] = 1;
+  const std::size_t tail = o.tail;
   p[tail + 5] = mode_flag;
   p[tail + 12] = return_mode;
   hesai::store_le16(&p[tail + 13], rpm);
@@ -97,33 +119,69 @@ inline std::vector<std::uint8_t> qt128_packet(std::uint8_t flags, std::uint8_t r
   if (flags & 1) hesai::store_le32(&p[tail + 26], seq);
   return p;
 }
+/// Sets unit `channel` (1-based position) of `block` (1-based); the confidence byte only with 4-byte units.
 inline void qt128_point(std::vector<std::uint8_t>& p, int block, int channel, std::uint16_t raw, std::uint8_t refl,
                         std::uint8_t confidence = 0) {
-  const std::size_t at = 12 + 514 * static_cast<std::size_t>(block - 1) + 2 + 4 * static_cast<std::size_t>(channel - 1);
+  const QtOffsets o = qt128_offsets(p);
+  const std::size_t at = 12 + o.block * static_cast<std::size_t>(block - 1) + 2 + o.unit * static_cast<std::size_t>(channel - 1);
   hesai::store_le16(&p[at], raw);
   p[at + 2] = refl;
-  p[at + 3] = confidence;
-}
-/// Offsets of a QT128 packet's sections from its flags (protocol notes table).
-struct QtOffsets {
-  std::size_t fs, tail, crc3, sig;
-};
-inline QtOffsets qt128_offsets(std::uint8_t flags) {
-  QtOffsets o{};
-  std::size_t at = 1044;
-  o.fs = (flags & 4) ? at : 0;
-  at += (flags & 4) ? 17 : 0;
-  o.tail = at;
-  o.crc3 = at + 26 + ((flags & 1) ? 4 : 0);
-  o.sig = (flags & 8) ? o.crc3 + 4 : 0;
-  return o;
+  if (o.unit == 4) p[at + 3] = confidence;
 }
 /// Fills CRC1, CRC2 and CRC3 (hesai::qt128::seal, itself checked on the sensor's own packets in
 /// test_decoder.cpp) and, with a key, the signature.
 inline void qt128_seal(std::vector<std::uint8_t>& p, const std::uint8_t* key = nullptr) {
   ASSERT_EQ(hesai::qt128::seal(p.data(), p.size()), hesai::Error::ok) << "a QT128 packet of " << p.size() << " bytes";
-  const QtOffsets o = qt128_offsets(p[11]);
+  // And the CRCs are where this file's own offsets put them, over the bytes they give: seal() is
+  // checked on every packet a test builds (3-byte units and customised channels included).
+  const QtOffsets o = qt128_offsets(p);
+  ASSERT_EQ(hesai::load_le32(&p[o.crc1]), hesai::crc32_mpeg2(hesai::ByteView{&p[12], o.crc1 - 12}));
+  if (o.fs) {
+    ASSERT_EQ(hesai::load_le32(&p[o.fs + 13]), hesai::crc32_mpeg2(hesai::ByteView{&p[o.fs + 1], 12}));
+  }
+  ASSERT_EQ(hesai::load_le32(&p[o.crc3]), hesai::crc32_mpeg2(hesai::ByteView{&p[o.tail], o.crc3 - o.tail}));
   if (o.sig && key) hesai::hmac_sha256(hesai::ByteView{key, 32}, hesai::ByteView{p.data(), o.sig}, &p[o.sig]);
+}
+
+/// A QT128 packet rebuilt byte for byte with other units: header byte 6 (laser num) and 11 (flags)
+/// replaced, block b keeping the units at 0-based positions keep[b] of `p` (in that order), each
+/// cut to the unit size the new flags give (3 bytes: distance and reflectivity; 4: and the
+/// confidence byte); the sections after the body copied in order; then re-sealed. Only bits 4 and 6
+/// may differ between the flags (the other sections stay). A signature is copied, not re-signed.
+inline std::vector<std::uint8_t> qt128_rebuild(const std::vector<std::uint8_t>& p, std::uint8_t laser_num,
+                                               std::uint8_t flags, const std::vector<std::size_t> (&keep)[2]) {
+  const QtOffsets from = qt128_offsets(p);
+  const QtOffsets to = qt128_offsets(laser_num, flags);
+  std::vector<std::uint8_t> q(p.begin(), p.begin() + 12);
+  q[6] = laser_num;
+  q[11] = flags;
+  for (std::size_t b = 0; b < 2; ++b) {
+    const std::size_t block = 12 + b * from.block;
+    q.insert(q.end(), p.begin() + static_cast<long>(block), p.begin() + static_cast<long>(block + 2));  // azimuth
+    for (std::size_t u : keep[b]) {
+      const std::size_t at = block + 2 + u * from.unit;
+      for (std::size_t i = 0; i < to.unit; ++i) q.push_back(i < from.unit ? p[at + i] : 0);
+    }
+  }
+  q.insert(q.end(), p.begin() + static_cast<long>(from.crc1), p.end());  // CRC1 (recomputed below) and after
+  qt128_seal(q);
+  return q;
+}
+/// Positions 0..n-1, for qt128_rebuild.
+inline std::vector<std::size_t> first_units(std::size_t n) {
+  std::vector<std::size_t> v(n);
+  for (std::size_t i = 0; i < n; ++i) v[i] = i;
+  return v;
+}
+
+/// Rewrites a QT128 tail's date-time into the form of a year byte 0: bytes 0 and 1 zero, bytes
+/// 2..5 `seconds` since the Unix epoch, big-endian (vendor SDK GetMicroLidarTimeU64); re-sealed.
+inline void qt128_set_unix_time(std::vector<std::uint8_t>& p, std::uint32_t seconds) {
+  const std::size_t dt = qt128_offsets(p).tail + 15;
+  p[dt] = 0;
+  p[dt + 1] = 0;
+  hesai::store_be32(&p[dt + 2], seconds);
+  qt128_seal(p);
 }
 
 // ---- GPS packets, both layouts (offsets typed in from the manuals, not from hesai/gps.h) ----

@@ -698,6 +698,7 @@ TEST(ChannelConfigCsv, EveryErrorAtItsLine) {
       {"channel 0", replace_line(t, 30, "0,75"), Error::calib_bad_channel, 30},
       {"channel 129", replace_line(t, 30, "75,129"), Error::calib_bad_channel, 30},
       {"a duplicate", replace_line(t, 30, "74,75"), Error::calib_bad_channel, 30},
+      {"a duplicate in Loop2", replace_line(t, 30, "75,74"), Error::calib_bad_channel, 30},
       {"a row after the hash", t + "\n1,1\n", Error::calib_channel_count, 85},
       {"two hash lines", t + "\n1\n", Error::calib_channel_count, 85},
       {"an extra channel row", rows_only + "1,1\n", Error::calib_channel_count, 84},

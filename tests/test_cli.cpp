@@ -290,14 +290,23 @@ TEST(Cli, CalibrationValueOutOfRangeIsAConfigurationError) {
                 altered_calibration("pandar64_firetimes.csv", "61,-3.62", "61,-1000")).status, 0);
 }
 
-// The text report prints capture times as UTC dates. The Pandar64 capture is dated 2120 (year
-// byte 120 after 2000; calendar.timegm((2120,6,25,12,2,9)) = 4748760129, see test_golden.cpp),
-// past 2038: a 32-bit time_t (armhf without _TIME_BITS=64) printed 1984-05-19.
+// The text report prints capture times as UTC dates: the Pandar64 capture's first packet is
+// 2020-06-25 12:02:09 and 977341 us (year byte 120, years since 1900 by the vendor SDK's rule;
+// see test_golden.cpp). The same packet with year byte 40 is 2040 (by every reading), past 2038:
+// a 32-bit time_t (armhf without _TIME_BITS=64) printed such dates wrapped into the 1900s.
 TEST(Cli, StatsTextPrintsDatesPast2038) {
   const CmdResult r = run("stats " + data_path("pandar64_dual.pcap"));
   ASSERT_EQ(r.status, 0) << r.out;
-  // First packet: 2120-06-25 12:02:09 and 977341 us (its timestamp field).
-  EXPECT_NE(r.out.find("2120-06-25T12:02:09.977341000Z"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("2020-06-25T12:02:09.977341000Z"), std::string::npos) << r.out;
+
+  auto p = pcap_payloads("pandar64_dual.pcap").at(0);
+  ASSERT_EQ(p[1188], 120);
+  p[1188] = 40;  // Date & Time year byte: 2040
+  const std::string dir = temp_dir();
+  write_pcap(dir + "/y2040.pcap", {p});
+  const CmdResult late = run("stats " + dir + "/y2040.pcap");
+  ASSERT_EQ(late.status, 0) << late.out;
+  EXPECT_NE(late.out.find("2040-06-25T12:02:09.977341000Z"), std::string::npos) << late.out;
 }
 
 // ---- The bundled captures ----
@@ -896,7 +905,7 @@ void send_renumbered_qt128(int port, std::uint32_t seq) {
   ASSERT_FALSE(packets.empty());
   std::vector<std::uint8_t> p = packets[0];
   ASSERT_TRUE(p[11] & 1);  // flags bit 0: the tail has a UDP sequence
-  store_le32(&p[qt128_offsets(p[11]).tail + 26], seq);
+  store_le32(&p[qt128_offsets(p).tail + 26], seq);
   qt128_seal(p);
   hesai::port::UdpSender sender;
   std::string error;

@@ -175,7 +175,7 @@ TEST(ManualExample, Pandar40TimeFromGpsAndHourRollover) {
 // channel 99 fires at 0.6 us in sequence 1 and at 1.456 us in sequence 2.
 TEST(ManualExample, Qt128BlockStartAndFiringSequences) {
   const Stamp s;
-  auto p = qt128_packet(0x05, 0x37, /*mode_flag=*/1, s);  // sequence + functional safety
+  auto p = qt128_packet(0x15, 0x37, /*mode_flag=*/1, s);  // sequence, functional safety, confidence bytes
   qt128_point(p, 1, 99, 1000, 10, 0x5A);
   qt128_point(p, 2, 99, 1000, 20);
   qt128_point(p, 2, 65, 1000, 30);
@@ -192,12 +192,13 @@ TEST(ManualExample, Qt128BlockStartAndFiringSequences) {
   EXPECT_EQ(find_point(pts, 2, 65)->time_ns, t0 + 9000 + 111110 + 600);
   EXPECT_EQ(find_point(pts, 1, 99)->confidence, 0x5A);
 
-  // Mode flag 0: block 1 uses sequence 2.
+  // Mode flag 0: block 1 uses sequence 2. (Flags bit 4 clear: 3-byte units, no confidence byte.)
   auto q = qt128_packet(0x05, 0x37, 0, s);
   qt128_point(q, 1, 99, 1000, 10);
   qt128_seal(q);
   ASSERT_EQ(dec.decode(view(q), info, pts), Error::ok);
   EXPECT_EQ(pts.points[0].time_ns, t0 + 9000 + 1456);
+  EXPECT_EQ(pts.points[0].confidence, 0);
 
   // Dual return: both blocks hold one firing at t0 + 9 us.
   auto d = qt128_packet(0x05, 0x3B, 1, s);

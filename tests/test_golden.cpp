@@ -77,10 +77,12 @@ hesai::FiretimeCorrection load_firetimes(const std::string& name, std::size_t ch
 // t0 from the tail, by the manual's formula: date-time (whole seconds, UTC) + timestamp (us).
 std::int64_t packet_time_ns(const Layout& l, const std::vector<std::uint8_t>& p) {
   std::size_t date = 0, ts = 0;
-  int year_base = 2000;
   if (l.model == Model::pandar40p) { date = 1256; ts = 1250; }
   if (l.model == Model::pandar64) { date = 1188; ts = 1182; }
-  if (l.model == Model::qt128c2x) { date = 1076; ts = 1082; year_base = 1900; }
+  if (l.model == Model::qt128c2x) { date = 1076; ts = 1082; }
+  // Year byte: QT128 year - 1900; Pandar40P/64 by the vendor SDK's rule, < 70 -> 2000 + byte
+  // (the manual's year - 2000), else 1900 + byte (the Pandar64 capture sends 120 for 2020).
+  const int year_base = l.model == Model::qt128c2x || p[date] >= 70 ? 1900 : 2000;
   const std::int64_t s = timegm_utc(year_base + p[date], p[date + 1], p[date + 2], p[date + 3], p[date + 4], p[date + 5]);
   return s * 1000000000LL + static_cast<std::int64_t>(hesai::load_le32(&p[ts])) * 1000;
 }
@@ -237,15 +239,16 @@ TEST(GoldenHeader, Pandar64FirstPacket) {
   EXPECT_EQ(info.factory_info, 0x42);
   EXPECT_TRUE(info.has_sequence);
   EXPECT_EQ(info.sequence, 0x0023B389u);
-  // Date & Time 0x78 = 120 -> 2000 + 120 = 2120 (the manual's year - 2000), 06-25 12:02:09.
-  EXPECT_EQ(info.date_time.year, 2120);
+  // Date & Time 0x78 = 120 -> 1900 + 120 = 2020 (the vendor SDK's rule: a byte >= 70 counts years
+  // since 1900; the manual's year - 2000 would give 2120), 06-25 12:02:09.
+  EXPECT_EQ(info.date_time.year, 2020);
   EXPECT_EQ(info.date_time.month, 6);
   EXPECT_EQ(info.date_time.day, 25);
   EXPECT_EQ(info.date_time.hour, 12);
   EXPECT_EQ(info.date_time.minute, 2);
   EXPECT_EQ(info.date_time.second, 9);
-  // calendar.timegm((2120,6,25,12,2,9)) = 4748760129.
-  EXPECT_EQ(info.time_ns, 4748760129LL * 1000000000 + 977341000LL);
+  // calendar.timegm((2020,6,25,12,2,9)) = 1593086529.
+  EXPECT_EQ(info.time_ns, 1593086529LL * 1000000000 + 977341000LL);
 }
 
 TEST(GoldenHeader, Pandar40PFirstPacket) {

@@ -50,6 +50,10 @@ TEST(Stats, NamedErrors) {
   hesai::count_error(s, Error::unsupported_model);
   hesai::count_error(s, Error::unsupported_section);
   EXPECT_EQ(s.unsupported, 3u);
+  // A customised QT128 packet this decoder cannot map (no configuration, or another LaserNum).
+  hesai::count_error(s, Error::channel_config_required);
+  hesai::count_error(s, Error::channel_config_mismatch);
+  EXPECT_EQ(s.unsupported, 5u);
   hesai::count_error(s, Error::bad_magic);
   hesai::count_error(s, Error::bad_length);
   hesai::count_error(s, Error::dual_block_mismatch);
@@ -67,7 +71,7 @@ TEST(Stats, OkCountsNothing) {
 }
 
 TEST(Stats, EveryCodeMovesExactlyOneCounter) {
-  // Every code from truncated (1) to the last: the 8 named above go to their
+  // Every code from truncated (1) to the last: the 10 named above go to their
   // counters, every other one to malformed.
   const auto last = static_cast<unsigned>(hesai::kLastError);
   unsigned crc = 0, sig_inv = 0, sig_miss = 0, unsup = 0, malformed = 0;
@@ -86,8 +90,8 @@ TEST(Stats, EveryCodeMovesExactlyOneCounter) {
   EXPECT_EQ(crc, 3u);
   EXPECT_EQ(sig_inv, 1u);
   EXPECT_EQ(sig_miss, 1u);
-  EXPECT_EQ(unsup, 3u);
-  EXPECT_EQ(malformed, last - 8u);
+  EXPECT_EQ(unsup, 5u);
+  EXPECT_EQ(malformed, last - 10u);
 }
 
 TEST(Stats, CountModel) {

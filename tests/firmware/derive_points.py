@@ -44,14 +44,16 @@ pts = {
     'pandar40 ch1': point(1171, 4, 8.46, -1.042, 15.00, -42.22, 600, 883512 * 1000, P40_BLOCK1),
 }
 # Pandar64 (Pandar64 manual): header dis unit 4 mm, tail rpm 0x0257 = 599, date 120-06-25 12:02:09
-# (year - 2000 by the manual), timestamp 0x000EEE4C = 978508 us, return mode 0x39 (dual).
+# (year byte 120: years since 1900 by the vendor SDK's rule, byte < 70 -> 2000 + byte, else
+# 1900 + byte; the manual's year - 2000 would give 2120), timestamp 0x000EEE4C = 978508 us,
+# return mode 0x39 (dual).
 # Block 1 azimuth 0x01EC = 492 -> 4.92 deg; dual block 1 ends at t0 - 42.58 - 55.56 x 2 us
 # (Appendix B.3).
 # Channel 1: bytes 2B 02 2C -> raw 555, reflectivity 44; elevation 14.882, azimuth -1.042
 #   (Appendix A); firing time -23.18 us (Appendix B.4).
 # Channel 5: bytes 19 02 08 -> raw 537, reflectivity 8; elevation 3.040, azimuth -1.042
 #   (Appendix A); firing time -17.964 us (Appendix B.4).
-P64_T0 = t0(2120, 6, 25, 12, 2, 9, 978508)
+P64_T0 = t0(2020, 6, 25, 12, 2, 9, 978508)
 P64_BLOCK1 = -42.58 - 55.56 * 2
 pts['pandar64 ch1'] = point(555, 4, 4.92, -1.042, 14.882, -23.18, 599, P64_T0, P64_BLOCK1)
 pts['pandar64 ch5'] = point(537, 4, 4.92, -1.042, 3.040, -17.964, 599, P64_T0, P64_BLOCK1)

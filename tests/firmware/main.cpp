@@ -40,7 +40,7 @@ using hesai::Model;
 int failures = 0;
 
 // The figure decoder.h states ("Memory"), on the target.
-static_assert(sizeof(hesai::Decoder) == (HESAI_SIGNATURE ? 6904 : 6680), "decoder.h: Memory");
+static_assert(sizeof(hesai::Decoder) == (HESAI_SIGNATURE ? 7160 : 6936), "decoder.h: Memory");
 
 // ---- Output ---------------------------------------------------------------------------------
 
@@ -206,8 +206,14 @@ void real_packets() {
   static const Expected p40p[] = {{0, 1, 6, 0.5722f, 4.4881f, 1.2123f, 7.2660f, 1504714786883218960},
                                   {0, 2, 13, 0.6065f, 4.7241f, 0.9258f, 7.3155f, 1504714786883232710}};
   static const Expected p40[] = {{0, 1, 6, 0.5722f, 4.4881f, 1.2123f, 7.2660f, 883218960}};
-  static const Expected p64[] = {{0, 1, 44, 0.1420f, 2.1408f, 0.5702f, 3.7947f, 4748760129978331120},
-                                 {0, 5, 8, 0.1427f, 2.1402f, 0.1139f, 3.8134f, 4748760129978336336}};
+  // Pandar64 year byte 120 = 2020 (the vendor SDK's rule). These times were 2120 by the manual's
+  // year - 2000: 2020-06-25 to 2120-06-25 is 100 x 365 days + the leap days 2024, 2028, ..., 2120
+  // (25 years divisible by 4) less 2100 (a century not divisible by 400) = 36500 + 24 = 36524 days
+  // = 36524 x 86400 s = 3 155 673 600 s; 4748760129978331120 - 3155673600000000000 =
+  // 1593086529978331120, and 4748760129978336336 - 3155673600000000000 = 1593086529978336336
+  // (2020-06-25 12:02:09 UTC is 1593086529 s: 18438 days x 86400 + 43329 s).
+  static const Expected p64[] = {{0, 1, 44, 0.1420f, 2.1408f, 0.5702f, 3.7947f, 1593086529978331120},
+                                 {0, 5, 8, 0.1427f, 2.1402f, 0.1139f, 3.8134f, 1593086529978336336}};
   static const Expected qt[] = {{0, 35, 1, 0.0432f, 0.3306f, -0.0996f, 7.4513f, 1602245009403807312},
                                 {0, 38, 15, 0.0417f, 0.3154f, -0.0799f, 7.5397f, 1602245009403810480}};
 

@@ -20,7 +20,8 @@
 // - Every fallible call returns an Error ([[nodiscard]]: dropping one does not compile). Bad input
 //   is never an assert, a crash or an out-of-bounds read; it is a code. HESAI_ASSERT (config.h)
 //   checks only the core's internal contracts and is off by default.
-// - set_angles(), set_firetimes(), the FrameAssembler setters: on error nothing is changed.
+// - set_angles(), set_firetimes(), set_channel_config(), set_reflectivity(), the FrameAssembler
+//   setters: on error nothing is changed.
 //   decode(): on error out.count is 0 and `info` is partly filled (only for logging).
 //
 // Worst-case cost per packet (no allocation, no recursion, no system call, no libm call; every
@@ -38,8 +39,9 @@
 // Memory (the caller owns every object; the core has no static RAM but the two CPUID bytes on
 // x86-64; sizes checked by static_assert in tests/test_contract.cpp on every CI target, 32- and
 // 64-bit, and in the firmware image):
-// - Decoder: 6 904 bytes (6 680 with HESAI_SIGNATURE 0): per-channel geometry and the per-rate
-//   cache for 128 channels, the HMAC key states (224 bytes), the GPS time base.
+// - Decoder: 7 160 bytes (6 936 with HESAI_SIGNATURE 0): per-channel geometry and the per-rate
+//   cache for 128 channels, the QT128 channel configuration (256 bytes), the HMAC key states (224
+//   bytes), the GPS time base.
 // - PacketPoints: 16 008 bytes (400 points of 40 bytes); PacketInfo: 88 bytes.
 // - Calibration input: AngleCorrection 2 056 bytes, FiretimeCorrection 2 312 bytes (only while
 //   parsing and set_angles()/set_firetimes(); the decoder keeps what it needs).
@@ -138,9 +140,16 @@ struct PacketInfo {
   FunctionalSafety safety;        ///< QT128 only
 };
 
+/// What Point::intensity holds (Decoder::set_reflectivity).
+enum class Reflectivity : std::uint8_t {
+  raw,        ///< the reflectivity byte as sent (default; with the sensors' default linear mapping it is the percentage)
+  nonlinear,  ///< Pandar64 set to "Nonlinear Mapping": the byte mapped by the manual's Appendix D to a percentage
+};
+
 /// Decoder state for one sensor: per-channel geometry from the built-in tables or a
-/// calibration file, the per-spin-rate point constants, the session key, and the Pandar40 GPS
-/// time base. 6 904 bytes; one per sensor per thread (see the contract at the top).
+/// calibration file, the per-spin-rate point constants, the session key, the Pandar40 GPS
+/// time base and the QT128 channel configuration. 7 160 bytes; one per sensor per thread (see the
+/// contract at the top).
 class Decoder {
  public:
   /// A decoder for `model` using the manual's design angles and firing times.
@@ -158,6 +167,22 @@ class Decoder {
   [[nodiscard]] Error set_firetimes(const FiretimeCorrection& firetimes) noexcept;
   /// Azimuth firing-time correction (on by default): adds firing time x spin rate to each point.
   void set_firetime_correction(bool on) noexcept { firetime_correction_ = on; }
+
+  /// QT128: the channel configuration (parse_channel_config_csv) that maps the units of packets
+  /// with customised channels (flags bit 6) to channels. Without one such packets are
+  /// Error::channel_config_required; with one whose LaserNum is not the packet's laser num,
+  /// Error::channel_config_mismatch. A one-loop configuration maps the blocks of both firing
+  /// sequences. Errors (and no change): invalid_argument for another model, a LaserNum outside
+  /// 1..128, a loop count outside 1..2, or a channel outside 1..128 or listed twice in a loop;
+  /// channel_config_mismatch for a BlockNum other than the QT128's 2.
+  Error set_channel_config(const ChannelConfig& config) noexcept;
+  /// Forgets the channel configuration.
+  void clear_channel_config() noexcept { custom_lasers_ = 0; }
+
+  /// What Point::intensity holds (raw by default). The packets do not say which mapping a
+  /// Pandar64 is set to. Error::invalid_argument (and no change) for `nonlinear` on any other
+  /// model: no other manual here gives a mapping.
+  Error set_reflectivity(Reflectivity mapping) noexcept;
 
   /// Verifies QT128 signatures with this 32-byte session key (see hesai_session_key()).
   /// Error::unsupported_feature (and no key) in a core built with HESAI_SIGNATURE 0.
@@ -210,19 +235,26 @@ class Decoder {
   void decode_pandar40(const std::uint8_t* p, const PacketInfo& info, Point* out, std::size_t& count) const noexcept;
   void decode_pandar64(const std::uint8_t* p, const PacketInfo& info, Point* out, std::size_t& count) const noexcept;
   void decode_qt128(const std::uint8_t* p, const PacketInfo& info, Point* out, std::size_t& count) const noexcept;
-  // The per-point arithmetic every sensor shares (core/src/sensors/block_points.h).
-  template <std::size_t kPointBytes>
-  void emit_block(const std::uint8_t* points, std::size_t channels, const PacketInfo& info, std::size_t block,
-                  std::int64_t block_time_ns, std::size_t loop, Point* out, std::size_t& count) const noexcept;
+  // The per-point arithmetic every sensor shares (core/src/sensors/block_points.h): unit_count
+  // units of kUnitBytes from `units`, unit j being the 0-based channel channel_of[j], or j without
+  // a map (nullptr).
+  template <std::size_t kUnitBytes>
+  void emit_block(const std::uint8_t* units, std::size_t unit_count, const std::uint8_t* channel_of,
+                  const PacketInfo& info, std::size_t block, std::int64_t block_time_ns, std::size_t loop, Point* out,
+                  std::size_t& count) const noexcept;
 
   Model model_;
   bool firetime_correction_ = true;
   bool has_key_ = false;
   bool allow_unsigned_ = false;
   bool has_gps_ = false;
+  Reflectivity reflectivity_ = Reflectivity::raw;
+  std::uint8_t custom_lasers_ = 0;  // QT128 channel configuration: units per block (0: none set)
   DateTime gps_time_;            // Pandar40: last GPS date-time
   Geometry geo_;
   SpinCache spin_;
+  // QT128 channel configuration: the 0-based channel of each unit, [loop][unit] (256 bytes).
+  std::array<std::array<std::uint8_t, kMaxChannels>, 2> custom_channel_{};
 #if HESAI_SIGNATURE
   HmacSha256Key key_;
 #endif

@@ -17,9 +17,11 @@
   X(bad_magic)                /* start bytes or block preamble are not the manual's */                         \
   X(unsupported_version)      /* a Hesai header with a protocol version we do not implement */                 \
   X(unsupported_model)        /* a Hesai header whose laser/block counts match no supported sensor */          \
+                              /* (QT128: a laser num other than 128 without channel customisation) */          \
   X(unsupported_section)      /* a section whose layout the manual does not give (QT128 IMU) */                \
   X(flags_length_mismatch)    /* header flags announce sections that do not add up to the length */            \
   X(bad_header)               /* a header field out of its documented range (distance unit 0, return count) */ \
+                              /* (and a customised QT128 laser num of 0 or above 128) */                       \
   /* Field validation. */                                                                                      \
   X(bad_azimuth)              /* block azimuth >= 360.00 degrees */                                            \
   X(bad_return_mode)          /* return-mode byte not listed in the manual */                                  \
@@ -38,6 +40,8 @@
   X(invalid_argument)         /* a parameter outside its documented range */                                   \
   X(buffer_too_small)         /* the caller's point storage holds fewer than max_points(model) */              \
   X(unsupported_feature)      /* the feature is configured out of this build (config.h: HESAI_SIGNATURE 0) */  \
+  X(channel_config_required)  /* QT128 customised channels (flags bit 6) and no channel configuration set */   \
+  X(channel_config_mismatch)  /* the channel configuration's LaserNum or BlockNum is not the packet's */       \
   /* GPS packets. */                                                                                           \
   X(bad_gps_field)            /* a GPS date/time digit or status byte outside its range */                     \
   /* Calibration files. */                                                                                     \

@@ -32,7 +32,8 @@ inline constexpr std::size_t kFactoryInfo = kTail + 15;
 inline constexpr std::size_t kPandar40Bytes = kTail + 16;
 static_assert(kPandar40Bytes == 1256);
 
-// Pandar40P: 22-byte tail with date-time (year - 2000), then the optional u32 UDP sequence.
+// Pandar40P: 22-byte tail with date-time (year byte: < 70 -> 2000 + byte, else 1900 + byte, the
+// vendor SDK's rule; the manual says year - 2000), then the optional u32 UDP sequence.
 inline constexpr std::size_t kDateTime = kTail + 16;
 inline constexpr std::size_t kPandar40PBytes = kTail + 22;
 inline constexpr std::size_t kSequence = kPandar40PBytes;

@@ -31,7 +31,10 @@ inline constexpr std::size_t kMotorSpeed = kTail + 8;   ///< u16 RPM
 inline constexpr std::size_t kTimestamp = kTail + 10;   ///< u32 us within the second
 inline constexpr std::size_t kReturnMode = kTail + 14;
 inline constexpr std::size_t kFactoryInfo = kTail + 15;
-inline constexpr std::size_t kDateTime = kTail + 16;    ///< year - 2000, month, day, hour, minute, second
+/// Year, month, day, hour, minute, second. The manual's year byte is year - 2000; units send years
+/// since 1900 as well (120 = 2020): read by the vendor SDK's rule, byte < 70 -> 2000 + byte, else
+/// 1900 + byte.
+inline constexpr std::size_t kDateTime = kTail + 16;
 inline constexpr std::size_t kPacketBytes = kTail + 22;
 inline constexpr std::size_t kSequence = kPacketBytes;
 inline constexpr std::size_t kSequencePacketBytes = kPacketBytes + 4;

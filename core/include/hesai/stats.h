@@ -23,7 +23,8 @@ struct Stats {
   std::uint64_t signature_missing = 0;     ///< a key is configured, the packet is unsigned
   std::uint64_t signature_unverified = 0;  ///< signed, but no key configured
   std::uint64_t malformed = 0;             ///< every other rejection (length, magic, fields...)
-  std::uint64_t unsupported = 0;           ///< a version, model or section we do not implement
+  std::uint64_t unsupported = 0;           ///< a version, model or section we do not implement, or
+                                           ///< customised QT128 channels without a matching configuration
   std::uint64_t lost = 0;                  ///< UDP sequence numbers never seen (SequenceTracker)
   std::uint64_t duplicates = 0;            ///< sequence numbers seen again
   std::uint64_t reordered = 0;             ///< sequence numbers that arrived after a later one
@@ -44,7 +45,8 @@ struct Stats {
 
 /// Adds one to the counter of a rejection: crc_body, crc_functional_safety, crc_tail ->
 /// crc_errors; signature_invalid -> signature_invalid; signature_missing -> signature_missing;
-/// unsupported_version, unsupported_model, unsupported_section -> unsupported; any other code
+/// unsupported_version, unsupported_model, unsupported_section, channel_config_required,
+/// channel_config_mismatch -> unsupported; any other code
 /// -> malformed. Error::ok counts nothing. Touches no other counter (not `packets`).
 void count_error(Stats& stats, Error error) noexcept;
 

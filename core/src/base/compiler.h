@@ -2,7 +2,8 @@
 //
 // HESAI_GNU is 1 with GNU C++ (GCC, Clang and compilers that emulate them) unless
 // HESAI_NO_GNU_EXTENSIONS is defined. It enables: the empty-asm optimisation barriers of ct.cpp,
-// always_inline in sha256.cpp, and the x86-64 SHA-NI and PCLMULQDQ paths (target attributes,
+// always_inline in sha256.cpp, noinline for size in sensors/block_points.h, and the x86-64 SHA-NI
+// and PCLMULQDQ paths (target attributes,
 // <cpuid.h>). Any other compiler takes the portable paths, which ISO C++17 alone defines; CI
 // compiles and tests them by defining HESAI_NO_GNU_EXTENSIONS (the hesai_portable_tests target).
 #pragma once
@@ -20,4 +21,12 @@
 #define HESAI_ALWAYS_INLINE __attribute__((always_inline))
 #else
 #define HESAI_ALWAYS_INLINE
+#endif
+
+/// Keeps a function out of line when optimising for size (-Os), where the compiler can be told:
+/// the callers then share one copy (a flash saving only; optimising for speed it may be inlined).
+#if HESAI_GNU && defined(__OPTIMIZE_SIZE__)
+#define HESAI_NOINLINE_FOR_SIZE __attribute__((noinline))
+#else
+#define HESAI_NOINLINE_FOR_SIZE
 #endif

@@ -37,10 +37,21 @@ inline constexpr std::uint16_t kMaxMotorRpm = 1500;
   return Error::ok;
 }
 
-/// t0 from a tail's date-time (6 bytes: year - year_base, month, day, hour, minute, second) and
-/// its microseconds (at most max_us).
-[[nodiscard]] inline Error tail_time(const std::uint8_t* dt, std::int32_t year_base, std::uint32_t max_us, PacketInfo& info) {
-  info.date_time = DateTime{year_base + dt[0], dt[1], dt[2], dt[3], dt[4], dt[5]};
+/// The calendar form of a tail's 6-byte date-time: its year (decoded by the caller from byte 0),
+/// then month, day, hour, minute, second from bytes 1..5.
+inline DateTime tail_date_time(std::int32_t year, const std::uint8_t* dt) {
+  return DateTime{year, dt[1], dt[2], dt[3], dt[4], dt[5]};
+}
+
+/// Pandar40P/64 year byte, by the vendor SDK's rule (udp_protocol_p40.h, udp_protocol_p64.h:
+/// tm_year = byte, + 100 when byte < 70): 0..69 are 2000..2069, as the manuals' "year - 2000"
+/// says; 70..255 are years since 1900, as the bundled Pandar64 unit sends them (120 = 2020).
+constexpr std::int32_t pandar_year(std::uint8_t byte) { return byte < 70 ? 2000 + byte : 1900 + byte; }
+static_assert(pandar_year(17) == 2017 && pandar_year(69) == 2069 && pandar_year(70) == 1970 && pandar_year(120) == 2020);
+
+/// t0 = the tail's date-time (whole seconds, UTC) + its microseconds (at most max_us).
+[[nodiscard]] inline Error tail_time(const DateTime& date_time, std::uint32_t max_us, PacketInfo& info) {
+  info.date_time = date_time;
   if (!is_valid(info.date_time)) return Error::bad_date_time;
   if (info.timestamp_us > max_us) return Error::bad_timestamp;
   info.time_ns = unix_seconds(info.date_time) * 1000000000LL + static_cast<std::int64_t>(info.timestamp_us) * 1000;

@@ -48,8 +48,12 @@ Error Decoder::validate_pandar40(ByteView p, PacketInfo& info) noexcept {
   if (const Error e = detail::motor_speed(info); e != Error::ok) return e;
   if (const Error e = detail::block_azimuths(p.data + kBlockAzimuth, kBlockBytes, info); e != Error::ok) return e;
 
-  // Pandar40P: date-time year - 2000; timestamp in us within the second.
-  if (is_40p) return detail::tail_time(p.data + kDateTime, 2000, 999999, info);
+  // Pandar40P: date-time (the year byte by the SDK's rule, see pandar_year); timestamp in us
+  // within the second.
+  if (is_40p) {
+    const std::uint8_t* dt = p.data + kDateTime;
+    return detail::tail_time(detail::tail_date_time(detail::pandar_year(dt[0]), dt), 999999, info);
+  }
 
   // Pandar40: the timestamp counts us from the top of the hour (the GPS packet sets it to
   // (minute x 60 + second) x 1e6 at each PPS); the date and hour come from the last GPS packet.
@@ -76,8 +80,8 @@ void Decoder::decode_pandar40(const std::uint8_t* p, const PacketInfo& info, Poi
   using namespace pandar40;
   const std::size_t dual = info.returns == 2 ? 1 : 0;
   for (std::size_t b = 0; b < kBlocks; ++b)
-    emit_block<kPointBytes>(p + b * kBlockBytes + kBlockPoints, kChannels, info, b, info.time_ns + kBlockNs[dual][b],
-                            0, out, count);
+    emit_block<kPointBytes>(p + b * kBlockBytes + kBlockPoints, kChannels, nullptr, info, b,
+                            info.time_ns + kBlockNs[dual][b], 0, out, count);
 }
 
 }  // namespace hesai

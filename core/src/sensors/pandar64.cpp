@@ -3,6 +3,7 @@
 #include "hesai/decoder.h"
 #include "hesai/pandar64_packet.h"
 #include "hesai/tables/block_times.h"
+#include "hesai/tables/pandar64_tables.h"
 #include "block_points.h"
 #include "field_checks.h"
 #include "sensor_rules.h"
@@ -13,6 +14,19 @@ namespace {
 constexpr auto kBlockNs = detail::block_ns(tables::pandar64_block_end_us_single, tables::pandar64_block_end_us_dual);
 // Pandar64 App. B.3: block 1 of 6 ends at t0 - 42.58 - 55.56 x 5 us, or x 2 in dual return.
 static_assert(kBlockNs[0][0] == -320380 && kBlockNs[1][0] == -153700);
+
+// Appendix D as Point::intensity holds it under Reflectivity::nonlinear: the actual reflectivity
+// in percent, rounded to the nearest integer (halves up), as the default linear mapping's byte is
+// one percent a step. 255, for which the manual gives no value, stays 255 (no mapped value
+// reaches it: the largest, for 254, is 242).
+constexpr std::array<std::uint8_t, 256> nonlinear_percent() {
+  std::array<std::uint8_t, 256> t{};
+  for (std::size_t i = 0; i < 255; ++i)
+    t[i] = static_cast<std::uint8_t>(tables::pandar64_nonlinear_reflectivity_pct[i] + 0.5);
+  t[255] = 255;
+  return t;
+}
+constexpr std::array<std::uint8_t, 256> kNonlinearPercent = nonlinear_percent();
 }  // namespace
 
 bool detail::is_pandar64_header(ByteView p) noexcept {
@@ -44,16 +58,28 @@ Error Decoder::validate_pandar64(ByteView p, PacketInfo& info) noexcept {
   if (const Error e = detail::pandar_return_mode(info); e != Error::ok) return e;
   if (const Error e = detail::motor_speed(info); e != Error::ok) return e;
   if (const Error e = detail::block_azimuths(p.data + kBody, kBlockBytes, info); e != Error::ok) return e;
-  // Date & Time: year - 2000 (section 3.1.2.3); Timestamp: us within the second, 0..999999.
-  return detail::tail_time(p.data + kDateTime, 2000, 999999, info);
+  // Date & Time (section 3.1.2.3; the year byte by the SDK's rule, see pandar_year); Timestamp:
+  // us within the second, 0..999999.
+  const std::uint8_t* dt = p.data + kDateTime;
+  return detail::tail_time(detail::tail_date_time(detail::pandar_year(dt[0]), dt), 999999, info);
 }
 
 void Decoder::decode_pandar64(const std::uint8_t* p, const PacketInfo& info, Point* out, std::size_t& count) const noexcept {
   using namespace pandar64;
   const std::size_t dual = info.returns == 2 ? 1 : 0;
+  const std::size_t first = count;
   for (std::size_t b = 0; b < kBlocks; ++b)
-    emit_block<kPointBytes>(p + kBody + b * kBlockBytes + kBlockPoints, kChannels, info, b,
+    emit_block<kPointBytes>(p + kBody + b * kBlockBytes + kBlockPoints, kChannels, nullptr, info, b,
                             info.time_ns + kBlockNs[dual][b], 0, out, count);
+  if (reflectivity_ == Reflectivity::nonlinear)
+    for (std::size_t i = first; i < count; ++i) out[i].intensity = kNonlinearPercent[out[i].intensity];
+}
+
+Error Decoder::set_reflectivity(Reflectivity mapping) noexcept {
+  // Only the Pandar64 manual gives a nonlinear mapping (Appendix D).
+  if (mapping != Reflectivity::raw && model_ != Model::pandar64) return Error::invalid_argument;
+  reflectivity_ = mapping;
+  return Error::ok;
 }
 
 }  // namespace hesai

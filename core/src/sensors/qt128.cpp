@@ -1,6 +1,7 @@
-// QT128C2X, point cloud protocol 3.2: identification (header and the flags-implied length),
-// validation (the three CRCs, the signature, then the fields) and the walk over its two blocks
-// with their firing sequences; and qt128::seal, which writes the CRCs validation checks.
+// QT128C2X, point cloud protocol 3.2: identification (header and the length its laser num and
+// flags imply), the channel configuration for customised packets, validation (the three CRCs,
+// the signature, then the fields) and the walk over its two blocks with their firing sequences;
+// and qt128::seal, which writes the CRCs validation checks.
 // Layout: hesai/qt128_packet.h; tables: hesai/tables/qt128_tables.h.
 #include "hesai/crc32.h"
 #include "hesai/ct.h"
@@ -47,7 +48,7 @@ struct CrcField {
 CrcField crc_field(ByteView p, const qt128::Layout& l, std::size_t i) noexcept {
   using namespace qt128;
   switch (i) {
-    case 0: return {p.sub(kBody, kBodyBytes), kCrc1};
+    case 0: return {p.sub(kBody, l.crc1 - kBody), l.crc1};
     case 1: return l.fs != 0 ? CrcField{p.sub(l.fs + kFsCrcFrom, kFsCrc2 - kFsCrcFrom), l.fs + kFsCrc2} : CrcField{};
     default: return {p.sub(l.tail, l.crc3 - l.tail), l.crc3};
   }
@@ -65,20 +66,52 @@ Error detail::identify_qt128(ByteView p, Model& model) noexcept {
   using namespace qt128;
   if (p[kVersionMajor] != 0x03 || p[kVersionMinor] != 0x02) return Error::unsupported_version;
   if (p.size < kHeaderEnd) return Error::bad_length;
-  if (p[kLaserNum] != 0x80 || p[kBlockNum] != 0x02) return Error::unsupported_model;
-  if (p.size != Layout::from_flags(p[kFlags]).total) return Error::flags_length_mismatch;
+  if (p[kBlockNum] != kBlocks) return Error::unsupported_model;
+  // 128 units per block, or with customised channels (flags bit 6) the header's 1..128.
+  const std::uint8_t lasers = p[kLaserNum];
+  if (!(p[kFlags] & kFlagChannelCustom)) {
+    if (lasers != kChannels) return Error::unsupported_model;
+  } else if (lasers == 0 || lasers > kChannels) {
+    return Error::bad_header;
+  }
+  if (p.size != Layout::from_header(lasers, p[kFlags]).total) return Error::flags_length_mismatch;
   model = Model::qt128c2x;
+  return Error::ok;
+}
+
+Error Decoder::set_channel_config(const ChannelConfig& config) noexcept {
+  using namespace qt128;
+  if (model_ != Model::qt128c2x) return Error::invalid_argument;
+  const std::size_t lasers = config.laser_num;
+  if (lasers < 1 || lasers > kChannels || config.loops < 1 || config.loops > 2) return Error::invalid_argument;
+  if (config.block_num != kBlocks) return Error::channel_config_mismatch;
+  // Checked before any change (parse_channel_config_csv checks the same; a config may be built by hand).
+  for (std::size_t loop = 0; loop < config.loops; ++loop) {
+    bool seen[kChannels] = {};
+    for (std::size_t j = 0; j < lasers; ++j) {
+      const std::size_t ch = config.channel[loop][j];
+      if (ch < 1 || ch > kChannels || seen[ch - 1]) return Error::invalid_argument;
+      seen[ch - 1] = true;
+    }
+  }
+  for (std::size_t loop = 0; loop < 2; ++loop)
+    for (std::size_t j = 0; j < lasers; ++j)
+      custom_channel_[loop][j] = static_cast<std::uint8_t>(config.channel[config.loops == 2 ? loop : 0][j] - 1);
+  custom_lasers_ = static_cast<std::uint8_t>(lasers);
   return Error::ok;
 }
 
 Error Decoder::validate_qt128(ByteView p, PacketInfo& info) noexcept {
   using namespace qt128;
-  // identify() has checked magic, version, laser and block numbers and the flags-implied length.
+  // identify() has checked magic, version, laser and block numbers and the length they and the flags imply.
   info.blocks = kBlocks;
   info.flags = p[kFlags];
-  if (info.flags & kFlagImu) return Error::unsupported_section;         // layout not in the manual
-  if (info.flags & kFlagChannelCustom) return Error::unsupported_section;  // needs a channel table
-  const Layout layout = Layout::from_flags(info.flags);
+  if (info.flags & kFlagImu) return Error::unsupported_section;  // layout not in the manual
+  const Layout layout = Layout::from_header(p[kLaserNum], info.flags);
+  if (info.flags & kFlagChannelCustom) {
+    if (custom_lasers_ == 0) return Error::channel_config_required;
+    if (custom_lasers_ != layout.lasers) return Error::channel_config_mismatch;
+  }
   info.dis_unit_mm = p[kDisUnit];
   const std::uint8_t return_num = p[kReturnNum];
   if (info.dis_unit_mm == 0 || (return_num != 1 && return_num != 2)) return Error::bad_header;
@@ -137,21 +170,33 @@ Error Decoder::validate_qt128(ByteView p, PacketInfo& info) noexcept {
   if (!qt128_return_mode(info.return_mode, info.returns) || info.returns != return_num) return Error::bad_return_mode;
   if (const Error e = detail::motor_speed(info); e != Error::ok) return e;
 
-  if (const Error e = detail::block_azimuths(p.data + kBody, kBlockBytes, info); e != Error::ok) return e;
-  // Date & Time: year - 1900 (>= 70); Timestamp: us, 0..1000000 (the manual's range).
-  return detail::tail_time(tail + kTailDateTime, 1900, 1000000, info);
+  if (const Error e = detail::block_azimuths(p.data + kBody, layout.block, info); e != Error::ok) return e;
+  // Date & Time: year - 1900 (>= 70), or with a year byte of 0 Unix seconds, big-endian, in bytes
+  // 2..5 (the vendor SDK's reading; byte 1 is not read); Timestamp: us, 0..1000000 (the manual's range).
+  const std::uint8_t* dt = tail + kTailDateTime;
+  const DateTime t = dt[0] == 0 ? date_time_from_unix(load_be32(dt + kDateTimeUnixSeconds))
+                                : detail::tail_date_time(1900 + dt[0], dt);
+  return detail::tail_time(t, 1000000, info);
 }
 
 void Decoder::decode_qt128(const std::uint8_t* p, const PacketInfo& info, Point* out, std::size_t& count) const noexcept {
   using namespace qt128;
+  const Layout layout = Layout::from_header(p[kLaserNum], info.flags);
+  const bool custom = (info.flags & kFlagChannelCustom) != 0;
   const std::size_t dual = info.returns == 2 ? 1 : 0;
   // Mode flag bit 0: block 1 uses firing sequence 1 (loop 0) when set, sequence 2 otherwise;
   // in single return block 2 uses the other sequence, in dual return both blocks share one firing.
+  // Customised channels: the configuration's column for that loop names each unit's channel.
   const std::size_t loop1 = (info.mode_flag & 1) ? 0 : 1;
   for (std::size_t b = 0; b < kBlocks; ++b) {
     const std::size_t loop = (dual || b == 0) ? loop1 : 1 - loop1;
-    emit_block<kPointBytes>(p + kBody + b * kBlockBytes + kBlockPoints, kChannels, info, b,
-                            info.time_ns + kBlockNs[dual][b], loop, out, count);
+    const std::uint8_t* units = p + kBody + b * layout.block + kBlockPoints;
+    const std::uint8_t* channel_of = custom ? custom_channel_[loop].data() : nullptr;
+    const std::int64_t t = info.time_ns + kBlockNs[dual][b];
+    if (layout.unit == kUnitBytes + kConfidenceBytes)
+      emit_block<kUnitBytes + kConfidenceBytes>(units, layout.lasers, channel_of, info, b, t, loop, out, count);
+    else
+      emit_block<kUnitBytes>(units, layout.lasers, channel_of, info, b, t, loop, out, count);
   }
 }
 
@@ -160,7 +205,7 @@ namespace qt128 {
 Error seal(std::uint8_t* payload, std::size_t size) noexcept {
   if (size <= kFlags) return Error::bad_length;
   if (payload[0] != kMagic0 || payload[1] != kMagic1) return Error::bad_magic;
-  const Layout layout = Layout::from_flags(payload[kFlags]);
+  const Layout layout = Layout::from_header(payload[kLaserNum], payload[kFlags]);
   if (size != layout.total) return Error::bad_length;
   for (std::size_t i = 0; i < kCrcCount; ++i) {
     const CrcField f = crc_field(ByteView{payload, size}, layout, i);

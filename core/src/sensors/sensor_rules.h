@@ -19,7 +19,8 @@ namespace hesai::detail {
 bool is_pandar64_header(ByteView p) noexcept;
 /// Pandar64 by length (1194, or 1198 with UDP sequence), once is_pandar64_header() holds.
 [[nodiscard]] Error identify_pandar64(ByteView p, Model& model) noexcept;
-/// QT128C2X: EE FF, protocol 3.2, 128 lasers, 2 blocks, the length the flags imply.
+/// QT128C2X: EE FF, protocol 3.2, 2 blocks, 128 lasers (1..128 with customised channels, flags
+/// bit 6), the length the laser num and flags imply.
 [[nodiscard]] Error identify_qt128(ByteView p, Model& model) noexcept;
 
 constexpr std::int32_t round_to_int(double v) {

@@ -22,6 +22,8 @@ void count_error(Stats& stats, Error error) noexcept {
     case Error::unsupported_version:
     case Error::unsupported_model:
     case Error::unsupported_section:
+    case Error::channel_config_required:  // the packet may be sound: this decoder cannot map its units
+    case Error::channel_config_mismatch:
       ++stats.unsupported;
       return;
     default:  // every other code, including codes added later

@@ -331,7 +331,7 @@ bool renumber(std::vector<std::uint8_t>& p, std::uint32_t seq) {
   } else if (m == Model::pandar40p && p.size() == pandar40::kPandar40PSequenceBytes) {
     store_le32(&p[pandar40::kSequence], seq);
   } else if (m == Model::qt128c2x && (p[qt128::kFlags] & qt128::kFlagSequence)) {
-    store_le32(&p[qt128::Layout::from_flags(p[qt128::kFlags]).tail + qt128::kTailSequence], seq);
+    store_le32(&p[qt128::Layout::from_header(p[qt128::kLaserNum], p[qt128::kFlags]).tail + qt128::kTailSequence], seq);
     return qt128::seal(p.data(), p.size()) == Error::ok;  // identify() checked the length
   } else {
     return false;
