@@ -13,12 +13,14 @@
 
 #include <cerrno>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
 #include <map>
+#include <sstream>
 #include <cctype>
 #include <string>
 #include <thread>
@@ -27,6 +29,7 @@
 #include "hesai/decoder.h"
 #include "hesai/frame.h"
 #include "hesai/hkdf.h"
+#include "hesai/tables/pandar64_tables.h"
 #include "hesai_port/udp.h"
 #include "packet_builder.h"
 #include "safety_stream.h"
@@ -524,6 +527,92 @@ TEST(Cli, UnreadableCaptureGivesOnlyItsError) {
   std::ofstream(out) << "kept\n";
   EXPECT_EQ(run("decode /nonexistent-hesai/file.pcap --out " + out).status, 2);
   EXPECT_EQ(read_text(out), "kept\n");
+}
+
+// ---- Sensor settings: channel configuration and reflectivity mapping ----
+
+// QT128 packets with customised channels (flags bit 6, 80 units per block: the bundled
+// configuration's channels for each block's loop, as test_sensor_settings.cpp builds them): without
+// --channel-config every one is rejected (counted unsupported); with it, every unit with a distance
+// of 2 or more is a point (distance 1 is the QT128's marker).
+TEST(Cli, ChannelConfigAppliesToCustomisedPackets) {
+  const auto real = pcap_payloads("qt128c2x_dual.pcap");
+  std::vector<std::size_t> loops[2];
+  for (const auto& row : read_numeric_csv("calibration/qt128c2x_channel_config.csv").rows)
+    if (row.size() == 2)
+      for (std::size_t k = 0; k < 2; ++k) loops[k].push_back(static_cast<std::size_t>(row[k]) - 1);
+  ASSERT_EQ(loops[0].size(), 80u);
+  std::vector<std::vector<std::uint8_t>> out;
+  long long points = 0;
+  for (std::size_t i = 0; i < 100; ++i) {
+    const auto& p = real[i];
+    const std::size_t loop = (p[1066] & 1) ? 0 : 1;  // dual return: both blocks fire block 1's sequence
+    out.push_back(qt128_rebuild(p, 80, 0x5D, {loops[loop], loops[loop]}));
+    for (std::size_t b = 0; b < 2; ++b)
+      for (std::size_t j = 0; j < 80; ++j) points += load_le16(&out.back()[12 + b * 322 + 2 + j * 4]) >= 2;
+  }
+  const std::string dir = temp_dir();
+  write_pcap(dir + "/custom.pcap", out);
+  auto j = json_numbers(run("stats " + dir + "/custom.pcap --json").out);
+  EXPECT_EQ(j["packets"], 100);
+  EXPECT_EQ(j["unsupported"], 100);  // channel_config_required
+  EXPECT_EQ(j["points"], 0);
+  const std::string config = " --channel-config " + data_path("calibration/qt128c2x_channel_config.csv");
+  const CmdResult r = run("stats " + dir + "/custom.pcap --json" + config);
+  ASSERT_EQ(r.status, 0);
+  j = json_numbers(r.out);
+  EXPECT_EQ(j["unsupported"], 0);
+  EXPECT_EQ(j["malformed"], 0);
+  EXPECT_GT(points, 0);
+  EXPECT_EQ(j["points"], points);
+  // The real (uncustomised) capture decodes as before with the file given.
+  EXPECT_EQ(json_numbers(run("stats " + data_path("qt128c2x_dual.pcap") + " --json" + config).out)["points"], 337108);
+  // A QT128 file for a Pandar64 capture, and a BlockNum the QT128 does not send: configuration errors.
+  EXPECT_EQ(run("stats " + data_path("pandar64_dual.pcap") + config).status, 1);
+  const auto bytes = read_file(data_path("calibration/qt128c2x_channel_config.csv"));
+  std::string text(bytes.begin(), bytes.end());
+  const std::size_t at = text.find("BlockNum,2");
+  ASSERT_NE(at, std::string::npos);
+  text.replace(at, 10, "BlockNum,3");
+  std::ofstream(dir + "/blocks3.csv") << text;
+  EXPECT_EQ(run("stats " + data_path("qt128c2x_dual.pcap") + " --channel-config " + dir + "/blocks3.csv").status, 1);
+}
+
+// --reflectivity nonlinear: a Pandar64's intensity is its reflectivity byte mapped by the manual's
+// Appendix D (tables/pandar64_tables.h, checked entry by entry in test_sensor_settings.cpp) to the
+// nearest whole percent; raw (the default) is the byte as sent. No other manual gives a mapping.
+TEST(Cli, ReflectivityMapping) {
+  const auto packets = pcap_payloads("pandar64_dual.pcap");
+  for (const bool nonlinear : {false, true}) {
+    const CmdResult r = run("decode " + data_path("pandar64_dual.pcap") + " --packets 0:2 --out -" +
+                            (nonlinear ? " --reflectivity nonlinear" : ""));
+    ASSERT_EQ(r.status, 0);
+    std::size_t rows = 0, mapped = 0;
+    std::size_t pos = r.out.find('\n') + 1;
+    while (pos < r.out.size()) {
+      const std::size_t end = r.out.find('\n', pos);
+      std::vector<std::string> f;
+      std::stringstream ss(r.out.substr(pos, end - pos));
+      for (std::string cell; std::getline(ss, cell, ',');) f.push_back(cell);
+      pos = end + 1;
+      ASSERT_EQ(f.size(), 13u);
+      const std::size_t packet = std::stoul(f[1]), block = std::stoul(f[2]), channel = std::stoul(f[3]);
+      const std::uint8_t raw = packets[packet][8 + block * 194 + 2 + (channel - 1) * 3 + 2];
+      const double pct = hesai::tables::pandar64_nonlinear_reflectivity_pct[raw];
+      const int want = !nonlinear ? raw : raw == 255 ? 255 : static_cast<int>(std::floor(pct + 0.5));
+      ASSERT_EQ(std::stoi(f[11]), want) << "raw " << int(raw);
+      ++rows;
+      mapped += want != raw;
+    }
+    EXPECT_GT(rows, 500u);
+    if (nonlinear) {
+      EXPECT_GT(mapped, rows / 4);  // 181 of 545 rows change (a byte of 0 maps to 0)
+    }
+  }
+  EXPECT_EQ(run("stats " + data_path("qt128c2x_dual.pcap") + " --reflectivity nonlinear").status, 1);
+  EXPECT_EQ(run("stats " + data_path("pandar40p_dual.pcap") + " --reflectivity nonlinear").status, 1);
+  EXPECT_EQ(run("stats " + data_path("pandar64_dual.pcap") + " --reflectivity linear").status, 1);
+  EXPECT_EQ(run("stats " + data_path("qt128c2x_dual.pcap") + " --reflectivity raw").status, 0);
 }
 
 // ---- Built captures with known faults ----

@@ -34,7 +34,10 @@ void wipe(std::string& s) {
 const char* const kDecodeOptionsHelp =
     "  --calibration FILE      angle-correction CSV of the unit (default: the manual's design angles)\n"
     "  --firetimes FILE        firing-time CSV (default: the manual's firing times)\n"
-    "  --channel-config FILE   QT128 channel-configuration CSV (checked; see README)\n"
+    "  --channel-config FILE   QT128 channel-configuration CSV: maps the units of packets with\n"
+    "                          customised channels (header flags bit 6)\n"
+    "  --reflectivity raw|nonlinear  intensity: the byte as sent (default), or the Pandar64's\n"
+    "                          nonlinear mapping (manual Appendix D) as a percentage\n"
     "  --no-firetime-azimuth   do not add firing time x spin rate to each point's azimuth\n"
     "  --packets FIRST:END     keep point-cloud packets FIRST <= index < END (0-based)\n"
     "  --cut-angle DEG         azimuth where a frame ends (default 0)\n"
@@ -137,6 +140,14 @@ bool parse_decode_option(Args& args, DecodeOptions& o, std::string& error) {
   if (opt == "--calibration") return need(o.calibration_path) || true;
   if (opt == "--firetimes") return need(o.firetimes_path) || true;
   if (opt == "--channel-config") return need(o.channel_config_path) || true;
+  if (opt == "--reflectivity") {
+    if (need(v)) {
+      if (v == "raw") o.reflectivity = Reflectivity::raw;
+      else if (v == "nonlinear") o.reflectivity = Reflectivity::nonlinear;
+      else error = "--reflectivity takes raw or nonlinear, got '" + v + "'";
+    }
+    return true;
+  }
   if (opt == "--no-firetime-azimuth") {
     args.take();
     o.firetime_azimuth = false;

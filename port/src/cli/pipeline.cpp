@@ -45,9 +45,10 @@ int Pipeline::load_files(std::string& error) {
   if (!options_.calibration_path.empty() && !read_text_file(options_.calibration_path, angles_text_, error)) return kExitInput;
   if (!options_.firetimes_path.empty() && !read_text_file(options_.firetimes_path, firetimes_text_, error)) return kExitInput;
   if (!options_.channel_config_path.empty()) {
-    if (!read_text_file(options_.channel_config_path, channel_config_text_, error)) return kExitInput;
-    ChannelConfig config;
-    const ParseResult r = parse_channel_config_csv(text_view(channel_config_text_), config);
+    std::string text;
+    if (!read_text_file(options_.channel_config_path, text, error)) return kExitInput;
+    channel_config_ = std::make_unique<ChannelConfig>();
+    const ParseResult r = parse_channel_config_csv(text_view(text), *channel_config_);
     if (r.error != Error::ok) {
       error = calibration_error(options_.channel_config_path, r.line, r.error);
       return kExitUsage;
@@ -90,6 +91,20 @@ Pipeline::Source* Pipeline::source_for(std::uint64_t key, Model model) {
                                  e == Error::invalid_argument ? "a firing time outside [-1000, 1000] us" : fits);
       return nullptr;
     }
+  }
+  if (channel_config_) {
+    const Error e = d.set_channel_config(*channel_config_);
+    if (e != Error::ok) {
+      error_ = calibration_error(options_.channel_config_path, 0, e,
+                                 model == Model::qt128c2x ? "BlockNum must be the QT128C2X's 2"
+                                                          : "a QT128C2X channel configuration; " + fits);
+      return nullptr;
+    }
+  }
+  if (d.set_reflectivity(options_.reflectivity) != Error::ok) {
+    error_ = std::string("--reflectivity nonlinear: only the Pandar64 manual gives that mapping (the capture holds ") +
+             model_name(model) + " packets)";
+    return nullptr;
   }
   d.set_firetime_correction(options_.firetime_azimuth);
   if (options_.has_key) {

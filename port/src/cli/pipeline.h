@@ -23,6 +23,7 @@ struct DecodeOptions {
   std::string calibration_path;     ///< --calibration: angle-correction CSV
   std::string firetimes_path;       ///< --firetimes
   std::string channel_config_path;  ///< --channel-config (QT128)
+  Reflectivity reflectivity = Reflectivity::raw;  ///< --reflectivity (nonlinear: Pandar64 only)
   bool firetime_azimuth = true;     ///< off with --no-firetime-azimuth
   std::uint64_t first_packet = 0;   ///< --packets FIRST:END, point-cloud packet indices
   std::uint64_t end_packet = UINT64_MAX;
@@ -61,7 +62,8 @@ class Pipeline {
   Pipeline& operator=(const Pipeline&) = delete;
 
   /// Loads the calibration files (the angle and firing-time files are parsed and applied when the
-  /// first packet of a model shows their channel count; feed() then fails with the file's error).
+  /// first packet of a model shows their channel count; feed() then fails with the file's error;
+  /// the channel configuration is parsed at once, and applied to each QT128 decoder).
   /// Returns the exit status: kExitOk, kExitInput (with a message) for a missing or unreadable
   /// file, kExitUsage (with a message) for a channel configuration that does not parse.
   int load_files(std::string& error);
@@ -91,7 +93,8 @@ class Pipeline {
 
   DecodeOptions options_;
   Sink* sink_;
-  std::string angles_text_, firetimes_text_, channel_config_text_;
+  std::string angles_text_, firetimes_text_;
+  std::unique_ptr<ChannelConfig> channel_config_;  // --channel-config, parsed once
   std::map<std::uint64_t, Source> sources_;
   GpsPacket last_gps_{};
   bool have_gps_ = false;
