@@ -4,6 +4,7 @@
 #include "../packet_builder.h"
 #include "../test_support.h"
 #include "alloc_counter.h"
+#include "hesai/calibration.h"
 #include "hesai/decoder.h"
 
 namespace {
@@ -59,6 +60,50 @@ TEST(ZeroAllocation, SignedQt128WithKey) {
   EXPECT_EQ(worst, Error::ok);
   EXPECT_EQ(valid, (packets.size() + 1) / 2);
   EXPECT_EQ(unsigned_accepted, packets.size() / 2);
+  EXPECT_EQ(n, 0u);
+}
+
+// The settings of "Sensor settings we read": QT128 3-byte units, customised channels (the
+// configuration set inside the counted region), Unix-seconds time; Pandar64 nonlinear reflectivity.
+TEST(ZeroAllocation, SensorSettingVariants) {
+  using namespace hesai_test;
+  const auto qt = pcap_payloads("qt128c2x_dual.pcap");
+  const auto p64 = pcap_payloads("pandar64_dual.pcap");
+  const auto config_text = read_file(data_path("calibration/qt128c2x_channel_config.csv"));
+  static ChannelConfig config;
+  ASSERT_EQ(parse_channel_config_csv(view(config_text), config).error, Error::ok);
+  std::vector<std::vector<std::uint8_t>> variants;  // built before counting
+  for (std::size_t i = 0; i < 64; ++i) {
+    const auto& p = qt[i];
+    variants.push_back(qt128_rebuild(p, 128, 0x0D, {first_units(128), first_units(128)}));
+    std::vector<std::size_t> keep;
+    for (std::size_t j = 0; j < config.laser_num; ++j) keep.push_back(config.channel[(p[1066] & 1) ? 0 : 1][j] - 1u);
+    variants.push_back(qt128_rebuild(p, static_cast<std::uint8_t>(config.laser_num), 0x4D, {keep, keep}));
+    variants.push_back(p);
+    qt128_set_unix_time(variants.back(), 1602245009u + static_cast<std::uint32_t>(i));
+  }
+  static PacketPoints pts;
+  PacketInfo info;
+  std::size_t points = 0;
+  Error worst = Error::ok;
+  const std::size_t n = hesai_test::allocations_during([&] {
+    Decoder dec(Model::qt128c2x);
+    if (dec.set_channel_config(config) != Error::ok) worst = Error::invalid_argument;
+    for (const auto& p : variants) {
+      const Error e = dec.decode(ByteView{p.data(), p.size()}, info, pts);
+      if (e != Error::ok) worst = e;
+      points += pts.count;
+    }
+    Decoder pandar64(Model::pandar64);
+    if (pandar64.set_reflectivity(Reflectivity::nonlinear) != Error::ok) worst = Error::invalid_argument;
+    for (std::size_t i = 0; i < 64; ++i) {
+      const Error e = pandar64.decode(ByteView{p64[i].data(), p64[i].size()}, info, pts);
+      if (e != Error::ok) worst = e;
+      points += pts.count;
+    }
+  });
+  EXPECT_EQ(worst, Error::ok);
+  EXPECT_GT(points, 0u);
   EXPECT_EQ(n, 0u);
 }
 
