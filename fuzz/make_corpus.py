@@ -40,14 +40,33 @@ def crc32_mpeg2(data, crc=0xFFFFFFFF):
 QT_BODY_END, QT_FS, QT_TAIL = 1044, 17, 26
 
 
-def qt128_with_flags(p, flags, sign=False, fs=None):
-    """Rebuilds a 0x1D QT128 packet with other flags: sections per the flags, CRC3 recomputed,
-    the signature (if any) HMAC-SHA256 under KEY when sign, else all-zero."""
+def qt128_body(p, keep, unit):
+    """The body of a 0x1D QT128 packet with block b keeping its units at positions keep[b], each
+    cut to `unit` bytes (3: distance and reflectivity; 4: and the confidence byte), then CRC1."""
+    body = b''
+    for b in range(2):
+        blk = p[12 + 514 * b:12 + 514 * (b + 1)]
+        body += blk[:2] + b''.join(blk[2 + 4 * u:2 + 4 * u + unit] for u in keep[b])
+    return body + struct.pack('<I', crc32_mpeg2(body))
+
+
+def qt128_with_flags(p, flags, sign=False, fs=None, keep=None, unix_time=None):
+    """Rebuilds a 0x1D QT128 packet with other flags: units of 3 bytes, or 4 with bit 4; with keep,
+    block b holds only the units at positions keep[b] (laser num = their count; set bit 6 for
+    customised channels); sections per the flags; the date-time as Unix seconds (year byte 0)
+    when unix_time is given; CRCs recomputed; the signature (if any) HMAC-SHA256 under KEY when
+    sign, else all-zero."""
     assert p[11] == 0x1D and len(p) == 1127
+    keep = keep or [range(128), range(128)]
     fs_bytes = fs if fs is not None else p[1044:1061]
-    tail = p[1061:1087]
+    tail = bytearray(p[1061:1087])
+    if unix_time is not None:
+        tail[15:21] = bytes(2) + struct.pack('>I', unix_time)
     seq = p[1087:1091]
-    out = bytearray(p[:11]) + bytes([flags]) + p[12:QT_BODY_END]
+    header = bytearray(p[:12])
+    header[6] = len(keep[0])
+    header[11] = flags
+    out = header + qt128_body(p, keep, 4 if flags & 0x10 else 3)
     if flags & 0x04:
         out += fs_bytes
     t0 = len(out)
@@ -58,6 +77,13 @@ def qt128_with_flags(p, flags, sign=False, fs=None):
     if flags & 0x08:
         out += hmac.new(KEY, bytes(out), hashlib.sha256).digest() if sign else bytes(32)
     return bytes(out)
+
+
+def channel_config_columns():
+    """The bundled channel configuration's Loop1 and Loop2 columns, 0-based positions."""
+    rows = open(os.path.join(DATA, 'calibration', 'qt128c2x_channel_config.csv')).read().split('\n')[3:]
+    pairs = [r.split(',') for r in rows if r.count(',') == 1]
+    return [[int(a) - 1 for a, _ in pairs], [int(b) - 1 for _, b in pairs]]
 
 
 def fix_fs_crc(fs):
@@ -120,6 +146,15 @@ def main():
         write('qt128', 'flags_%02x' % flags, qt128_with_flags(qt[5], flags))
     write('qt128', 'imu_flag', qt128_with_flags(qt[5], 0x1F))
     write('qt128', 'custom_flag', qt128_with_flags(qt[5], 0x45))
+    # Customised channels (bit 6) with the bundled configuration, both unit sizes; one unit.
+    cols = channel_config_columns()
+    loop = 0 if qt[5][1066] & 1 else 1  # dual return: both blocks fire block 1's sequence
+    write('qt128', 'custom_80', qt128_with_flags(qt[5], 0x5D, keep=[cols[loop], cols[loop]]))
+    write('qt128', 'custom_80_3byte', qt128_with_flags(qt[5], 0x4D, keep=[cols[loop], cols[loop]]))
+    write('qt128', 'custom_1', qt128_with_flags(qt[5], 0x5D, keep=[[99], [99]]))
+    # The date-time as Unix seconds (year byte 0): 2020-10-09 12:03:29 of packet 0.
+    write('qt128', 'unix_time', qt128_with_flags(qt[0], 0x1D, unix_time=1602245009))
+    write('qt128', 'unix_time_3byte', qt128_with_flags(qt[0], 0x0D, unix_time=1602245009))
     write('qt128', 'fs_fault', qt128_with_flags(qt[6], 0x05, fs=fix_fs_crc(bytes([1, 2, 0x11, 0x34, 0x12]) + bytes(8) + bytes(4))))
 
     # Signature: signed under KEY (valid), unsigned (zeros), wrong key, no signature section.
