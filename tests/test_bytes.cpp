@@ -92,6 +92,8 @@ TEST(Error, EveryCodeHasItsOwnName) {
     EXPECT_TRUE(names.insert(n).second) << n;
   }
   EXPECT_STREQ(error_name(Error::crc_body), "crc_body");
+  EXPECT_STREQ(error_name(Error::channel_config_required), "channel_config_required");
+  EXPECT_STREQ(error_name(Error::channel_config_mismatch), "channel_config_mismatch");
   EXPECT_STREQ(error_name(static_cast<Error>(static_cast<unsigned>(kLastError) + 1)), "unknown");
 }
 
