@@ -38,6 +38,11 @@ int c_check_keys(const uint8_t* qt128, const uint8_t* qt128_signed, size_t size,
 /* - pandar40: a Pandar40 packet (1256 bytes) whose timestamp is below 1 s into the hour. */
 int c_check_pandar40_gps(const uint8_t* pandar40, size_t size);
 int c_check_calibration_errors(void);
+/* - qt128_custom: a QT128 packet with customised channels (flags bit 6) whose units are the
+ *   channels `config` (a channel-configuration CSV of LaserNum 80) lists; `points` the points it
+ *   decodes to; pandar64: a Pandar64 packet. */
+int c_check_sensor_settings(const uint8_t* qt128_custom, size_t size, const uint8_t* config, size_t config_size,
+                            size_t points, const uint8_t* pandar64, size_t pandar64_size);
 
 #ifdef __cplusplus
 }

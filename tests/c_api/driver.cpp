@@ -236,4 +236,25 @@ TEST(CApi, Pandar40TimeFromGps) {
 
 TEST(CApi, CalibrationErrors) { EXPECT_EQ(c_check_calibration_errors(), 0); }
 
+// QT128 channel customisation and the Pandar64 reflectivity mapping through the C setters: a real
+// QT128 packet reduced to the bundled configuration's channels (as test_sensor_settings.cpp builds
+// it) decodes, under that file, to the points its non-zero units give (distance 2 or more).
+TEST(CApi, SensorSettings) {
+  const auto qt = pcap_payloads("qt128c2x_dual.pcap").at(5);
+  const auto config = read_file(data_path("calibration/qt128c2x_channel_config.csv"));
+  std::vector<std::size_t> keep;
+  for (const auto& row : read_numeric_csv("calibration/qt128c2x_channel_config.csv").rows)
+    if (row.size() == 2) keep.push_back(static_cast<std::size_t>(row[(qt[1066] & 1) ? 0 : 1]) - 1);
+  ASSERT_EQ(keep.size(), 80u);
+  const auto custom = qt128_rebuild(qt, 80, 0x5D, {keep, keep});  // dual return: one loop for both blocks
+  std::size_t points = 0;
+  for (std::size_t b = 0; b < 2; ++b)
+    for (std::size_t j = 0; j < 80; ++j) points += load_le16(&custom[12 + b * 322 + 2 + j * 4]) >= 2;
+  ASSERT_GT(points, 0u);
+  const auto p64 = pcap_payloads("pandar64_dual.pcap").at(0);
+  EXPECT_EQ(c_check_sensor_settings(custom.data(), custom.size(), config.data(), config.size(), points, p64.data(),
+                                    p64.size()),
+            0);
+}
+
 }  // namespace

@@ -339,3 +339,63 @@ int c_check_calibration_errors(void) {
   EXPECT_ERROR(hesai_decoder_set_firetime_correction(NULL, 0), "invalid_argument");
   return take_failures();
 }
+
+/* ---- Sensor settings: channel configuration, reflectivity mapping ------------------------------- */
+
+int c_check_sensor_settings(const uint8_t* qt128_custom, size_t size, const uint8_t* config, size_t config_size,
+                            size_t want_points, const uint8_t* pandar64, size_t pandar64_size) {
+  static const char bad_channel[] = "EEFF,1,1\nLaserNum,2,BlockNum,2\nLoop1,Loop2\n1,2\n3,129\n";
+  static const char three_blocks[] = "EEFF,1,1\nLaserNum,1,BlockNum,3\nLoop1\n5\n";
+  hesai_packet_info info;
+  size_t count = 99;
+  uint32_t line = 99;
+
+  EXPECT_ERROR(hesai_decoder_init(&decoder, HESAI_MODEL_qt128c2x), "ok");
+  EXPECT_ERROR(decode_into(qt128_custom, size, &info, &count), "channel_config_required");
+  EXPECT(count == 0);
+  EXPECT_ERROR(hesai_decoder_set_channel_config_csv(&decoder, (const uint8_t*)bad_channel, strlen(bad_channel),
+                                                    &scratch, &line),
+               "calib_bad_channel");
+  EXPECT(line == 5);
+  EXPECT_ERROR(hesai_decoder_set_channel_config_csv(&decoder, (const uint8_t*)three_blocks, strlen(three_blocks),
+                                                    &scratch, &line),
+               "channel_config_mismatch");
+  EXPECT(line == 0);
+  EXPECT_ERROR(hesai_decoder_set_channel_config_csv(&decoder, config, config_size, NULL, &line), "invalid_argument");
+  EXPECT_ERROR(hesai_decoder_set_channel_config_csv(&decoder, config, config_size, &scratch, &line), "ok");
+  EXPECT_ERROR(decode_into(qt128_custom, size, &info, &count), "ok");
+  EXPECT(count == want_points);
+  EXPECT(info.flags == 0x5D);
+  EXPECT_ERROR(hesai_decoder_clear_channel_config(&decoder), "ok");
+  EXPECT_ERROR(decode_into(qt128_custom, size, &info, &count), "channel_config_required");
+  EXPECT_ERROR(hesai_decoder_clear_channel_config(NULL), "invalid_argument");
+  /* The mapping is the Pandar64's only. */
+  EXPECT_ERROR(hesai_decoder_set_reflectivity(&decoder, HESAI_REFLECTIVITY_nonlinear), "invalid_argument");
+  EXPECT_ERROR(hesai_decoder_set_reflectivity(&decoder, HESAI_REFLECTIVITY_raw), "ok");
+
+  EXPECT_ERROR(hesai_decoder_init(&decoder, HESAI_MODEL_pandar64), "ok");
+  EXPECT_ERROR(hesai_decoder_set_channel_config_csv(&decoder, config, config_size, &scratch, &line),
+               "invalid_argument");
+  EXPECT_ERROR(hesai_decoder_set_reflectivity(&decoder, 2), "invalid_argument");
+  EXPECT_ERROR(hesai_decoder_set_reflectivity(NULL, HESAI_REFLECTIVITY_raw), "invalid_argument");
+  {
+    /* Field value 100 is 15.87 % in Appendix D: 16 with the mapping, 100 without. */
+    uint8_t p[1198];
+    size_t i, raw = 0, mapped = 0;
+    if (pandar64_size > sizeof p) return take_failures() + 1;
+    memcpy(p, pandar64, pandar64_size);
+    p[8 + 2] = 0xE8; /* block 1, channel 1: distance 1000 (u16 LE), then the reflectivity byte */
+    p[8 + 3] = 0x03;
+    p[8 + 4] = 100;
+    EXPECT_ERROR(hesai_decoder_decode(&decoder, p, pandar64_size, &info, points, 384, &count), "ok");
+    for (i = 0; i < count; ++i)
+      if (points[i].block == 0 && points[i].channel == 1) raw = points[i].intensity;
+    EXPECT_ERROR(hesai_decoder_set_reflectivity(&decoder, HESAI_REFLECTIVITY_nonlinear), "ok");
+    EXPECT_ERROR(hesai_decoder_decode(&decoder, p, pandar64_size, &info, points, 384, &count), "ok");
+    for (i = 0; i < count; ++i)
+      if (points[i].block == 0 && points[i].channel == 1) mapped = points[i].intensity;
+    EXPECT(raw == 100);
+    EXPECT(mapped == 16);
+  }
+  return take_failures();
+}

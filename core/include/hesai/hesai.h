@@ -86,7 +86,7 @@ size_t hesai_model_max_points(hesai_model m) HESAI_NOEXCEPT;
 
 /* The aligned bytes a decoder lives in: same size on every target and in every version of this
  * major release (the library checks at compile time that its decoder fits; it needs about
- * 6.8 KiB). Initialise with hesai_decoder_init() before any other call. Copying one with memcpy
+ * 7 KiB). Initialise with hesai_decoder_init() before any other call. Copying one with memcpy
  * or assignment is not supported: initialise each. */
 #define HESAI_DECODER_SIZE 8192
 typedef struct hesai_decoder {
@@ -212,6 +212,28 @@ hesai_error hesai_decoder_set_firetimes(hesai_decoder* decoder, const double* lo
 
 /* Azimuth firing-time correction (on after init): adds firing time x spin rate to each point. */
 hesai_error hesai_decoder_set_firetime_correction(hesai_decoder* decoder, int on) HESAI_NOEXCEPT;
+
+/* QT128 channel customisation: the bytes of the unit's channel-configuration CSV (EEFF row,
+ * "LaserNum,N,BlockNum,2", "Loop1[,Loop2]", then N rows of channels), which maps the units of
+ * packets with header flags bit 6 to channels. Without one such packets are
+ * channel_config_required; with one of another LaserNum than the packet's, channel_config_mismatch.
+ * Errors: the parser's (as above; calib_bad_channel for a channel outside 1..128 or twice in a
+ * loop), invalid_argument (not a QT128 decoder), channel_config_mismatch (a BlockNum other than
+ * 2). On any error the decoder is unchanged. */
+hesai_error hesai_decoder_set_channel_config_csv(hesai_decoder* decoder, const uint8_t* text, size_t size,
+                                                 hesai_calibration_scratch* scratch, uint32_t* line) HESAI_NOEXCEPT;
+/* Forgets the channel configuration. */
+hesai_error hesai_decoder_clear_channel_config(hesai_decoder* decoder) HESAI_NOEXCEPT;
+
+/* What hesai_point.intensity holds (hesai::Reflectivity): the reflectivity byte as sent (after
+ * init), or, for a Pandar64 set to "Nonlinear Mapping", the manual's Appendix D percentage to the
+ * nearest whole percent (255 stays 255). The packets do not say which mapping a unit uses.
+ * invalid_argument for nonlinear on another model, or a value that is neither. */
+enum {
+  HESAI_REFLECTIVITY_raw = 0,
+  HESAI_REFLECTIVITY_nonlinear = 1
+};
+hesai_error hesai_decoder_set_reflectivity(hesai_decoder* decoder, int mapping) HESAI_NOEXCEPT;
 
 /* Verifies QT128 signatures (HMAC-SHA256) with this 32-byte session key; the decoder keeps its
  * own prepared copy, the caller may wipe `key` after the call. unsupported_feature (and no key)

@@ -36,7 +36,8 @@ static_assert(fits<hesai::AngleCorrection, hesai_calibration_scratch>() &&
                   fits<hesai::ChannelConfig, hesai_calibration_scratch>(),
               "every parsed calibration file must fit in HESAI_CALIBRATION_SCRATCH_SIZE aligned bytes");
 static_assert(std::is_trivially_destructible_v<hesai::AngleCorrection> &&
-              std::is_trivially_destructible_v<hesai::FiretimeCorrection>);
+              std::is_trivially_destructible_v<hesai::FiretimeCorrection> &&
+              std::is_trivially_destructible_v<hesai::ChannelConfig>);
 
 // ---- Values the C enums share with C++ --------------------------------------------------------
 
@@ -59,6 +60,8 @@ static_assert(HESAI_SIGNATURE_not_signed == static_cast<int>(hesai::SignatureSta
 static_assert(HESAI_TIME_utc == static_cast<int>(hesai::TimeReference::utc) &&
               HESAI_TIME_hour_relative == static_cast<int>(hesai::TimeReference::hour_relative));
 static_assert(HESAI_MAX_POINTS_PER_PACKET == hesai::kMaxPointsPerPacket);
+static_assert(HESAI_REFLECTIVITY_raw == static_cast<int>(hesai::Reflectivity::raw) &&
+              HESAI_REFLECTIVITY_nonlinear == static_cast<int>(hesai::Reflectivity::nonlinear));
 
 // ---- hesai_point is hesai::Point's layout ------------------------------------------------------
 
@@ -253,6 +256,31 @@ hesai_error hesai_decoder_set_firetime_correction(hesai_decoder* decoder, int on
   if (decoder == nullptr) return HESAI_ERROR_invalid_argument;
   decoder_in(decoder).set_firetime_correction(on != 0);
   return HESAI_ERROR_ok;
+}
+
+hesai_error hesai_decoder_set_channel_config_csv(hesai_decoder* decoder, const std::uint8_t* text, std::size_t size,
+                                                 hesai_calibration_scratch* scratch, std::uint32_t* line) noexcept {
+  if (line != nullptr) *line = 0;
+  if (decoder == nullptr || scratch == nullptr || !bytes_ok(text, size)) return HESAI_ERROR_invalid_argument;
+  auto& config = fresh_in<hesai::ChannelConfig>(scratch);
+  const hesai::ParseResult r = hesai::parse_channel_config_csv(ByteView{text, size}, config);
+  if (r.error != Error::ok) {
+    if (line != nullptr) *line = r.line;
+    return c_error(r.error);
+  }
+  return c_error(decoder_in(decoder).set_channel_config(config));
+}
+
+hesai_error hesai_decoder_clear_channel_config(hesai_decoder* decoder) noexcept {
+  if (decoder == nullptr) return HESAI_ERROR_invalid_argument;
+  decoder_in(decoder).clear_channel_config();
+  return HESAI_ERROR_ok;
+}
+
+hesai_error hesai_decoder_set_reflectivity(hesai_decoder* decoder, int mapping) noexcept {
+  if (decoder == nullptr || (mapping != HESAI_REFLECTIVITY_raw && mapping != HESAI_REFLECTIVITY_nonlinear))
+    return HESAI_ERROR_invalid_argument;
+  return c_error(decoder_in(decoder).set_reflectivity(static_cast<hesai::Reflectivity>(mapping)));
 }
 
 hesai_error hesai_decoder_set_session_key(hesai_decoder* decoder, const std::uint8_t key[32]) noexcept {
