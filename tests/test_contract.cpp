@@ -18,7 +18,7 @@ namespace {
 
 using namespace hesai;
 
-static_assert(sizeof(Decoder) == (HESAI_SIGNATURE ? 6904 : 6680), "decoder.h: Memory");
+static_assert(sizeof(Decoder) == (HESAI_SIGNATURE ? 6912 : 6688), "decoder.h: Memory");
 static_assert(sizeof(PacketPoints) == 16008 && sizeof(Point) == 40, "decoder.h: Memory");
 static_assert(sizeof(PacketInfo) == 88, "decoder.h: Memory");
 static_assert(sizeof(AngleCorrection) == 2056 && sizeof(FiretimeCorrection) == 2312, "decoder.h, calibration.h");
