@@ -104,9 +104,12 @@ Pipeline::Source* Pipeline::source_for(std::uint64_t key, Model model) {
   return &sources_.emplace(key, std::move(s)).first->second;
 }
 
-void Pipeline::close_frame(const FrameInfo& f) {
-  ++stats_.frames;
-  if (sink_) sink_->frame_closed(f);
+void Pipeline::close_frames(FrameAssembler& frames) {
+  FrameInfo f;
+  while (frames.pop_closed(f)) {
+    ++stats_.frames;
+    if (sink_) sink_->frame_closed(f);
+  }
 }
 
 bool Pipeline::feed(ByteView payload, std::uint64_t source_key) {
@@ -137,11 +140,17 @@ bool Pipeline::feed(ByteView payload, std::uint64_t source_key) {
   if (src == nullptr) return false;
 
   PacketInfo info;
-  e = src->decoder->decode(payload, info, points_);
+  Decoder& decoder = *src->decoder;
+  e = decoder.decode(payload, info, points_);
   if (e != Error::ok) {
     count_error(stats_, e);
     ++rejections_[e];
     return true;
+  }
+  // The decoder's spread lies within (-180, 180] with min <= max: a refusal is a fault of ours.
+  if (const Error e_spread = src->frames.set_beam_spread(decoder.beam_spread()); e_spread != Error::ok) {
+    error_ = std::string("frame assembly refused the decoder's beam spread: ") + error_name(e_spread);
+    return false;
   }
   const std::uint64_t index = point_packet_index_++;
   count_model(stats_, model);
@@ -172,31 +181,30 @@ bool Pipeline::feed(ByteView payload, std::uint64_t source_key) {
     stats_.sequence_resyncs += after.resyncs - before.resyncs;
   }
 
-  // Frames close at block boundaries; the points of a block belong to the frame it opens.
+  // Each point goes to the frame of its own azimuth; frames close when the blocks have moved
+  // far enough past their end that no later point can reach them.
   const bool keep = index >= options_.first_packet && index < options_.end_packet;
-  src->frames.begin_packet(index, lost_before);
+  FrameAssembler& frames = src->frames;
+  frames.begin_packet(index, lost_before);
   std::size_t next = 0;
   for (std::size_t b = 0; b < info.blocks; ++b) {
-    if (src->frames.block(info.block_azimuth[b])) close_frame(src->frames.last_closed());
-    const std::uint64_t frame_id = src->frames.current().id;
-    std::uint32_t in_block = 0;
+    if (frames.block(info.block_azimuth[b])) close_frames(frames);
     for (; next < points_.count && points_.points[next].block == b; ++next) {
       const Point& p = points_.points[next];
       ++stats_.points;
       if (!keep || p.distance_m < options_.min_range || p.distance_m > options_.max_range) continue;
-      if (!src->frames.in_fov(p.azimuth_deg)) continue;
-      ++in_block;
+      if (!frames.in_fov(p.azimuth_deg)) continue;
+      const std::uint64_t frame_id = frames.point(p.azimuth_deg);
       if (sink_) sink_->point(OutPoint{p, frame_id, index});
     }
-    src->frames.add_points(in_block);
   }
   return true;
 }
 
 void Pipeline::finish() {
   for (auto& [key, s] : sources_) {
-    FrameInfo f;
-    if (s.frames.finish(f)) close_frame(f);
+    s.frames.finish();
+    close_frames(s.frames);
   }
 }
 

@@ -42,7 +42,8 @@ struct OutPoint {
 };
 
 /// Receives what the pipeline produces. Frames close in order; every point of a frame is given
-/// to point() before its frame_closed().
+/// to point() before its frame_closed(). Points come in packet order, so near a cut the points
+/// of two frames interleave (a packet that straddles the cut gives points to both).
 class Sink {
  public:
   virtual ~Sink() = default;
@@ -84,10 +85,9 @@ class Pipeline {
     SequenceTracker sequence;
     FrameAssembler frames;
     SafetyMonitor safety;
-    std::uint64_t last_frame_id = 0;
   };
   Source* source_for(std::uint64_t key, Model model);
-  void close_frame(const FrameInfo& f);
+  void close_frames(FrameAssembler& frames);
 
   DecodeOptions options_;
   Sink* sink_;
