@@ -21,6 +21,7 @@
 #include <iterator>
 #include <map>
 #include <cctype>
+#include <sstream>
 #include <string>
 #include <thread>
 #include <vector>
@@ -410,6 +411,64 @@ INSTANTIATE_TEST_SUITE_P(Bundled, CliCapture,
                                            CaptureCase{"pandar64_dual.pcap", Model::pandar64, 2400, 716622},
                                            CaptureCase{"qt128c2x_dual.pcap", Model::qt128c2x, 1800, 337108}),
                          [](const auto& i) { return std::string(model_name(i.param.model)); });
+
+// A counter-clockwise unit: the QT128 capture mirrored (every block azimuth a -> 36000 - a).
+// --rotation ccw decodes every packet with the firing-time correction subtracted, as the library
+// does counter-clockwise; auto (the default) the same from the third packet on, the first two
+// (before three packets have shown the direction) with the clockwise correction; cw all of them.
+// The frames follow: stats counts the library's counter-clockwise frames with ccw and with auto.
+TEST(Cli, RotationOption) {
+  EXPECT_EQ(run("stats x.pcap --rotation left").status, 1);
+  const auto real = pcap_payloads("qt128c2x_dual.pcap");
+  std::vector<std::vector<std::uint8_t>> mirrored;
+  for (const auto& p : real) mirrored.push_back(counterclockwise_copy(p, Model::qt128c2x));
+  const std::string dir = temp_dir();
+  write_pcap(dir + "/ccw.pcap", mirrored);
+  write_pcap(dir + "/ccw_head.pcap", {mirrored.begin(), mirrored.begin() + 40});
+
+  // Azimuth of every point of the first 40 packets, by the library in each direction.
+  std::vector<std::vector<double>> by_packet[2];
+  for (const Rotation r : {Rotation::clockwise, Rotation::counterclockwise}) {
+    Decoder dec(Model::qt128c2x);
+    dec.set_rotation(r);
+    PacketPoints pts;
+    PacketInfo info;
+    for (std::size_t i = 0; i < 40; ++i) {
+      ASSERT_EQ(dec.decode(view(mirrored[i]), info, pts), Error::ok);
+      std::vector<double> az;
+      for (const Point& q : pts) az.push_back(q.azimuth_deg);
+      by_packet[r == Rotation::counterclockwise].push_back(az);
+    }
+  }
+  for (const char* mode : {"ccw", "auto", "cw"}) {
+    const CmdResult out = run("decode " + dir + "/ccw_head.pcap --quiet --out - --rotation " + mode);
+    ASSERT_EQ(out.status, 0) << mode;
+    std::istringstream rows(out.out);
+    std::string line;
+    std::getline(rows, line);  // header
+    std::size_t packet = 0, k = 0, checked = 0;
+    while (std::getline(rows, line)) {
+      std::vector<std::string> col;
+      std::istringstream cells(line);
+      for (std::string cell; std::getline(cells, cell, ',');) col.push_back(cell);
+      const std::size_t p = std::stoul(col.at(1));
+      if (p != packet) k = 0;
+      packet = p;
+      const bool ccw = std::string(mode) == "ccw" || (std::string(mode) == "auto" && p >= 2);
+      ASSERT_LT(k, by_packet[ccw][p].size());
+      EXPECT_NEAR(std::stod(col.at(5)), by_packet[ccw][p][k++], 0.0006) << mode << " packet " << p;
+      ++checked;
+    }
+    EXPECT_GT(checked, 7000u) << mode;
+  }
+  const auto frames = library_frames(mirrored, Model::qt128c2x, Rotation::counterclockwise);
+  for (const char* mode : {"ccw", "auto"}) {
+    const CmdResult s = run("stats " + dir + "/ccw.pcap --json --rotation " + std::string(mode));
+    EXPECT_EQ(json_numbers(s.out)["frames"], static_cast<long long>(frames.size())) << mode;
+  }
+  const CmdResult text = run("stats " + dir + "/ccw.pcap");
+  EXPECT_NE(text.out.find("counterclockwise (detected)"), std::string::npos) << text.out;
+}
 
 TEST(Cli, PacketRangeAndRangeFilter) {
   const std::string dir = temp_dir();

@@ -61,6 +61,7 @@ Pipeline::Source* Pipeline::source_for(std::uint64_t key, Model model) {
   if (it != sources_.end()) {
     if (it->second.decoder->model() == model) return &it->second;
     it->second.decoder->clear_session_key();
+    if (last_source_ == &it->second) last_source_ = nullptr;
     sources_.erase(it);  // another sensor now sends from this address: start over
   }
   Source s;
@@ -101,6 +102,8 @@ Pipeline::Source* Pipeline::source_for(std::uint64_t key, Model model) {
   d.set_allow_unsigned(options_.allow_unsigned);
   if (have_gps_) d.update_gps(last_gps_);
   s.frames = options_.frames;
+  d.set_rotation(options_.rotation);
+  s.frames.set_rotation(options_.rotation);
   return &sources_.emplace(key, std::move(s)).first->second;
 }
 
@@ -142,6 +145,16 @@ bool Pipeline::feed(ByteView payload, std::uint64_t source_key) {
   PacketInfo info;
   Decoder& decoder = *src->decoder;
   e = decoder.decode(payload, info, points_);
+  // --rotation auto: the packet that decides the direction is decoded again in it; the packets
+  // before it keep the clockwise correction (see README, "Frames and rotation").
+  if (e == Error::ok && options_.detect_rotation && src->rotation.observe(info.block_azimuth[0])) {
+    const Rotation r = src->rotation.rotation();
+    src->frames.set_rotation(r);
+    if (r != decoder.rotation()) {
+      decoder.set_rotation(r);
+      e = decoder.decode(payload, info, points_);
+    }
+  }
   if (e != Error::ok) {
     count_error(stats_, e);
     ++rejections_[e];
@@ -152,6 +165,7 @@ bool Pipeline::feed(ByteView payload, std::uint64_t source_key) {
     error_ = std::string("frame assembly refused the decoder's beam spread: ") + error_name(e_spread);
     return false;
   }
+  last_source_ = src;
   const std::uint64_t index = point_packet_index_++;
   count_model(stats_, model);
   switch (info.signature) {
@@ -199,6 +213,14 @@ bool Pipeline::feed(ByteView payload, std::uint64_t source_key) {
     }
   }
   return true;
+}
+
+std::string Pipeline::rotation_text() const {
+  if (last_source_ == nullptr) return "";
+  const bool cw = last_source_->decoder->rotation() == Rotation::clockwise;
+  const std::string name = cw ? "clockwise" : "counterclockwise";
+  if (!options_.detect_rotation) return name + " (set)";
+  return last_source_->rotation.known() ? name + " (detected)" : name + " (assumed: not detected)";
 }
 
 void Pipeline::finish() {

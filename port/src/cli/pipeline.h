@@ -12,6 +12,7 @@
 
 #include "hesai/decoder.h"
 #include "hesai/frame.h"
+#include "hesai/rotation.h"
 #include "hesai/safety.h"
 #include "hesai/sequence.h"
 #include "hesai/stats.h"
@@ -24,6 +25,8 @@ struct DecodeOptions {
   std::string firetimes_path;       ///< --firetimes
   std::string channel_config_path;  ///< --channel-config (QT128)
   bool firetime_azimuth = true;     ///< off with --no-firetime-azimuth
+  bool detect_rotation = true;      ///< --rotation auto (default): per sensor, by a RotationDetector
+  Rotation rotation = Rotation::clockwise;  ///< --rotation cw|ccw; with auto, until the direction is known
   std::uint64_t first_packet = 0;   ///< --packets FIRST:END, point-cloud packet indices
   std::uint64_t end_packet = UINT64_MAX;
   FrameAssembler frames;            ///< --cut-angle and --fov set; each source starts from a copy
@@ -78,6 +81,10 @@ class Pipeline {
   const std::string& error() const { return error_; }
   /// Packets per Error code that rejected them (for the text summary).
   const std::map<Error, std::uint64_t>& rejections() const { return rejections_; }
+  /// The rotation of the sensor that sent the last point-cloud packet and how it was chosen:
+  /// "clockwise (set)", "counterclockwise (detected)", "clockwise (assumed: not detected)"; empty
+  /// before any point-cloud packet.
+  std::string rotation_text() const;
 
  private:
   struct Source {
@@ -85,6 +92,7 @@ class Pipeline {
     SequenceTracker sequence;
     FrameAssembler frames;
     SafetyMonitor safety;
+    RotationDetector rotation;
   };
   Source* source_for(std::uint64_t key, Model model);
   void close_frames(FrameAssembler& frames);
@@ -93,6 +101,7 @@ class Pipeline {
   Sink* sink_;
   std::string angles_text_, firetimes_text_, channel_config_text_;
   std::map<std::uint64_t, Source> sources_;
+  const Source* last_source_ = nullptr;  // of the last decoded point-cloud packet
   GpsPacket last_gps_{};
   bool have_gps_ = false;
   Stats stats_{};
