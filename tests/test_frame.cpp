@@ -594,6 +594,33 @@ TEST(FrameAssembler, RotationChangedWhileStreaming) {
   EXPECT_EQ(f.closed[1].first_azimuth_cdeg, 0);
 }
 
+// reset() forgets the stream and the frames not taken, and keeps the configuration.
+TEST(FrameAssembler, ResetKeepsTheConfiguration) {
+  FrameAssembler fa;
+  ASSERT_EQ(fa.set_cut_deg(90.0f), Error::ok);
+  ASSERT_EQ(fa.set_fov_deg(10.0f, 20.0f), Error::ok);
+  ASSERT_EQ(fa.set_beam_spread({-1.0f, 2.0f}), Error::ok);
+  fa.set_rotation(Rotation::counterclockwise);
+  fa.begin_packet(0, 3);
+  fa.block(9100);
+  fa.block(8900);  // 1 degree counter-clockwise past the cut at 90: frame 2; frame 1 stays open
+  fa.block(8700);  // 3 degrees past, more than the 2 a beam can lie behind: frame 1 closes, not taken
+  fa.reset();
+  FrameInfo f;
+  EXPECT_FALSE(fa.pop_closed(f));
+  EXPECT_FALSE(fa.is_open());
+  EXPECT_EQ(fa.cut_cdeg(), 9000);
+  EXPECT_EQ(fa.rotation(), Rotation::counterclockwise);
+  EXPECT_FALSE(fa.in_fov(25.0f));
+  // The spread is kept: 1 degree counter-clockwise past the cut (89.0) is within the 2 degrees a
+  // beam can lie behind its block (clockwise of it): the rotation before opens first, as frame 1.
+  fa.begin_packet(0, 0);
+  fa.block(8900);
+  EXPECT_EQ(fa.current().id, 2u);
+  EXPECT_EQ(fa.point(90.5f), 1u);
+  EXPECT_EQ(fa.current().lost_packets, 0u);  // the 3 lost before the reset are forgotten
+}
+
 // Frames must be taken after each block: one that is not is overwritten and counted.
 TEST(FrameAssembler, FramesNotTakenAreCountedWhenDropped) {
   FrameAssembler fa;

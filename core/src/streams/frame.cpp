@@ -215,15 +215,13 @@ bool FrameAssembler::finish() noexcept {
 }
 
 void FrameAssembler::reset() noexcept {
-  FrameAssembler fresh;
-  fresh.cut_cdeg_ = cut_cdeg_;
-  fresh.has_fov_ = has_fov_;
-  fresh.fov_start_ = fov_start_;
-  fresh.fov_end_ = fov_end_;
-  fresh.rotation_ = rotation_;
-  fresh.spread_ = spread_;
-  fresh.update_reach();
-  *this = fresh;
+  // Field by field: a whole fresh object would cost its 400 bytes of stack on a microcontroller.
+  // The slots need no clearing: open_next() clears each before use.
+  next_id_ = first_open_ = oldest_ = 1;
+  block_id_ = complete_from_ = packet_index_ = pending_lost_ = pending_points_ = dropped_ = 0;
+  ref_pos_ = block_pos_ = 0;
+  ref_cdeg_ = block_cdeg_ = 0;
+  in_packet_ = packet_started_ = false;
 }
 
 const FrameInfo& FrameAssembler::current() const noexcept {
