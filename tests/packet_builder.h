@@ -189,9 +189,9 @@ inline GpsBytes gps_rmc40() {
 /// A real packet as a counter-clockwise unit would have sent it: each block azimuth a replaced by
 /// 36000 - a (0 stays 0), so the azimuths fall packet after packet; the QT128's CRCs recomputed
 /// (its signature bytes, all zero in the bundled capture, are left as they are). Block layouts:
-/// Pandar40/40P manual 3.1.2 (10 blocks of 124 bytes, azimuth after the 2-byte preamble), Pandar64
-/// manual 3.1.2 (8-byte header, 6 blocks of 194 bytes), QT128C2X manual 3.1.2 (12-byte header, 2
-/// blocks of 514 bytes).
+/// Pandar40 manual Section 3.1.2 (10 blocks of 124 bytes, azimuth after the 2-byte preamble; the
+/// 40P the same), Pandar64 manual Section 3.1.2 (8-byte header, 6 blocks of 194 bytes), QT128C2X
+/// manual Section 3.1.2 (12-byte header, 2 blocks of 514 bytes).
 inline std::vector<std::uint8_t> counterclockwise_copy(const std::vector<std::uint8_t>& packet, hesai::Model model) {
   std::vector<std::uint8_t> p = packet;
   std::size_t first = 2, stride = 124, blocks = 10;

@@ -107,8 +107,8 @@ TEST(ManualExample, Pandar64SpinRateAndCalibrationChangesApply) {
   EXPECT_EQ(q.time_ns, ns_of(s) - 209260);
 }
 
-// Counter-clockwise (QT128C2X manual 1.2, Pandar40 manual 4.2 item 6: the coordinate system stays
-// clockwise): Channel 5 of Block 3 as above has turned back, not on, in its -17.964 us:
+// Counter-clockwise (QT128C2X manual Section 1.2, Pandar40 manual Section 4.2 item 6: the
+// coordinate system stays clockwise): Channel 5 of Block 3 as above has turned back, not on, in its -17.964 us:
 // a = 100 - 1.042 + 0.0646704. Switching the direction takes effect on the next packet, both ways.
 TEST(ManualExample, Pandar64Channel5Block3CounterClockwise) {
   const Stamp s;

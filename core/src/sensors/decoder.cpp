@@ -109,7 +109,7 @@ void Decoder::set_rotation(Rotation rotation) noexcept {
 
 void Decoder::update_spin(std::uint16_t rpm) noexcept {
   // Spin rate in radians per nanosecond: rpm x 2 pi / 60e9, negative for a counter-clockwise
-  // unit: azimuths grow clockwise whichever way it spins (Pandar40 manual 4.2, item 6), so a
+  // unit: azimuths grow clockwise whichever way it spins (Pandar40 manual Section 4.2, item 6), so a
   // channel fired later lies further clockwise on a clockwise unit and further back on the other.
   const float turn = rotation_ == Rotation::clockwise ? 1.0f : -1.0f;
   const float omega = turn * static_cast<float>(rpm) * static_cast<float>(2 * kPi / 60e9);
