@@ -1,13 +1,16 @@
-// libFuzzer harness: a stream of packets. Input: one byte of cut angle, then records of a u16
-// little-endian length and that many payload bytes (a short last record takes what is left).
-// Each record goes through identify(), the decoder of its model (GPS packets update the
-// Pandar40 decoder), the SequenceTracker, the FrameAssembler and the QT128 SafetyMonitor.
+// libFuzzer harness: a stream of packets. Input: one byte of cut angle (its value modulo 3 also
+// picks the rotation: clockwise, counter-clockwise, or detected by a RotationDetector), then
+// records of a u16 little-endian length and that many payload bytes (a short last record takes
+// what is left). Each record goes through identify(), the decoder of its model (GPS packets
+// update the Pandar40 decoder), the SequenceTracker, the FrameAssembler (every point by its own
+// azimuth with the decoder's beam spread) and the QT128 SafetyMonitor.
 #include <cstddef>
 #include <cstdint>
 
 #include "fuzz_common.h"
 #include "hesai/bytes.h"
 #include "hesai/frame.h"
+#include "hesai/rotation.h"
 #include "hesai/safety.h"
 #include "hesai/sequence.h"
 
@@ -20,16 +23,20 @@ struct Totals {
   hesai::SafetyCounts safety;
 };
 
-void close_frame(const hesai::FrameInfo& f, Totals& t) {
+void close_frames(hesai::FrameAssembler& frames, Totals& t) {
   using hesai_fuzz::check;
-  check(f.id == t.last_id + 1);  // ids open in order, none skipped
-  check(f.first_packet <= f.last_packet && f.packets >= 1 && f.blocks >= 1);
-  check(f.first_azimuth_cdeg < 36000 && f.last_azimuth_cdeg < 36000);
-  check(!(f.lost_packets > 0) || f.loss);
-  t.last_id = f.id;
-  ++t.frames;
-  t.frame_points += f.points;
-  t.frame_blocks += f.blocks;
+  hesai::FrameInfo f;
+  while (frames.pop_closed(f)) {
+    check(f.id == t.last_id + 1);  // ids close in order, none skipped
+    check(f.packets > 0 ? f.first_packet <= f.last_packet : f.points == 0 && f.blocks == 0);
+    check(f.first_azimuth_cdeg < 36000 && f.last_azimuth_cdeg < 36000);
+    check(f.late_points <= f.points);
+    check(!(f.lost_packets > 0) || f.loss);
+    t.last_id = f.id;
+    ++t.frames;
+    t.frame_points += f.points;
+    t.frame_blocks += f.blocks;
+  }
 }
 
 Totals run(hesai::ByteView in) {
@@ -43,7 +50,12 @@ Totals run(hesai::ByteView in) {
   hesai::SafetyMonitor monitor;
   hesai::SafetyCounts summed;  // count_safety with the monitor's answers: must equal its own counts
   hesai::FrameAssembler frames;
+  hesai::RotationDetector detector;
   check(frames.set_cut_deg(static_cast<float>(in[0]) * 360.0f / 256.0f) == hesai::Error::ok);
+  const bool detect = in[0] % 3 == 2;
+  const hesai::Rotation fixed = in[0] % 3 == 1 ? hesai::Rotation::counterclockwise : hesai::Rotation::clockwise;
+  frames.set_rotation(fixed);
+  for (hesai::Decoder& d : decoders) d.set_rotation(fixed);
   std::uint64_t blocks_given = 0;
   std::size_t off = 1;
   while (off < in.size) {
@@ -80,19 +92,30 @@ Totals run(hesai::ByteView in) {
     const bool stall = monitor.observe(info.safety, info.time_ns);
     check(!stall || monitor.stalled());
     hesai::count_safety(summed, info.safety, stall);
+    if (detect && detector.observe(info.block_azimuth[0])) {
+      check(detector.known());
+      frames.set_rotation(detector.rotation());
+      for (hesai::Decoder& other : decoders) other.set_rotation(detector.rotation());
+    }
+    const hesai::AzimuthSpread spread = d.beam_spread();
+    check(spread.min_deg <= spread.max_deg);
+    check(frames.set_beam_spread(spread) == hesai::Error::ok);
     const std::uint32_t lost = info.has_sequence ? tracker.observe(info.sequence) : 0;
     frames.begin_packet(t.packets, lost);
+    std::size_t next = 0;
     for (std::size_t b = 0; b < info.blocks; ++b) {
-      if (frames.block(info.block_azimuth[b])) close_frame(frames.last_closed(), t);
+      if (frames.block(info.block_azimuth[b])) close_frames(frames, t);
       ++blocks_given;
-      std::uint32_t in_block = 0;
-      for (std::size_t i = 0; i < points.count; ++i) in_block += points.points[i].block == b ? 1u : 0u;
-      frames.add_points(in_block);
+      for (; next < points.count && points.points[next].block == b; ++next) {
+        const std::uint64_t id = frames.point(points.points[next].azimuth_deg);
+        check(id > t.last_id && frames.is_open());  // never a frame already closed
+      }
     }
+    check(next == points.count);
   }
-  hesai::FrameInfo last;
-  if (frames.finish(last)) close_frame(last, t);
+  if (frames.finish()) close_frames(frames, t);
   check(!frames.is_open());
+  check(frames.frames_dropped() == 0);
   check(t.frame_points == t.points);  // every point lands in exactly one frame
   check(t.frame_blocks == blocks_given);
   t.seq = tracker.counts();
@@ -116,9 +139,9 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   const Totals a = run(in.view());
   const Totals b = run(in.view());
   hesai_fuzz::check(a.packets == b.packets && a.decoded == b.decoded && a.points == b.points &&
-                    a.frames == b.frames && a.seq.lost == b.seq.lost && a.seq.duplicates == b.seq.duplicates &&
-                    a.seq.reordered == b.seq.reordered && a.seq.resyncs == b.seq.resyncs &&
-                    a.safety.packets == b.safety.packets && a.safety.counter_stalls == b.safety.counter_stalls &&
-                    a.safety.states == b.safety.states);
+                    a.frames == b.frames && a.frame_points == b.frame_points && a.seq.lost == b.seq.lost &&
+                    a.seq.duplicates == b.seq.duplicates && a.seq.reordered == b.seq.reordered &&
+                    a.seq.resyncs == b.seq.resyncs && a.safety.packets == b.safety.packets &&
+                    a.safety.counter_stalls == b.safety.counter_stalls && a.safety.states == b.safety.states);
   return 0;
 }

@@ -30,6 +30,7 @@ HEADERS = {  # public header (under core/include/hesai/) -> concern
     'decoder.h': 'sensors', 'point.h': 'sensors', 'gps.h': 'sensors', 'pandar40_packet.h': 'sensors',
     'pandar64_packet.h': 'sensors', 'qt128_packet.h': 'sensors', 'tables/': 'sensors',
     'frame.h': 'streams', 'sequence.h': 'streams', 'stats.h': 'streams', 'safety.h': 'streams',
+    'rotation.h': 'streams',
     'hesai.h': 'capi',
 }
 INCLUDE = re.compile(r'^\s*#\s*include\s+"([^"]+)"')

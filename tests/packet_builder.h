@@ -11,6 +11,7 @@
 #include "hesai/bytes.h"
 #include "hesai/crc32.h"
 #include "hesai/hmac.h"
+#include "hesai/model.h"
 #include "hesai/qt128_packet.h"
 
 namespace hesai_test {
@@ -240,6 +241,25 @@ inline GpsBytes gps_rmc40() {
   gps_put_sentence(p, kGpsRmc67);
   p[506] = 'A';
   p[507] = 1;
+  return p;
+}
+
+/// A real packet as a counter-clockwise unit would have sent it: each block azimuth a replaced by
+/// 36000 - a (0 stays 0), so the azimuths fall packet after packet; the QT128's CRCs recomputed
+/// (its signature bytes, all zero in the bundled capture, are left as they are). Block layouts:
+/// Pandar40 manual Section 3.1.2 (10 blocks of 124 bytes, azimuth after the 2-byte preamble; the
+/// 40P the same), Pandar64 manual Section 3.1.2 (8-byte header, 6 blocks of 194 bytes), QT128C2X
+/// manual Section 3.1.2 (12-byte header, 2 blocks of 514 bytes).
+inline std::vector<std::uint8_t> counterclockwise_copy(const std::vector<std::uint8_t>& packet, hesai::Model model) {
+  std::vector<std::uint8_t> p = packet;
+  std::size_t first = 2, stride = 124, blocks = 10;
+  if (model == hesai::Model::pandar64) { first = 8; stride = 194; blocks = 6; }
+  if (model == hesai::Model::qt128c2x) { first = 12; stride = 514; blocks = 2; }
+  for (std::size_t b = 0; b < blocks; ++b) {
+    const std::uint16_t a = hesai::load_le16(&p[first + b * stride]);
+    hesai::store_le16(&p[first + b * stride], static_cast<std::uint16_t>((36000 - a) % 36000));
+  }
+  if (model == hesai::Model::qt128c2x) qt128_seal(p);
   return p;
 }
 

@@ -18,7 +18,7 @@ namespace {
 
 using namespace hesai;
 
-static_assert(sizeof(Decoder) == (HESAI_SIGNATURE ? 7160 : 6936), "decoder.h: Memory");
+static_assert(sizeof(Decoder) == (HESAI_SIGNATURE ? 7168 : 6944), "decoder.h: Memory");
 static_assert(sizeof(PacketPoints) == 16008 && sizeof(Point) == 40, "decoder.h: Memory");
 static_assert(sizeof(PacketInfo) == 88, "decoder.h: Memory");
 static_assert(sizeof(AngleCorrection) == 2056 && sizeof(FiretimeCorrection) == 2312, "decoder.h, calibration.h");
@@ -26,7 +26,7 @@ static_assert(sizeof(ChannelConfig) == 326, "calibration.h: Contract");
 static_assert(sizeof(HmacSha256Key) == 224 && sizeof(HmacSha256) == 120, "hmac.h: Contract");
 static_assert(sizeof(Sha256) == 112, "sha256.h: Contract");
 static_assert(sizeof(Crc32Mpeg2) == 4, "crc32.h: Contract");
-static_assert(sizeof(FrameAssembler) == 184, "frame.h: Contract");
+static_assert(sizeof(FrameAssembler) == 408, "frame.h: Contract");
 static_assert(sizeof(SequenceTracker) == 576, "sequence.h: Contract");
 static_assert(sizeof(GpsPacket) == 112, "gps.h");
 static_assert(sizeof(SafetyMonitor) == 136, "safety.h: Cost");

@@ -2,11 +2,13 @@
 // rejection path, signatures, and the 1 mm accuracy bound at 200 m.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
 #include "hesai/decoder.h"
 #include "hesai/hkdf.h"
+#include "hesai/tables/pandar64_tables.h"
 #include "packet_builder.h"
 #include "test_support.h"
 
@@ -103,6 +105,71 @@ TEST(ManualExample, Pandar64SpinRateAndCalibrationChangesApply) {
   q = decode_one(600, 10000);
   EXPECT_NEAR(q.azimuth_deg, 102.0, 1e-4);
   EXPECT_EQ(q.time_ns, ns_of(s) - 209260);
+}
+
+// Counter-clockwise (QT128C2X manual Section 1.2, Pandar40 manual Section 4.2 item 6: the
+// coordinate system stays clockwise): Channel 5 of Block 3 as above has turned back, not on, in its -17.964 us:
+// a = 100 - 1.042 + 0.0646704. Switching the direction takes effect on the next packet, both ways.
+TEST(ManualExample, Pandar64Channel5Block3CounterClockwise) {
+  const Stamp s;
+  auto p = pandar64_packet(0x37, s, 600);
+  pandar64_azimuth(p, 3, 10000);
+  pandar64_point(p, 3, 5, 2500, 77);
+  Decoder dec(Model::pandar64);
+  EXPECT_EQ(dec.rotation(), Rotation::clockwise);  // the manuals' default
+  PacketInfo info;
+  PacketPoints pts;
+  ASSERT_EQ(dec.decode(view(p), info, pts), Error::ok);
+  EXPECT_NEAR(pts.points[0].azimuth_deg, 100.0 - 1.042 - 0.0646704, 1e-4);
+  dec.set_rotation(Rotation::counterclockwise);
+  ASSERT_EQ(dec.decode(view(p), info, pts), Error::ok);
+  const Point& q = pts.points[0];
+  EXPECT_NEAR(q.azimuth_deg, 100.0 - 1.042 + 0.0646704, 1e-4);
+  EXPECT_EQ(q.time_ns, ns_of(s) - 227224);  // the firing time is the same
+  // sin(99.0226704 deg) = 0.98762637, cos(99.0226704 deg) = -0.15682525 (evaluated separately).
+  EXPECT_NEAR(q.x, 10 * 0.99859275 * 0.98762637, 1e-4);
+  EXPECT_NEAR(q.y, 10 * 0.99859275 * -0.15682525, 1e-4);
+  dec.set_rotation(Rotation::clockwise);
+  ASSERT_EQ(dec.decode(view(p), info, pts), Error::ok);
+  EXPECT_NEAR(pts.points[0].azimuth_deg, 100.0 - 1.042 - 0.0646704, 1e-4);
+}
+
+// beam_spread(): the smallest and largest channel offset + firing-time correction, recomputed
+// from the manual's tables here, for each direction and spin rate, and without the correction.
+TEST(ManualExample, BeamSpreadFromTheTables) {
+  const Stamp s;
+  Decoder dec(Model::pandar64);
+  EXPECT_EQ(dec.beam_spread().min_deg, 0.0f);  // nothing decoded yet
+  PacketInfo info;
+  PacketPoints pts;
+  for (const Rotation r : {Rotation::clockwise, Rotation::counterclockwise}) {
+    for (const int rpm : {600, 1200}) {
+      dec.set_rotation(r);
+      ASSERT_EQ(dec.decode(view(pandar64_packet(0x37, s, static_cast<std::uint16_t>(rpm))), info, pts), Error::ok);
+      const double deg_per_us = (r == Rotation::clockwise ? 1 : -1) * rpm * 360.0 / 60e6;
+      double lo = 360, hi = -360;
+      for (std::size_t ch = 0; ch < 64; ++ch) {
+        const double a = tables::pandar64_channel_angles[ch].azimuth_deg + tables::pandar64_firetime_us[ch] * deg_per_us;
+        lo = std::min(lo, a);
+        hi = std::max(hi, a);
+      }
+      EXPECT_NEAR(dec.beam_spread().min_deg, lo, 1e-4) << rpm;
+      EXPECT_NEAR(dec.beam_spread().max_deg, hi, 1e-4) << rpm;
+    }
+  }
+  dec.set_firetime_correction(false);
+  ASSERT_EQ(dec.decode(view(pandar64_packet(0x37, s, 600)), info, pts), Error::ok);
+  EXPECT_NEAR(dec.beam_spread().min_deg, -5.208, 1e-4);  // App. A: offsets from -5.208 to 5.208
+  EXPECT_NEAR(dec.beam_spread().max_deg, 5.208, 1e-4);
+  // An offset beyond half a turn is the same direction the short way round: 350 is -10.
+  AngleCorrection angles;
+  angles.channels = 64;
+  angles.azimuth_deg[0] = 350.0;
+  angles.azimuth_deg[1] = 3.0;
+  ASSERT_EQ(dec.set_angles(angles), Error::ok);
+  ASSERT_EQ(dec.decode(view(pandar64_packet(0x37, s, 600)), info, pts), Error::ok);
+  EXPECT_NEAR(dec.beam_spread().min_deg, -10.0, 1e-4);
+  EXPECT_NEAR(dec.beam_spread().max_deg, 3.0, 1e-4);
 }
 
 // Pandar64 App. B.3, dual return: blocks 5 and 6 end at t0 - 42.58 us, blocks 1 and 2 at

@@ -10,6 +10,7 @@
 
 #include "hesai/calibration.h"
 #include "hesai/decoder.h"
+#include "packet_builder.h"
 #include "test_support.h"
 
 using hesai::ByteView;
@@ -132,19 +133,26 @@ TEST_P(Golden, CountsFromRawBytes) {
 }
 
 // Every point against the reference computation, with the unit's own angle and firing-time files.
-TEST_P(Golden, EveryPointMatchesDoubleReference) {
-  const Layout& l = GetParam();
-  const auto packets = pcap_payloads(l.capture);
+// Counter-clockwise: the capture's azimuths mirrored (counterclockwise_copy), and the firing-time
+// correction subtracted: a channel fired t after its block has turned back by spin rate x t, in a
+// coordinate system that stays clockwise (Pandar40 manual Section 4.2, item 6).
+void expect_every_point_matches(const Layout& l, hesai::Rotation rotation) {
+  const bool ccw = rotation == hesai::Rotation::counterclockwise;
+  auto packets = pcap_payloads(l.capture);
   ASSERT_EQ(packets.size(), l.packets);
+  if (ccw)
+    for (auto& p : packets) p = counterclockwise_copy(p, l.model);
   const ReferenceCalibration ref = read_reference_calibration(l.angles_a, l.firetimes, l.channels);
   Decoder dec(l.model);
   ASSERT_EQ(dec.set_angles(load_angles(l.angles_a, l.channels)), Error::ok);
   ASSERT_EQ(dec.set_firetimes(load_firetimes(l.firetimes, l.channels)), Error::ok);
+  dec.set_rotation(rotation);
   PacketPoints pts;
   PacketInfo info;
   double worst = 0;
   std::size_t checked = 0;
   const double kDeg = M_PI / 180;
+  const double turn = ccw ? -1.0 : 1.0;
   for (const auto& p : packets) {
     ASSERT_EQ(dec.decode(view(p), info, pts), Error::ok);
     const std::int64_t t0 = packet_time_ns(l, p);
@@ -161,7 +169,7 @@ TEST_P(Golden, EveryPointMatchesDoubleReference) {
         if (raw == 0) continue;
         const double fire = (l.model == Model::qt128c2x && !seq1) ? ref.fire2[c] : ref.fire1[c];
         const double r = raw * 0.004;
-        const double az = block_az + ref.azimuth[c] + fire * rpm * 360.0 / 60e6;
+        const double az = block_az + ref.azimuth[c] + turn * fire * rpm * 360.0 / 60e6;
         const double e = ref.elevation[c] * kDeg;
         const double x = r * std::cos(e) * std::sin(az * kDeg);
         const double y = r * std::cos(e) * std::cos(az * kDeg);
@@ -186,7 +194,46 @@ TEST_P(Golden, EveryPointMatchesDoubleReference) {
     ASSERT_EQ(k, pts.count);
   }
   EXPECT_GT(checked, 300000u);
-  RecordProperty("worst_error_m", std::to_string(worst));
+  ::testing::Test::RecordProperty("worst_error_m", std::to_string(worst));
+}
+
+TEST_P(Golden, EveryPointMatchesDoubleReference) { expect_every_point_matches(GetParam(), hesai::Rotation::clockwise); }
+
+TEST_P(Golden, CounterClockwiseEveryPointMatchesDoubleReference) {
+  expect_every_point_matches(GetParam(), hesai::Rotation::counterclockwise);
+}
+
+// The same packet decoded as clockwise and as counter-clockwise: each point's azimuth differs by
+// twice its firing-time correction, 2 x firing time x spin rate; its range, elevation and time not.
+TEST_P(Golden, RotationMovesEachPointByTwiceItsCorrection) {
+  const Layout& l = GetParam();
+  const auto packets = pcap_payloads(l.capture);
+  ASSERT_EQ(packets.size(), l.packets);
+  const ReferenceCalibration ref = read_reference_calibration(l.angles_a, l.firetimes, l.channels);
+  Decoder cw(l.model), ccw(l.model);
+  ccw.set_rotation(hesai::Rotation::counterclockwise);
+  for (Decoder* d : {&cw, &ccw}) {
+    ASSERT_EQ(d->set_angles(load_angles(l.angles_a, l.channels)), Error::ok);
+    ASSERT_EQ(d->set_firetimes(load_firetimes(l.firetimes, l.channels)), Error::ok);
+  }
+  EXPECT_EQ(ccw.rotation(), hesai::Rotation::counterclockwise);
+  PacketPoints a, b;
+  PacketInfo ia, ib;
+  ASSERT_EQ(cw.decode(view(packets[0]), ia, a), Error::ok);
+  ASSERT_EQ(ccw.decode(view(packets[0]), ib, b), Error::ok);
+  ASSERT_EQ(a.count, b.count);
+  const bool seq1 = l.model == Model::qt128c2x && (packets[0][1066] & 1);
+  for (std::size_t i = 0; i < a.count; ++i) {
+    const std::size_t c = a.points[i].channel - 1u;
+    const double fire = (l.model == Model::qt128c2x && !seq1) ? ref.fire2[c] : ref.fire1[c];
+    double gap = a.points[i].azimuth_deg - b.points[i].azimuth_deg;
+    if (gap > 180) gap -= 360;
+    if (gap < -180) gap += 360;
+    EXPECT_NEAR(gap, 2 * fire * ia.motor_rpm * 360.0 / 60e6, 1e-3) << "channel " << c + 1;
+    EXPECT_EQ(a.points[i].distance_m, b.points[i].distance_m);
+    EXPECT_EQ(a.points[i].elevation_deg, b.points[i].elevation_deg);
+    EXPECT_EQ(a.points[i].time_ns, b.points[i].time_ns);
+  }
 }
 
 // unit_a and unit_b are different units of the same model: their files must move the points.

@@ -13,10 +13,11 @@ TEST(ZeroAllocation, FramesSequenceStats) {
   hesai::SequenceTracker seq;
   hesai::Stats stats{};
   std::uint64_t frames = 0;
-  hesai::Error cut = hesai::Error::truncated, fov = hesai::Error::truncated;
+  hesai::Error cut = hesai::Error::truncated, fov = hesai::Error::truncated, spread = hesai::Error::truncated;
   const std::size_t n = hesai_test::allocations_during([&] {
     cut = fa.set_cut_deg(37.0f);
     fov = fa.set_fov_deg(300.0f, 60.0f);
+    spread = fa.set_beam_spread(hesai::AzimuthSpread{-5.0f, 3.0f});
     // Three turns of 10-block packets with one packet in 50 dropped, a far jump and a restart.
     for (std::uint32_t p = 0; p < 540; ++p) {
       if (p % 50 == 49) continue;
@@ -24,15 +25,19 @@ TEST(ZeroAllocation, FramesSequenceStats) {
       fa.begin_packet(p, lost);
       for (std::uint32_t b = 0; b < 10; ++b) {
         const auto az = static_cast<std::uint16_t>((20 * (10 * p + b)) % 36000);
-        if (fa.block(az)) ++frames;
-        fa.add_points(fa.in_fov(static_cast<float>(az) / 100.0f) ? 40u : 0u);
+        if (fa.block(az))
+          for (hesai::FrameInfo f; fa.pop_closed(f);) ++frames;
+        for (int ch = -5; ch < 3; ++ch) {
+          const float point_az = static_cast<float>((az + 36000 + 100 * ch) % 36000) / 100.0f;
+          if (fa.in_fov(point_az)) (void)fa.point(point_az);
+        }
       }
     }
     (void)seq.observe(1000000);
     (void)seq.observe(0);
     (void)seq.observe(1);
-    hesai::FrameInfo last;
-    if (fa.finish(last)) ++frames;
+    fa.finish();
+    for (hesai::FrameInfo f; fa.pop_closed(f);) ++frames;
     stats.frames = frames;
     stats.lost = seq.counts().lost;
     hesai::count_error(stats, hesai::Error::crc_body);
@@ -42,7 +47,9 @@ TEST(ZeroAllocation, FramesSequenceStats) {
   EXPECT_EQ(n, 0u);
   EXPECT_EQ(cut, hesai::Error::ok);
   EXPECT_EQ(fov, hesai::Error::ok);
+  EXPECT_EQ(spread, hesai::Error::ok);
   // Azimuths 0 .. 3 turns from 0: the cut at 37 degrees is crossed 3 times, plus finish: 4.
+  // (The first block, at 0, lies more than 5 degrees from the cut behind it: no frame before it.)
   EXPECT_EQ(frames, 4u);
   // Packets 49, 99, ..., 499, 549 > 539: 10 dropped within 0..539 (49 + 50 i, i = 0..9).
   EXPECT_EQ(seq.counts().lost, 10u);

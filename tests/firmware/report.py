@@ -34,7 +34,8 @@ COMPONENTS = [
     ('crypto/: HKDF', 'crypto', ['hkdf']),
     ('calibration/: calibration files', 'calibration', ['decimal', 'csv_rows', 'angles_csv', 'firetimes_csv', 'channel_config_csv']),
     ('sensors/: GPS packets', 'sensors', ['gps']),
-    ('streams/: frames, sequence, safety monitor, stats', 'streams', ['frame', 'sequence', 'safety', 'stats']),
+    ('streams/: frames, rotation, sequence, safety monitor, stats', 'streams',
+     ['frame', 'rotation', 'sequence', 'safety', 'stats']),
     ('capi/: the C interface (hesai.h)', 'capi', ['hesai_c']),
 ]
 IN_BUDGET = {'sensors/: identify, validate, decode (all four sensors)', 'base/: error names', 'crc/: CRC-32/MPEG-2',

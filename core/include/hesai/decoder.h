@@ -39,7 +39,7 @@
 // Memory (the caller owns every object; the core has no static RAM but the two CPUID bytes on
 // x86-64; sizes checked by static_assert in tests/test_contract.cpp on every CI target, 32- and
 // 64-bit, and in the firmware image):
-// - Decoder: 7 160 bytes (6 936 with HESAI_SIGNATURE 0): per-channel geometry and the per-rate
+// - Decoder: 7 168 bytes (6 944 with HESAI_SIGNATURE 0): per-channel geometry and the per-rate
 //   cache for 128 channels, the QT128 channel configuration (256 bytes), the HMAC key states (224
 //   bytes), the GPS time base.
 // - PacketPoints: 16 008 bytes (400 points of 40 bytes); PacketInfo: 88 bytes.
@@ -99,6 +99,23 @@ enum class SignatureStatus : std::uint8_t {
   accepted_unsigned,  ///< a key is configured, the packet is unsigned, and unsigned packets are allowed
 };
 
+/// The direction the sensor spins, seen from above. QT128C2X manual, Section 1.2 (Lidar Structure):
+/// "By default, the lidar rotates clockwise in the top view. To select counterclockwise rotation,
+/// see Section 4.2"; Pandar40 manual, Section 4.2 (Setting), item 6: the rotation direction can be
+/// clockwise or anticlockwise and "The coordinate system remain the same despite the choice of
+/// rotation direction". Azimuths therefore grow clockwise in both; what changes is the sign of the
+/// firing-time correction (a channel fired t after its block has turned on by spin rate x t, in the
+/// direction of rotation) and the order in which azimuths come.
+enum class Rotation : std::uint8_t { clockwise, counterclockwise };
+
+/// How far a point's azimuth can lie from its block's azimuth: the smallest and largest beam
+/// azimuth (channel offset + firing-time correction), degrees, clockwise positive, each in
+/// (-180, 180].
+struct AzimuthSpread {
+  float min_deg = 0;
+  float max_deg = 0;
+};
+
 /// Whether PacketInfo::time_ns and Point::time_ns are absolute.
 enum class TimeReference : std::uint8_t {
   utc,            ///< ns since the Unix epoch, UTC
@@ -148,7 +165,7 @@ enum class Reflectivity : std::uint8_t {
 
 /// Decoder state for one sensor: per-channel geometry from the built-in tables or a
 /// calibration file, the per-spin-rate point constants, the session key, the Pandar40 GPS
-/// time base and the QT128 channel configuration. 7 160 bytes; one per sensor per thread (see the
+/// time base and the QT128 channel configuration. 7 168 bytes; one per sensor per thread (see the
 /// contract at the top).
 class Decoder {
  public:
@@ -165,8 +182,18 @@ class Decoder {
   /// QT128 decoder is given a one-loop file; Error::invalid_argument (and no change) if a firing
   /// time lies outside [-1000, 1000] us.
   [[nodiscard]] Error set_firetimes(const FiretimeCorrection& firetimes) noexcept;
-  /// Azimuth firing-time correction (on by default): adds firing time x spin rate to each point.
+  /// Azimuth firing-time correction (on by default): adds firing time x spin rate to each point,
+  /// in the direction of rotation (subtracts it for a counter-clockwise unit).
   void set_firetime_correction(bool on) noexcept { firetime_correction_ = on; }
+  /// The direction the unit spins (default clockwise); applies from the next decode(). The
+  /// manuals give no packet field for it: set it from the unit's configuration, or from a
+  /// RotationDetector (hesai/rotation.h) watching the stream.
+  void set_rotation(Rotation rotation) noexcept;
+  Rotation rotation() const noexcept { return rotation_; }
+  /// The spread of point azimuths around their block azimuth over every channel and firing loop,
+  /// at the spin rate and rotation of the last decode() (all zero before the first): what a
+  /// FrameAssembler needs to know how far behind or ahead of a block its points can land.
+  AzimuthSpread beam_spread() const noexcept { return spin_.spread; }
 
   /// QT128: the channel configuration (parse_channel_config_csv) that maps the units of packets
   /// with customised channels (flags bit 6) to channels. Without one such packets are
@@ -222,6 +249,7 @@ class Decoder {
     static constexpr std::uint16_t kStale = 0xFFFF;  // above any accepted rpm
     std::uint16_t rpm = kStale;  // the spin rate the arrays hold (0: no firing-time correction)
     std::array<std::array<float, kMaxChannels>, 2> dir_cos{}, dir_sin{}, azimuth_deg{};
+    AzimuthSpread spread;        // of azimuth_deg, folded into (-180, 180]
   };
 
   void set_channel_angle(std::size_t ch, double elevation_deg, double azimuth_deg) noexcept;
@@ -245,6 +273,7 @@ class Decoder {
 
   Model model_;
   bool firetime_correction_ = true;
+  Rotation rotation_ = Rotation::clockwise;
   bool has_key_ = false;
   bool allow_unsigned_ = false;
   bool has_gps_ = false;

@@ -101,13 +101,23 @@ void Decoder::set_channel_firetime(std::size_t ch, double loop1_us, double loop2
   spin_.rpm = SpinCache::kStale;
 }
 
+void Decoder::set_rotation(Rotation rotation) noexcept {
+  if (rotation == rotation_) return;
+  rotation_ = rotation;
+  spin_.rpm = SpinCache::kStale;
+}
+
 void Decoder::update_spin(std::uint16_t rpm) noexcept {
-  // Spin rate in radians per nanosecond: rpm x 2 pi / 60e9.
-  const float omega = static_cast<float>(rpm) * static_cast<float>(2 * kPi / 60e9);
+  // Spin rate in radians per nanosecond: rpm x 2 pi / 60e9, negative for a counter-clockwise
+  // unit: azimuths grow clockwise whichever way it spins (Pandar40 manual Section 4.2, item 6), so a
+  // channel fired later lies further clockwise on a clockwise unit and further back on the other.
+  const float turn = rotation_ == Rotation::clockwise ? 1.0f : -1.0f;
+  const float omega = turn * static_cast<float>(rpm) * static_cast<float>(2 * kPi / 60e9);
   constexpr float kRadToDeg = static_cast<float>(180.0 / kPi);
   // The Pandars fire one sequence (both loops hold the same times); the QT128 alternates two.
   const std::size_t loops = model_ == Model::qt128c2x ? 2 : 1;
   const std::size_t channels = channel_count(model_);
+  AzimuthSpread spread{180.0f, -180.0f};
   for (std::size_t loop = 0; loop < loops; ++loop) {
     for (std::size_t ch = 0; ch < channels; ++ch) {
       // Beam azimuth b = azimuth offset + firing-time correction d (|d| < 0.01 rad: a short series).
@@ -123,8 +133,12 @@ void Decoder::update_spin(std::uint16_t rpm) noexcept {
       while (az < 0) az += 360.0f;
       while (az >= 360.0f) az -= 360.0f;
       spin_.azimuth_deg[loop][ch] = az;
+      const float offset = az > 180.0f ? az - 360.0f : az;
+      if (offset < spread.min_deg) spread.min_deg = offset;
+      if (offset > spread.max_deg) spread.max_deg = offset;
     }
   }
+  spin_.spread = channels != 0 ? spread : AzimuthSpread{};
   spin_.rpm = rpm;
 }
 

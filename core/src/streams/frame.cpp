@@ -3,11 +3,12 @@
 namespace hesai {
 
 namespace {
-constexpr std::uint32_t kTurn = 36000;      // 360 degrees in 0.01 degree
-constexpr std::uint32_t kHalfTurn = 18000;
+constexpr std::int32_t kTurn = 36000;  // 360 degrees in 0.01 degree
+constexpr std::int32_t kHalfTurn = 18000;
+constexpr FrameInfo kNoFrame{};
 
 // Clockwise distance from `from` to `to`, both in [0, kTurn): 0..kTurn-1.
-constexpr std::uint32_t clockwise(std::uint32_t from, std::uint32_t to) { return (to + kTurn - from) % kTurn; }
+constexpr std::int32_t clockwise(std::int32_t from, std::int32_t to) { return (to + kTurn - from) % kTurn; }
 
 static_assert(clockwise(35990, 10) == 20, "wrap through 0 is a short forward move");
 static_assert(clockwise(105, 100) == 35995, "jitter is almost a full turn clockwise");
@@ -15,10 +16,38 @@ static_assert(clockwise(105, 100) == 35995, "jitter is almost a full turn clockw
 
 Error FrameAssembler::set_cut_deg(float degrees) noexcept {
   if (!(degrees >= 0.0f && degrees < 360.0f)) return Error::invalid_argument;
-  std::uint32_t cdeg = static_cast<std::uint32_t>(degrees * 100.0f + 0.5f);
+  std::int32_t cdeg = static_cast<std::int32_t>(degrees * 100.0f + 0.5f);
   if (cdeg >= kTurn) cdeg = 0;  // 359.996 and above round to 360.00, which is 0
   cut_cdeg_ = static_cast<std::uint16_t>(cdeg);
+  ref_pos_ = block_pos_ = forward(cut_cdeg_, ref_cdeg_);  // the stream goes on from the new cut
   return Error::ok;
+}
+
+void FrameAssembler::set_rotation(Rotation rotation) noexcept {
+  if (rotation == rotation_) return;
+  rotation_ = rotation;
+  update_reach();
+  ref_pos_ = block_pos_ = forward(cut_cdeg_, ref_cdeg_);  // the stream goes on in the new direction
+}
+
+Error FrameAssembler::set_beam_spread(AzimuthSpread spread) noexcept {
+  if (!(spread.min_deg >= -180.0f && spread.min_deg <= spread.max_deg && spread.max_deg <= 180.0f))
+    return Error::invalid_argument;
+  spread_ = spread;
+  update_reach();
+  return Error::ok;
+}
+
+void FrameAssembler::update_reach() noexcept {
+  const float behind_cw = spread_.min_deg < 0 ? -spread_.min_deg * 100.0f : 0.0f;
+  const float ahead_cw = spread_.max_deg > 0 ? spread_.max_deg * 100.0f : 0.0f;
+  const bool cw = rotation_ == Rotation::clockwise;
+  behind_cdeg_ = cw ? behind_cw : ahead_cw;
+  ahead_cdeg_ = cw ? ahead_cw : behind_cw;
+}
+
+std::int32_t FrameAssembler::forward(std::uint16_t from, std::uint16_t to) const noexcept {
+  return rotation_ == Rotation::clockwise ? clockwise(from, to) : clockwise(to, from);
 }
 
 Error FrameAssembler::set_fov_deg(float start_degrees, float end_degrees) noexcept {
@@ -46,28 +75,56 @@ void FrameAssembler::begin_packet(std::uint64_t packet_index, std::uint32_t lost
   pending_lost_ += lost_before;  // a packet that brings no block hands its loss to the next one
   in_packet_ = true;
   packet_started_ = false;
-  packet_in_frame_ = false;
+  has_packet_ = 0;
 }
 
-void FrameAssembler::open_frame(std::uint16_t azimuth_cdeg, bool at_cut) noexcept {
-  cur_ = FrameInfo{};
-  cur_.id = next_id_++;
-  cur_.starts_at_cut = at_cut;
-  cur_.first_azimuth_cdeg = azimuth_cdeg;
-  cur_.points = pending_points_;
+void FrameAssembler::open_next(bool at_cut) noexcept {
+  const std::uint64_t id = next_id_++;
+  // Only closed frames can be this far behind (open ones lie within one of the reference).
+  for (; id - oldest_ >= kSlots; ++oldest_) ++dropped_;
+  FrameInfo& f = slot(id);
+  f = FrameInfo{};
+  f.id = id;
+  f.starts_at_cut = at_cut;
+  f.points = pending_points_;
   pending_points_ = 0;
-  ref_cdeg_ = azimuth_cdeg;
-  open_ = true;
-  packet_in_frame_ = false;
+  has_packet_ = static_cast<std::uint8_t>(has_packet_ & ~(1u << (id % kSlots)));
 }
 
-bool FrameAssembler::crosses(std::uint16_t azimuth_cdeg, bool any_forward) noexcept {
-  const std::uint32_t move = clockwise(ref_cdeg_, azimuth_cdeg);
-  if (move == 0) return false;                           // same azimuth: dual return
-  if (!any_forward && move >= kHalfTurn) return false;   // a step back: jitter or a late packet
-  const std::uint32_t to_cut = clockwise(ref_cdeg_, cut_cdeg_);
+bool FrameAssembler::close_through(std::uint64_t id, bool at_cut) noexcept {
+  bool any = false;
+  for (; first_open_ <= id && first_open_ < next_id_; ++first_open_) {
+    slot(first_open_).ends_at_cut = at_cut;
+    any = true;
+  }
+  return any;
+}
+
+void FrameAssembler::count_packet(std::uint64_t id) noexcept {
+  const unsigned bit = 1u << (id % kSlots);
+  if (!in_packet_ || (has_packet_ & bit) != 0) return;
+  FrameInfo& f = slot(id);
+  if (f.packets == 0) f.first_packet = packet_index_;
+  f.last_packet = packet_index_;
+  ++f.packets;
+  has_packet_ = static_cast<std::uint8_t>(has_packet_ | bit);
+}
+
+void FrameAssembler::start_stream(std::uint16_t azimuth_cdeg) noexcept {
   ref_cdeg_ = azimuth_cdeg;
-  return to_cut != 0 && to_cut <= move;
+  ref_pos_ = block_pos_ = forward(cut_cdeg_, azimuth_cdeg);
+  // Points of the first blocks can lie behind the cut: the rotation before opens first.
+  if (static_cast<float>(ref_pos_) < behind_cdeg_) open_next(false);
+  // A frame's start is whole when the stream began at least the spread ahead before its cut:
+  // the block's own frame only when it lies on the cut and no point lies ahead of its block.
+  const std::uint64_t own = next_id_;
+  if (ref_pos_ == 0 && ahead_cdeg_ <= 0.0f) {
+    complete_from_ = own;
+  } else {
+    complete_from_ = static_cast<float>(kTurn - ref_pos_) >= ahead_cdeg_ ? own + 1 : own + 2;
+  }
+  open_next(own >= complete_from_);
+  block_id_ = own;
 }
 
 bool FrameAssembler::block(std::uint16_t azimuth_cdeg) noexcept {
@@ -76,64 +133,99 @@ bool FrameAssembler::block(std::uint16_t azimuth_cdeg) noexcept {
   const bool after_gap = first_of_packet && pending_lost_ > 0;
 
   bool closed = false;
-  if (!open_) {
-    open_frame(azimuth_cdeg, azimuth_cdeg == cut_cdeg_);
-  } else if (crosses(azimuth_cdeg, after_gap)) {
-    cur_.ends_at_cut = true;
-    if (after_gap) cur_.loss = true;  // the gap straddles the cut
-    closed_ = cur_;
-    closed = true;
-    open_frame(azimuth_cdeg, true);
+  if (block_id_ == 0) {
+    start_stream(azimuth_cdeg);
+  } else {
+    const std::int32_t move = forward(ref_cdeg_, azimuth_cdeg);
+    if (move != 0 && (after_gap || move < kHalfTurn)) {
+      ref_cdeg_ = azimuth_cdeg;
+      ref_pos_ += move;
+      if (ref_pos_ >= kTurn) {  // past the cut: the reference enters the next rotation
+        ref_pos_ -= kTurn;
+        if (after_gap) slot(block_id_).loss = true;  // the gap straddles the cut
+        closed = close_through(block_id_ - 1, true);
+        ++block_id_;
+        if (block_id_ == next_id_) open_next(block_id_ >= complete_from_);
+      }
+      // Past the end of the frame before by the spread behind: no later point can reach it.
+      if (static_cast<float>(ref_pos_) >= behind_cdeg_) closed = close_through(block_id_ - 1, true) || closed;
+      block_pos_ = ref_pos_;
+    } else {
+      block_pos_ = ref_pos_ - (move == 0 ? 0 : kTurn - move);  // the same azimuth, or a step back
+    }
   }
+  block_cdeg_ = azimuth_cdeg;
 
-  if (in_packet_ && !packet_in_frame_) {
-    if (cur_.packets == 0) cur_.first_packet = packet_index_;
-    cur_.last_packet = packet_index_;
-    ++cur_.packets;
-    packet_in_frame_ = true;
-  }
+  count_packet(block_id_);
+  FrameInfo& f = slot(block_id_);
   if (first_of_packet) {
-    cur_.lost_packets += pending_lost_;
-    if (pending_lost_ > 0) cur_.loss = true;
+    f.lost_packets += pending_lost_;
+    if (pending_lost_ > 0) f.loss = true;
     pending_lost_ = 0;
     packet_started_ = true;
   }
-  ++cur_.blocks;
-  cur_.last_azimuth_cdeg = azimuth_cdeg;
+  if (f.blocks == 0) f.first_azimuth_cdeg = azimuth_cdeg;
+  ++f.blocks;
+  f.last_azimuth_cdeg = azimuth_cdeg;
   return closed;
 }
 
-void FrameAssembler::add_points(std::uint32_t n) noexcept {
-  if (open_) {
-    cur_.points += n;
-  } else {
-    pending_points_ += n;
+std::uint64_t FrameAssembler::point(float azimuth_deg) noexcept {
+  if (block_id_ == 0) {
+    ++pending_points_;
+    return next_id_;
   }
+  // The point's offset from its block, forward, in (-half turn, half turn].
+  float offset = 0.0f;
+  if (azimuth_deg >= -360.0f && azimuth_deg < 720.0f) offset = azimuth_deg * 100.0f - static_cast<float>(block_cdeg_);
+  while (offset > static_cast<float>(kHalfTurn)) offset -= static_cast<float>(kTurn);
+  while (offset <= -static_cast<float>(kHalfTurn)) offset += static_cast<float>(kTurn);
+  if (rotation_ == Rotation::counterclockwise) offset = -offset;
+  const float at = static_cast<float>(block_pos_) + offset;
+
+  std::uint64_t id = block_id_;
+  if (at < 0.0f) --id;
+  if (at >= static_cast<float>(kTurn)) ++id;
+  if (id == next_id_) open_next(id >= complete_from_);  // a point ahead opens the next frame early
+  const bool late = id < first_open_;
+  if (late) id = first_open_;
+  count_packet(id);
+  FrameInfo& f = slot(id);
+  ++f.points;
+  if (late) ++f.late_points;
+  return id;
 }
 
-bool FrameAssembler::finish(FrameInfo& out) noexcept {
-  if (!open_) return false;
-  cur_.lost_packets += pending_lost_;
-  if (pending_lost_ > 0) cur_.loss = true;
+bool FrameAssembler::pop_closed(FrameInfo& out) noexcept {
+  if (oldest_ >= first_open_) return false;
+  out = slot(oldest_);
+  ++oldest_;
+  return true;
+}
+
+bool FrameAssembler::finish() noexcept {
+  if (block_id_ == 0) return false;
+  FrameInfo& f = slot(block_id_);
+  f.lost_packets += pending_lost_;
+  if (pending_lost_ > 0) f.loss = true;
   pending_lost_ = 0;
-  cur_.ends_at_cut = false;
-  closed_ = cur_;
-  out = cur_;
-  open_ = false;
-  packet_in_frame_ = false;
+  close_through(next_id_ - 1, false);
+  block_id_ = 0;
   return true;
 }
 
 void FrameAssembler::reset() noexcept {
-  const std::uint16_t cut = cut_cdeg_;
-  const bool has_fov = has_fov_;
-  const float fov_start = fov_start_;
-  const float fov_end = fov_end_;
-  *this = FrameAssembler{};
-  cut_cdeg_ = cut;
-  has_fov_ = has_fov;
-  fov_start_ = fov_start;
-  fov_end_ = fov_end;
+  // Field by field: a whole fresh object would cost its 400 bytes of stack on a microcontroller.
+  // The slots need no clearing: open_next() clears each before use.
+  next_id_ = first_open_ = oldest_ = 1;
+  block_id_ = complete_from_ = packet_index_ = pending_lost_ = pending_points_ = dropped_ = 0;
+  ref_pos_ = block_pos_ = 0;
+  ref_cdeg_ = block_cdeg_ = 0;
+  in_packet_ = packet_started_ = false;
+}
+
+const FrameInfo& FrameAssembler::current() const noexcept {
+  return block_id_ != 0 ? slots_[block_id_ % kSlots] : kNoFrame;
 }
 
 }  // namespace hesai

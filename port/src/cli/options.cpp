@@ -39,6 +39,8 @@ const char* const kDecodeOptionsHelp =
     "  --reflectivity raw|nonlinear  intensity: the byte as sent (default), or the Pandar64's\n"
     "                          nonlinear mapping (manual Appendix D) as a percentage\n"
     "  --no-firetime-azimuth   do not add firing time x spin rate to each point's azimuth\n"
+    "  --rotation auto|cw|ccw  direction the sensor spins (default auto: detected per sensor from\n"
+    "                          its block azimuths; clockwise until known, see README)\n"
     "  --packets FIRST:END     keep point-cloud packets FIRST <= index < END (0-based)\n"
     "  --cut-angle DEG         azimuth where a frame ends (default 0)\n"
     "  --fov START:END         keep points with START <= azimuth < END (degrees, may wrap)\n"
@@ -151,6 +153,17 @@ bool parse_decode_option(Args& args, DecodeOptions& o, std::string& error) {
   if (opt == "--no-firetime-azimuth") {
     args.take();
     o.firetime_azimuth = false;
+    return true;
+  }
+  if (opt == "--rotation") {
+    if (need(v)) {
+      if (v == "auto" || v == "cw" || v == "ccw") {
+        o.detect_rotation = v == "auto";
+        o.rotation = v == "ccw" ? Rotation::counterclockwise : Rotation::clockwise;
+      } else {
+        error = "--rotation takes auto, cw or ccw, got '" + v + "'";
+      }
+    }
     return true;
   }
   if (opt == "--allow-unsigned") {

@@ -62,6 +62,7 @@ Pipeline::Source* Pipeline::source_for(std::uint64_t key, Model model) {
   if (it != sources_.end()) {
     if (it->second.decoder->model() == model) return &it->second;
     it->second.decoder->clear_session_key();
+    if (last_source_ == &it->second) last_source_ = nullptr;
     sources_.erase(it);  // another sensor now sends from this address: start over
   }
   Source s;
@@ -116,12 +117,17 @@ Pipeline::Source* Pipeline::source_for(std::uint64_t key, Model model) {
   d.set_allow_unsigned(options_.allow_unsigned);
   if (have_gps_) d.update_gps(last_gps_);
   s.frames = options_.frames;
+  d.set_rotation(options_.rotation);
+  s.frames.set_rotation(options_.rotation);
   return &sources_.emplace(key, std::move(s)).first->second;
 }
 
-void Pipeline::close_frame(const FrameInfo& f) {
-  ++stats_.frames;
-  if (sink_) sink_->frame_closed(f);
+void Pipeline::close_frames(FrameAssembler& frames) {
+  FrameInfo f;
+  while (frames.pop_closed(f)) {
+    ++stats_.frames;
+    if (sink_) sink_->frame_closed(f);
+  }
 }
 
 bool Pipeline::feed(ByteView payload, std::uint64_t source_key) {
@@ -152,12 +158,29 @@ bool Pipeline::feed(ByteView payload, std::uint64_t source_key) {
   if (src == nullptr) return false;
 
   PacketInfo info;
-  e = src->decoder->decode(payload, info, points_);
+  Decoder& decoder = *src->decoder;
+  e = decoder.decode(payload, info, points_);
+  // --rotation auto: the packet that decides the direction is decoded again in it; the packets
+  // before it keep the clockwise correction (see README, "Frames and rotation").
+  if (e == Error::ok && options_.detect_rotation && src->rotation.observe(info.block_azimuth[0])) {
+    const Rotation r = src->rotation.rotation();
+    src->frames.set_rotation(r);
+    if (r != decoder.rotation()) {
+      decoder.set_rotation(r);
+      e = decoder.decode(payload, info, points_);
+    }
+  }
   if (e != Error::ok) {
     count_error(stats_, e);
     ++rejections_[e];
     return true;
   }
+  // The decoder's spread lies within (-180, 180] with min <= max: a refusal is a fault of ours.
+  if (const Error e_spread = src->frames.set_beam_spread(decoder.beam_spread()); e_spread != Error::ok) {
+    error_ = std::string("frame assembly refused the decoder's beam spread: ") + error_name(e_spread);
+    return false;
+  }
+  last_source_ = src;
   const std::uint64_t index = point_packet_index_++;
   count_model(stats_, model);
   switch (info.signature) {
@@ -187,31 +210,38 @@ bool Pipeline::feed(ByteView payload, std::uint64_t source_key) {
     stats_.sequence_resyncs += after.resyncs - before.resyncs;
   }
 
-  // Frames close at block boundaries; the points of a block belong to the frame it opens.
+  // Each point goes to the frame of its own azimuth; frames close when the blocks have moved
+  // far enough past their end that no later point can reach them.
   const bool keep = index >= options_.first_packet && index < options_.end_packet;
-  src->frames.begin_packet(index, lost_before);
+  FrameAssembler& frames = src->frames;
+  frames.begin_packet(index, lost_before);
   std::size_t next = 0;
   for (std::size_t b = 0; b < info.blocks; ++b) {
-    if (src->frames.block(info.block_azimuth[b])) close_frame(src->frames.last_closed());
-    const std::uint64_t frame_id = src->frames.current().id;
-    std::uint32_t in_block = 0;
+    if (frames.block(info.block_azimuth[b])) close_frames(frames);
     for (; next < points_.count && points_.points[next].block == b; ++next) {
       const Point& p = points_.points[next];
       ++stats_.points;
       if (!keep || p.distance_m < options_.min_range || p.distance_m > options_.max_range) continue;
-      if (!src->frames.in_fov(p.azimuth_deg)) continue;
-      ++in_block;
+      if (!frames.in_fov(p.azimuth_deg)) continue;
+      const std::uint64_t frame_id = frames.point(p.azimuth_deg);
       if (sink_) sink_->point(OutPoint{p, frame_id, index});
     }
-    src->frames.add_points(in_block);
   }
   return true;
 }
 
+std::string Pipeline::rotation_text() const {
+  if (last_source_ == nullptr) return "";
+  const bool cw = last_source_->decoder->rotation() == Rotation::clockwise;
+  const std::string name = cw ? "clockwise" : "counterclockwise";
+  if (!options_.detect_rotation) return name + " (set)";
+  return last_source_->rotation.known() ? name + " (detected)" : name + " (assumed: not detected)";
+}
+
 void Pipeline::finish() {
   for (auto& [key, s] : sources_) {
-    FrameInfo f;
-    if (s.frames.finish(f)) close_frame(f);
+    s.frames.finish();
+    close_frames(s.frames);
   }
 }
 

@@ -12,6 +12,7 @@
 
 #include "hesai/decoder.h"
 #include "hesai/frame.h"
+#include "hesai/rotation.h"
 #include "hesai/safety.h"
 #include "hesai/sequence.h"
 #include "hesai/stats.h"
@@ -25,6 +26,8 @@ struct DecodeOptions {
   std::string channel_config_path;  ///< --channel-config (QT128)
   Reflectivity reflectivity = Reflectivity::raw;  ///< --reflectivity (nonlinear: Pandar64 only)
   bool firetime_azimuth = true;     ///< off with --no-firetime-azimuth
+  bool detect_rotation = true;      ///< --rotation auto (default): per sensor, by a RotationDetector
+  Rotation rotation = Rotation::clockwise;  ///< --rotation cw|ccw; with auto, until the direction is known
   std::uint64_t first_packet = 0;   ///< --packets FIRST:END, point-cloud packet indices
   std::uint64_t end_packet = UINT64_MAX;
   FrameAssembler frames;            ///< --cut-angle and --fov set; each source starts from a copy
@@ -43,7 +46,8 @@ struct OutPoint {
 };
 
 /// Receives what the pipeline produces. Frames close in order; every point of a frame is given
-/// to point() before its frame_closed().
+/// to point() before its frame_closed(). Points come in packet order, so near a cut the points
+/// of two frames interleave (a packet that straddles the cut gives points to both).
 class Sink {
  public:
   virtual ~Sink() = default;
@@ -79,6 +83,10 @@ class Pipeline {
   const std::string& error() const { return error_; }
   /// Packets per Error code that rejected them (for the text summary).
   const std::map<Error, std::uint64_t>& rejections() const { return rejections_; }
+  /// The rotation of the sensor that sent the last point-cloud packet and how it was chosen:
+  /// "clockwise (set)", "counterclockwise (detected)", "clockwise (assumed: not detected)"; empty
+  /// before any point-cloud packet.
+  std::string rotation_text() const;
 
  private:
   struct Source {
@@ -86,16 +94,17 @@ class Pipeline {
     SequenceTracker sequence;
     FrameAssembler frames;
     SafetyMonitor safety;
-    std::uint64_t last_frame_id = 0;
+    RotationDetector rotation;
   };
   Source* source_for(std::uint64_t key, Model model);
-  void close_frame(const FrameInfo& f);
+  void close_frames(FrameAssembler& frames);
 
   DecodeOptions options_;
   Sink* sink_;
   std::string angles_text_, firetimes_text_;
   std::unique_ptr<ChannelConfig> channel_config_;  // --channel-config, parsed once
   std::map<std::uint64_t, Source> sources_;
+  const Source* last_source_ = nullptr;  // of the last decoded point-cloud packet
   GpsPacket last_gps_{};
   bool have_gps_ = false;
   Stats stats_{};

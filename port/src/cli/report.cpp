@@ -90,6 +90,7 @@ std::string stats_text(const Pipeline& p) {
     line("last_time", utc_string(s.last_time_ns));
   }
   line("spin_rate", std::to_string(s.spin_rpm_last) + " rpm");
+  if (!p.rotation_text().empty()) line("rotation", p.rotation_text());
   line("return_mode", std::string(return_mode_name(s.return_mode_last)));
   line("crc_errors", std::to_string(s.crc_errors));
   line("signature_valid", std::to_string(s.signature_valid));

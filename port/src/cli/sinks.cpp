@@ -4,6 +4,8 @@
 #include <cstring>
 #include <sys/stat.h>
 
+#include <utility>
+
 namespace hesai::cli {
 
 int OutputSink::open(std::string& error) {
@@ -50,51 +52,61 @@ std::string OutputSink::frame_path(std::uint64_t id) const {
   return options_.out + name;
 }
 
+OutputSink::Frame& OutputSink::open_frame(std::uint64_t id) {
+  const auto [it, fresh] = open_.try_emplace(id);
+  if (fresh && options_.format == "png") it->second.png = png_;  // empty, with the options
+  return it->second;
+}
+
 void OutputSink::point(const OutPoint& p) {
   ++points_written_;
+  if (options_.per_frame) {
+    // Near a cut the points of two frames interleave: each goes to its own frame.
+    Frame& f = open_frame(p.frame);
+    if (options_.format == "png") {
+      f.png.add(p.point);
+      return;
+    }
+    f.points.push_back(p.point);
+    if (options_.format == "csv") f.packets.push_back(p.packet);
+    return;
+  }
   if (options_.format == "png") {
     png_.add(p.point);
-    return;
+  } else if (csv_open_) {
+    const port::WriteResult r = csv_.write(p.point, static_cast<std::uint32_t>(p.frame), p.packet);
+    if (!r && deferred_error_.empty()) deferred_error_ = r.message();
+  } else {
+    stream_.write(p.point);
   }
-  if (!options_.per_frame) {
-    if (csv_open_) {
-      const port::WriteResult r = csv_.write(p.point, static_cast<std::uint32_t>(p.frame), p.packet);
-      if (!r && deferred_error_.empty()) deferred_error_ = r.message();
-    } else {
-      stream_.write(p.point);
-    }
-    return;
-  }
-  cloud_.push_back(p.point);
-  if (options_.format == "csv") packets_.push_back(p.packet);
 }
 
 void OutputSink::frame_closed(const FrameInfo& frame) {
   if (!options_.per_frame) return;
+  const Frame f = std::move(open_frame(frame.id));  // empty when no point was kept
+  open_.erase(frame.id);
   std::string error;
   if (options_.format == "csv") {
     // Rows of one frame into its own CSV file.
     port::CsvWriter w;
     const std::string path = frame_path(frame.id);
     port::WriteResult r = w.open(path);
-    for (std::size_t i = 0; r && i < cloud_.size(); ++i)
-      r = w.write(cloud_[i], static_cast<std::uint32_t>(frame.id), packets_[i]);
+    for (std::size_t i = 0; r && i < f.points.size(); ++i)
+      r = w.write(f.points[i], static_cast<std::uint32_t>(frame.id), f.packets[i]);
     if (r) r = w.close();
     if (!r && deferred_error_.empty()) deferred_error_ = r.message();
     if (r) files_.push_back(path);
-  } else if (!write_cloud(frame_path(frame.id), error) && deferred_error_.empty()) {
+  } else if (!write_cloud(frame_path(frame.id), f.points, f.png, error) && deferred_error_.empty()) {
     deferred_error_ = error;
   }
-  cloud_.clear();
-  packets_.clear();
-  png_.clear();
 }
 
-bool OutputSink::write_cloud(const std::string& path, std::string& error) {
+bool OutputSink::write_cloud(const std::string& path, const std::vector<Point>& points, const port::BirdseyeView& png,
+                             std::string& error) {
   port::WriteResult r;
-  if (options_.format == "pcd") r = port::write_pcd(path, cloud_);
-  if (options_.format == "ply") r = port::write_ply(path, cloud_);
-  if (options_.format == "png") r = port::write_png(path, png_);
+  if (options_.format == "pcd") r = port::write_pcd(path, points);
+  if (options_.format == "ply") r = port::write_ply(path, points);
+  if (options_.format == "png") r = port::write_png(path, png);
   if (!r) {
     error = r.message();
     return false;
@@ -107,7 +119,7 @@ bool OutputSink::close(std::string& error) {
   if (csv_open_ || stream_.is_open()) {
     const port::WriteResult r = csv_open_ ? csv_.close() : stream_.close();
     if (!r && deferred_error_.empty()) deferred_error_ = r.message();
-  } else if (!options_.per_frame && !write_cloud(options_.out, error)) {
+  } else if (!options_.per_frame && !write_cloud(options_.out, {}, png_, error)) {
     return false;
   }
   if (!deferred_error_.empty()) {

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstdio>
+#include <map>
 #include <memory>
 #include <string>
 #include <vector>
@@ -25,24 +26,32 @@ class OutputSink : public Sink {
   void point(const OutPoint& p) override;
   void frame_closed(const FrameInfo& frame) override;
   /// Writes what is still held (the single PNG), closes the file. Returns false with a message.
-  /// Memory: one frame's points with --per-frame (CSV, PCD, PLY); otherwise a block of output or
-  /// the PNG's pixels, whatever the number of points.
+  /// Memory: the open frames' points or PNG views with --per-frame (two frames near a cut, where
+  /// a packet gives points to both); otherwise a block of output or the PNG's pixels, whatever
+  /// the number of points.
   bool close(std::string& error);
   /// Files written so far.
   const std::vector<std::string>& files() const { return files_; }
   std::uint64_t points_written() const { return points_written_; }
 
  private:
-  bool write_cloud(const std::string& path, std::string& error);
+  // What --per-frame holds of a frame until it closes.
+  struct Frame {
+    std::vector<Point> points;           // CSV, PCD, PLY
+    std::vector<std::uint64_t> packets;  // packet index of each point (CSV)
+    port::BirdseyeView png;              // PNG
+  };
+  bool write_cloud(const std::string& path, const std::vector<Point>& points, const port::BirdseyeView& png,
+                   std::string& error);
   std::string frame_path(std::uint64_t id) const;
+  Frame& open_frame(std::uint64_t id);
 
   OutputOptions options_;
   port::CsvWriter csv_;
   bool csv_open_ = false;
   port::CloudWriter stream_;    // the single PCD or PLY file
-  port::BirdseyeView png_;      // the PNG of the current frame (--per-frame) or of every point
-  std::vector<Point> cloud_;    // the current frame (--per-frame CSV, PCD, PLY)
-  std::vector<std::uint64_t> packets_;  // packet index of each point in cloud_ (per-frame CSV)
+  port::BirdseyeView png_;      // the PNG of every point; with --per-frame, the empty view each frame starts from
+  std::map<std::uint64_t, Frame> open_;  // --per-frame: the frames not yet closed, by id
   std::vector<std::string> files_;
   std::uint64_t points_written_ = 0;
   std::string deferred_error_;
