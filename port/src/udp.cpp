@@ -2,6 +2,7 @@
 
 #include <arpa/inet.h>
 #include <cerrno>
+#include <climits>
 #include <cstring>
 #include <ctime>
 #include <fcntl.h>
@@ -48,6 +49,9 @@ constexpr std::size_t kControlEach = CMSG_SPACE(sizeof(timespec)) + CMSG_SPACE(s
 constexpr std::size_t kControlEach = 0;
 #endif
 
+// Whether `a` is in 224.0.0.0/4 (class D: the top four bits 1110).
+bool is_multicast(in_addr a) { return (ntohl(a.s_addr) >> 28) == 0xE; }
+
 // A UDP socket closed on exec.
 int udp_socket() {
 #if defined(SOCK_CLOEXEC)
@@ -72,12 +76,32 @@ UdpReceiver::~UdpReceiver() {
   if (fd_ >= 0) close(fd_);
 }
 
+bool is_ipv4_multicast(const std::string& address) {
+  in_addr a{};
+  return inet_pton(AF_INET, address.c_str(), &a) == 1 && is_multicast(a);
+}
+
 bool UdpReceiver::open(const std::string& address, std::uint16_t port, std::string& error) {
-  sockaddr_in sa{};
-  sa.sin_family = AF_INET;
-  sa.sin_port = htons(port);
-  if (inet_pton(AF_INET, address.c_str(), &sa.sin_addr) != 1) {
+  return open(address, port, UdpReceiveOptions{}, error);
+}
+
+bool UdpReceiver::open(const std::string& address, std::uint16_t port, const UdpReceiveOptions& options,
+                       std::string& error) {
+  in_addr local{};
+  if (inet_pton(AF_INET, address.c_str(), &local) != 1) {
     error = "not an IPv4 address: " + address;
+    return false;
+  }
+  const std::string& group_text = options.multicast_group;
+  const bool multicast = !group_text.empty();
+  in_addr group{};
+  if (multicast && (inet_pton(AF_INET, group_text.c_str(), &group) != 1 || !is_multicast(group))) {
+    error = "not an IPv4 multicast group (224.0.0.0 to 239.255.255.255): " + group_text;
+    return false;
+  }
+  if (options.rcvbuf_request == 0 || options.rcvbuf_request > static_cast<std::size_t>(INT_MAX)) {
+    error = "receive buffer size out of range (1 to " + std::to_string(INT_MAX) + " bytes): " +
+            std::to_string(options.rcvbuf_request);
     return false;
   }
   fd_ = udp_socket();
@@ -85,7 +109,14 @@ bool UdpReceiver::open(const std::string& address, std::uint16_t port, std::stri
     error = std::string("socket: ") + std::strerror(errno);
     return false;
   }
+  auto fail = [&](const std::string& what) {
+    error = what + ": " + std::strerror(errno);
+    close(fd_);
+    fd_ = -1;
+    return false;
+  };
   const int one = 1;
+  // Several listeners may share the port (and a multicast group's datagrams).
   setsockopt(fd_, SOL_SOCKET, SO_REUSEADDR, &one, sizeof one);
   setsockopt(fd_, SOL_SOCKET, SO_BROADCAST, &one, sizeof one);
 #if HESAI_UDP_RECVMMSG
@@ -94,20 +125,28 @@ bool UdpReceiver::open(const std::string& address, std::uint16_t port, std::stri
 #else
   // receive() reads until the socket is empty.
   const int flags = fcntl(fd_, F_GETFL);
-  if (flags < 0 || fcntl(fd_, F_SETFL, flags | O_NONBLOCK) != 0) {
-    error = std::string("fcntl O_NONBLOCK: ") + std::strerror(errno);
-    close(fd_);
-    fd_ = -1;
-    return false;
-  }
+  if (flags < 0 || fcntl(fd_, F_SETFL, flags | O_NONBLOCK) != 0) return fail("fcntl O_NONBLOCK");
 #endif
-  const int rcvbuf = 16 * 1024 * 1024;  // about 7 s of a QT128 stream; capped by rmem_max
-  setsockopt(fd_, SOL_SOCKET, SO_RCVBUF, &rcvbuf, sizeof rcvbuf);
-  if (bind(fd_, reinterpret_cast<const sockaddr*>(&sa), sizeof sa) != 0) {
-    error = "bind " + address + ":" + std::to_string(port) + ": " + std::strerror(errno);
-    close(fd_);
-    fd_ = -1;
-    return false;
+  const int rcvbuf = static_cast<int>(options.rcvbuf_request);
+  if (setsockopt(fd_, SOL_SOCKET, SO_RCVBUF, &rcvbuf, sizeof rcvbuf) != 0) return fail("SO_RCVBUF");
+  int reported = 0;
+  socklen_t reported_len = sizeof reported;
+  if (getsockopt(fd_, SOL_SOCKET, SO_RCVBUF, &reported, &reported_len) != 0) return fail("SO_RCVBUF");
+  rcvbuf_granted_ = static_cast<std::size_t>(reported) / kRcvbufReportFactor;
+  // With a group: bound to the group, so that only its datagrams arrive on this socket.
+  sockaddr_in sa{};
+  sa.sin_family = AF_INET;
+  sa.sin_port = htons(port);
+  sa.sin_addr = multicast ? group : local;
+  const std::string bound = multicast ? group_text : address;
+  if (bind(fd_, reinterpret_cast<const sockaddr*>(&sa), sizeof sa) != 0)
+    return fail("bind " + bound + ":" + std::to_string(port));
+  if (multicast) {
+    ip_mreq join{};
+    join.imr_multiaddr = group;
+    join.imr_interface = local;  // INADDR_ANY ("0.0.0.0"): the kernel picks the interface
+    if (setsockopt(fd_, IPPROTO_IP, IP_ADD_MEMBERSHIP, &join, sizeof join) != 0)
+      return fail("join " + group_text + " on " + address);
   }
   socklen_t len = sizeof sa;
   getsockname(fd_, reinterpret_cast<sockaddr*>(&sa), &len);
@@ -183,7 +222,9 @@ UdpSender::~UdpSender() {
   if (fd_ >= 0) close(fd_);
 }
 
-bool UdpSender::open(const std::string& host_port, std::string& error) {
+bool UdpSender::open(const std::string& host_port, std::string& error) { return open(host_port, "", error); }
+
+bool UdpSender::open(const std::string& host_port, const std::string& multicast_if, std::string& error) {
   const std::size_t colon = host_port.rfind(':');
   if (colon == std::string::npos || colon == 0 || colon + 1 == host_port.size()) {
     error = "expected HOST:PORT, got '" + host_port + "'";
@@ -199,9 +240,30 @@ bool UdpSender::open(const std::string& host_port, std::string& error) {
     error = "cannot resolve " + host_port + ": " + gai_strerror(rc);
     return false;
   }
+  sockaddr_in to{};
+  std::memcpy(&to, res->ai_addr, sizeof to);
+  const bool multicast = is_multicast(to.sin_addr);
+  in_addr interface_address{};
+  if (!multicast_if.empty() && (!multicast || inet_pton(AF_INET, multicast_if.c_str(), &interface_address) != 1)) {
+    error = multicast ? "not an IPv4 address: " + multicast_if
+                      : "a multicast interface goes with a multicast destination (224.0.0.0/4), not " + host_port;
+    freeaddrinfo(res);
+    return false;
+  }
   fd_ = udp_socket();
   const int one = 1;
   if (fd_ >= 0) setsockopt(fd_, SOL_SOCKET, SO_BROADCAST, &one, sizeof one);
+  if (fd_ >= 0 && multicast) {
+    const unsigned char loop = 1;  // listeners on this host receive the group's datagrams too
+    setsockopt(fd_, IPPROTO_IP, IP_MULTICAST_LOOP, &loop, sizeof loop);
+    if (!multicast_if.empty() && setsockopt(fd_, IPPROTO_IP, IP_MULTICAST_IF, &interface_address, sizeof interface_address) != 0) {
+      error = "cannot send from " + multicast_if + ": " + std::strerror(errno);
+      freeaddrinfo(res);
+      close(fd_);
+      fd_ = -1;
+      return false;
+    }
+  }
   const int sndbuf = 4 * 1024 * 1024;
   if (fd_ >= 0) setsockopt(fd_, SOL_SOCKET, SO_SNDBUF, &sndbuf, sizeof sndbuf);
   const bool ok = fd_ >= 0 && connect(fd_, res->ai_addr, res->ai_addrlen) == 0;

@@ -28,6 +28,19 @@ struct Datagram {
   bool truncated = false;    ///< larger than the buffer (MSG_TRUNC): not a sensor packet
 };
 
+/// How a UdpReceiver opens its socket, beyond the address and port.
+struct UdpReceiveOptions {
+  /// IPv4 multicast group (224.0.0.0/4) to join, or empty for none. With a group, the socket is
+  /// bound to the group and the port (so only the group's datagrams arrive) and joins it on the
+  /// interface of the local address given to open() ("0.0.0.0": the kernel picks one).
+  std::string multicast_group;
+  /// Receive buffer requested (SO_RCVBUF); the kernel caps it at net.core.rmem_max.
+  std::size_t rcvbuf_request = 16 * 1024 * 1024;  ///< about 7 s of a QT128 stream
+};
+
+/// Whether `address` is an IPv4 dotted quad in the multicast range 224.0.0.0/4.
+bool is_ipv4_multicast(const std::string& address);
+
 /// A UDP socket bound to an address and port that receives up to kBatch datagrams per call.
 class UdpReceiver {
  public:
@@ -47,6 +60,19 @@ class UdpReceiver {
   /// Binds to `address` (IPv4 dotted quad, "0.0.0.0" for all) and `port` (0: any free port).
   /// Returns false with a message in `error`.
   bool open(const std::string& address, std::uint16_t port, std::string& error);
+  /// As above, with a multicast group to join and the receive buffer to request.
+  bool open(const std::string& address, std::uint16_t port, const UdpReceiveOptions& options, std::string& error);
+  /// getsockopt(SO_RCVBUF) reports this many times the usable size: 2 on Linux (socket(7): the
+  /// kernel doubles the value set, for its bookkeeping), 1 elsewhere.
+  static constexpr std::size_t kRcvbufReportFactor =
+#if defined(__linux__)
+      2;
+#else
+      1;
+#endif
+  /// The receive buffer the kernel granted, in usable bytes (what getsockopt reports, divided by
+  /// kRcvbufReportFactor).
+  std::size_t rcvbuf_granted() const { return rcvbuf_granted_; }
   /// The bound port (useful after binding port 0).
   std::uint16_t port() const { return port_; }
   int fd() const { return fd_; }
@@ -61,6 +87,7 @@ class UdpReceiver {
   int fd_ = -1;
   std::uint16_t port_ = 0;
   std::uint64_t kernel_drops_ = 0;
+  std::size_t rcvbuf_granted_ = 0;
   std::vector<std::uint8_t> buffers_;
   std::vector<std::uint8_t> control_;
 };
@@ -75,6 +102,10 @@ class UdpSender {
 
   /// Resolves "HOST:PORT" (IPv4 address or host name). Returns false with a message.
   bool open(const std::string& host_port, std::string& error);
+  /// As above; when HOST is a multicast group, its datagrams leave through the interface of
+  /// `multicast_if` (an IPv4 address; empty: the kernel's route for the group) and are looped
+  /// back to listeners on this host.
+  bool open(const std::string& host_port, const std::string& multicast_if, std::string& error);
   /// Sends one datagram; returns false on a socket error (retries briefly when the send
   /// buffer is full).
   bool send(const std::uint8_t* data, std::size_t size);

@@ -6,6 +6,7 @@
 #include <unistd.h>
 
 #include <atomic>
+#include <climits>
 #include <csignal>
 #include <cstdio>
 #include <cstring>
@@ -209,11 +210,29 @@ std::string kernel_drops(const port::UdpReceiver& rx) {
   return port::UdpReceiver::kernel_drops_known() ? std::to_string(rx.kernel_drops()) : "unavailable";
 }
 
+// The receive buffer the kernel granted (unless quiet), and always a warning when it is smaller
+// than requested: net.core.rmem_max caps SO_RCVBUF, and a small buffer is the usual cause of drops.
+void report_receive_buffer(const port::UdpReceiver& rx, std::size_t requested, bool quiet) {
+  const std::size_t granted = rx.rcvbuf_granted();
+  if (!quiet) {
+    std::fprintf(stderr, "receive buffer %zu bytes (requested %zu", granted, requested);
+    if (port::UdpReceiver::kRcvbufReportFactor != 1)
+      std::fprintf(stderr, "; the kernel reports %zu, %zu times the usable size given here",
+                   granted * port::UdpReceiver::kRcvbufReportFactor, port::UdpReceiver::kRcvbufReportFactor);
+    std::fprintf(stderr, ")\n");
+  }
+  if (granted < requested)
+    std::fprintf(stderr, "hesai listen: warning: the kernel capped the receive buffer at %zu bytes (requested %zu) "
+                         "by net.core.rmem_max; to allow it, run: sysctl -w net.core.rmem_max=%zu\n",
+                 granted, requested, requested);
+}
+
 int cmd_listen(Args& args) {
   DecodeOptions o;
   OutputOptions out;
   out.format = "pcd";
   std::string bind_addr = "0.0.0.0", error;
+  port::UdpReceiveOptions receive;
   std::uint64_t port = 2368, gps_port = 10110, count = 0;
   float seconds = 0, idle = 0;
   bool json = false, quiet = false;
@@ -222,7 +241,12 @@ int cmd_listen(Args& args) {
     if (a == "--help" || a == "-h") {
       std::printf("usage: hesai listen [options]\n\nReceives sensor packets over UDP (with %s), prints statistics once a\n"
                   "second (on stderr) and a summary at the end (Ctrl-C, --count, --seconds or --idle).\n\n"
-                  "  --bind ADDR             local IPv4 address (default 0.0.0.0)\n"
+                  "  --bind ADDR             local IPv4 address (default 0.0.0.0); with --multicast, the\n"
+                  "                          interface that joins the group\n"
+                  "  --multicast GROUP       join the IPv4 multicast group GROUP (224.0.0.0/4) and receive\n"
+                  "                          what is sent to it on the ports\n"
+                  "  --rcvbuf BYTES          receive buffer to ask the kernel for (default 16777216); the\n"
+                  "                          size granted is printed, and a cap by net.core.rmem_max named\n"
                   "  --port N                point-cloud port (default 2368)\n"
                   "  --gps-port N            GPS port (default 10110; 0: none)\n"
                   "  --count N               stop after N packets\n"
@@ -242,6 +266,16 @@ int cmd_listen(Args& args) {
     if (a == "--json") json = true;
     else if (a == "--quiet") quiet = true;
     else if (a == "--bind") { if (!args.value(a, bind_addr)) return usage_error("listen", "--bind needs an address"); }
+    else if (a == "--multicast") {
+      if (!args.value(a, receive.multicast_group) || !port::is_ipv4_multicast(receive.multicast_group))
+        return usage_error("listen", "--multicast takes an IPv4 multicast group (224.0.0.0 to 239.255.255.255), got '" +
+                                         receive.multicast_group + "'");
+    } else if (a == "--rcvbuf") {
+      std::uint64_t n = 0;
+      if (!args.value(a, v) || !parse_u64(v, n) || n == 0 || n > INT_MAX)
+        return usage_error("listen", "--rcvbuf takes bytes from 1 to " + std::to_string(INT_MAX) + ", got '" + v + "'");
+      receive.rcvbuf_request = static_cast<std::size_t>(n);
+    }
     else if (a == "--port" || a == "--gps-port" || a == "--count") {
       std::uint64_t n = 0;
       if (!args.value(a, v) || !parse_u64(v, n) || (a != "--count" && n > 65535))
@@ -266,12 +300,17 @@ int cmd_listen(Args& args) {
     return rc;
   }
   port::UdpReceiver points_rx, gps_rx;
-  if (!points_rx.open(bind_addr, static_cast<std::uint16_t>(port), error) ||
-      (gps_port != 0 && gps_port != port && !gps_rx.open(bind_addr, static_cast<std::uint16_t>(gps_port), error))) {
+  if (!points_rx.open(bind_addr, static_cast<std::uint16_t>(port), receive, error) ||
+      (gps_port != 0 && gps_port != port && !gps_rx.open(bind_addr, static_cast<std::uint16_t>(gps_port), receive, error))) {
     std::fprintf(stderr, "hesai listen: %s\n", error.c_str());
     return kExitInput;
   }
-  if (!quiet) std::fprintf(stderr, "listening on %s:%u (GPS %u)\n", bind_addr.c_str(), points_rx.port(), static_cast<unsigned>(gps_port));
+  report_receive_buffer(points_rx, receive.rcvbuf_request, quiet);
+  if (!quiet && receive.multicast_group.empty())
+    std::fprintf(stderr, "listening on %s:%u (GPS %u)\n", bind_addr.c_str(), points_rx.port(), static_cast<unsigned>(gps_port));
+  else if (!quiet)
+    std::fprintf(stderr, "listening on group %s:%u (GPS %u), joined on %s\n", receive.multicast_group.c_str(),
+                 points_rx.port(), static_cast<unsigned>(gps_port), bind_addr.c_str());
   std::signal(SIGINT, on_signal);
   std::signal(SIGTERM, on_signal);
   const std::int64_t start = port::monotonic_ns();
@@ -340,7 +379,7 @@ bool renumber(std::vector<std::uint8_t>& p, std::uint32_t seq) {
 }
 
 int cmd_replay(Args& args) {
-  std::string capture, to, error, rate_text = "1";
+  std::string capture, to, multicast_if, error, rate_text = "1";
   std::uint64_t loops = 1;
   bool quiet = false, renumber_sequence = false;
   while (!args.empty()) {
@@ -349,7 +388,9 @@ int cmd_replay(Args& args) {
     if (a == "--help" || a == "-h") {
       std::printf("usage: hesai replay CAPTURE --to HOST:PORT [--rate 1|N|max] [--loop N]\n\n"
                   "Sends the UDP payloads of a capture to HOST:PORT.\n\n"
-                  "  --to HOST:PORT          destination\n"
+                  "  --to HOST:PORT          destination (a multicast group too: looped back to this host)\n"
+                  "  --multicast-if ADDR     with a multicast group: send through the interface of this\n"
+                  "                          local IPv4 address (default: the kernel's route to the group)\n"
                   "  --rate 1|N|max          the recorded pace (1), N times faster, or as fast as possible\n"
                   "  --loop N                play the capture N times (default 1)\n"
                   "  --renumber              rewrite UDP sequence numbers to count up across loops (QT128:\n"
@@ -358,6 +399,7 @@ int cmd_replay(Args& args) {
       return kExitOk;
     }
     if (a == "--to") { if (!args.value(a, to)) return usage_error("replay", "--to needs HOST:PORT"); }
+    else if (a == "--multicast-if") { if (!args.value(a, multicast_if)) return usage_error("replay", "--multicast-if needs an address"); }
     else if (a == "--rate") { if (!args.value(a, rate_text)) return usage_error("replay", "--rate needs 1, N or max"); }
     else if (a == "--loop") { if (!args.value(a, v) || !parse_u64(v, loops) || loops == 0) return usage_error("replay", "--loop needs N >= 1"); }
     else if (a == "--quiet") quiet = true;
@@ -373,7 +415,7 @@ int cmd_replay(Args& args) {
     return usage_error("replay", "--rate takes 1, a factor N > 0, or max");
 
   port::UdpSender sender;
-  if (!sender.open(to, error)) return usage_error("replay", error);
+  if (!sender.open(to, multicast_if, error)) return usage_error("replay", error);
   port::CaptureFile file;
   if (!open_capture(capture, file)) return kExitInput;
   std::signal(SIGINT, on_signal);
