@@ -2,13 +2,16 @@
 // (recvmmsg on Linux, recvfrom with -DHESAI_PORTABLE_UDP=ON or elsewhere).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdint>
 #include <string>
 #include <vector>
 
 #include "hesai_port/udp.h"
+#include "udp_support.h"
 
 using hesai::port::Datagram;
+using hesai::port::UdpReceiveOptions;
 using hesai::port::UdpReceiver;
 using hesai::port::UdpSender;
 
@@ -105,4 +108,75 @@ TEST(Udp, KernelDropsAccountForEveryDatagram) {
     EXPECT_EQ(l.rx.kernel_drops(), 0u);
     EXPECT_LE(received, flood + 1);
   }
+}
+
+// A receiver that joined a multicast group on 127.0.0.1 gets what is sent to the group through
+// 127.0.0.1; so does a second receiver sharing the port (SO_REUSEADDR), and a datagram sent to the
+// port on 127.0.0.1 itself does not reach them (they are bound to the group).
+TEST(Udp, MulticastGroupOnLoopback) {
+  const char* group = "239.255.14.1";
+  if (const std::string why = hesai_test::loopback_multicast_missing(group); !why.empty()) GTEST_SKIP() << why;
+  UdpReceiveOptions options;
+  options.multicast_group = group;
+  UdpReceiver first, second;
+  std::string error;
+  ASSERT_TRUE(first.open("127.0.0.1", 0, options, error)) << error;
+  ASSERT_TRUE(second.open("127.0.0.1", first.port(), options, error)) << error;
+  UdpSender to_group, to_port;
+  ASSERT_TRUE(to_group.open(std::string(group) + ":" + std::to_string(first.port()), "127.0.0.1", error)) << error;
+  ASSERT_TRUE(to_port.open("127.0.0.1:" + std::to_string(first.port()), error)) << error;
+  ASSERT_TRUE(to_port.send(pattern(100, 9).data(), 100));
+  for (std::uint8_t i = 0; i < 5; ++i) ASSERT_TRUE(to_group.send(pattern(1200, i).data(), 1200));
+  for (UdpReceiver* rx : {&first, &second}) {
+    std::vector<std::vector<std::uint8_t>> got;
+    std::vector<Datagram> batch;
+    while (got.size() < 5 && rx->receive(batch, 1000) > 0)
+      for (const Datagram& d : batch) got.emplace_back(d.data, d.data + d.size);
+    EXPECT_EQ(rx->receive(batch, 100), 0);  // nothing else: not the datagram to 127.0.0.1
+    ASSERT_EQ(got.size(), 5u);
+    for (std::uint8_t i = 0; i < 5; ++i) EXPECT_EQ(got[i], pattern(1200, i)) << int{i};
+  }
+}
+
+// A group outside 224.0.0.0/4 is refused before any socket opens; so is a multicast interface
+// for a destination that is not a group.
+TEST(Udp, MulticastNeedsAGroup) {
+  EXPECT_TRUE(hesai::port::is_ipv4_multicast("224.0.0.0"));
+  EXPECT_TRUE(hesai::port::is_ipv4_multicast("239.255.255.255"));
+  for (const char* not_group : {"223.255.255.255", "240.0.0.0", "127.0.0.1", "0.0.0.0", "239.1.2", "group", ""})
+    EXPECT_FALSE(hesai::port::is_ipv4_multicast(not_group)) << not_group;
+  UdpReceiveOptions options;
+  options.multicast_group = "10.1.2.3";
+  UdpReceiver rx;
+  std::string error;
+  EXPECT_FALSE(rx.open("127.0.0.1", 0, options, error));
+  EXPECT_NE(error.find("10.1.2.3"), std::string::npos) << error;
+  EXPECT_LT(rx.fd(), 0);
+  UdpSender tx;
+  error.clear();
+  EXPECT_FALSE(tx.open("127.0.0.1:2368", "127.0.0.1", error));
+  EXPECT_NE(error.find("multicast"), std::string::npos) << error;
+}
+
+// SO_RCVBUF as socket(7) specifies it on Linux: the kernel grants min(request, rmem_max) (and
+// reports twice that; rcvbuf_granted() is the usable half).
+TEST(Udp, ReceiveBufferIsWhatTheKernelGranted) {
+#if !defined(__linux__)
+  GTEST_SKIP() << "net.core.rmem_max and the doubled report are Linux's";
+#endif
+  const std::size_t limit = hesai_test::rmem_max();
+  if (limit == 0) GTEST_SKIP() << "/proc/sys/net/core/rmem_max is not readable";
+  for (const std::size_t request : {std::size_t{65536}, limit, limit + 1024 * 1024}) {
+    UdpReceiveOptions options;
+    options.rcvbuf_request = request;
+    UdpReceiver rx;
+    std::string error;
+    ASSERT_TRUE(rx.open("127.0.0.1", 0, options, error)) << error;
+    EXPECT_EQ(rx.rcvbuf_granted(), std::min(request, limit)) << request;
+  }
+  UdpReceiveOptions zero;
+  zero.rcvbuf_request = 0;
+  UdpReceiver rx;
+  std::string error;
+  EXPECT_FALSE(rx.open("127.0.0.1", 0, zero, error));
 }

@@ -1,0 +1,64 @@
+// Test-only helpers for the live UDP tests, on plain POSIX sockets (not the port's code): whether
+// this machine's loopback carries multicast, and the kernel's receive-buffer limit.
+#pragma once
+
+#include <arpa/inet.h>
+#include <netinet/in.h>
+#include <poll.h>
+#include <sys/socket.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstring>
+#include <fstream>
+#include <string>
+
+namespace hesai_test {
+
+/// Empty when a datagram sent to IPv4 multicast `group` through 127.0.0.1 (IP_MULTICAST_IF,
+/// IP_MULTICAST_LOOP) reaches a socket that joined `group` on 127.0.0.1 within a second;
+/// otherwise why not (for GTEST_SKIP: some sandboxes give the loopback no multicast).
+inline std::string loopback_multicast_missing(const char* group) {
+  in_addr g{}, lo{};
+  inet_pton(AF_INET, group, &g);
+  inet_pton(AF_INET, "127.0.0.1", &lo);
+  const int rx = socket(AF_INET, SOCK_DGRAM, 0), tx = socket(AF_INET, SOCK_DGRAM, 0);
+  std::string why;
+  sockaddr_in sa{};
+  sa.sin_family = AF_INET;
+  sa.sin_addr = g;
+  socklen_t len = sizeof sa;
+  ip_mreq join{};
+  join.imr_multiaddr = g;
+  join.imr_interface = lo;
+  const unsigned char loop = 1;
+  const char probe = 'p';
+  pollfd pfd{rx, POLLIN, 0};
+  if (rx < 0 || tx < 0) why = std::string("socket: ") + std::strerror(errno);
+  else if (bind(rx, reinterpret_cast<const sockaddr*>(&sa), sizeof sa) != 0 ||
+           getsockname(rx, reinterpret_cast<sockaddr*>(&sa), &len) != 0)
+    why = std::string("bind to ") + group + ": " + std::strerror(errno);
+  else if (setsockopt(rx, IPPROTO_IP, IP_ADD_MEMBERSHIP, &join, sizeof join) != 0)
+    why = std::string("join ") + group + " on 127.0.0.1: " + std::strerror(errno);
+  else if (setsockopt(tx, IPPROTO_IP, IP_MULTICAST_IF, &lo, sizeof lo) != 0 ||
+           setsockopt(tx, IPPROTO_IP, IP_MULTICAST_LOOP, &loop, sizeof loop) != 0)
+    why = std::string("multicast through 127.0.0.1: ") + std::strerror(errno);
+  else if (sendto(tx, &probe, 1, 0, reinterpret_cast<const sockaddr*>(&sa), sizeof sa) != 1)
+    why = std::string("send to ") + group + " through 127.0.0.1: " + std::strerror(errno);
+  else if (poll(&pfd, 1, 1000) != 1)
+    why = std::string("a datagram sent to ") + group + " through 127.0.0.1 did not come back within 1 s";
+  if (rx >= 0) close(rx);
+  if (tx >= 0) close(tx);
+  return why.empty() ? why : "no multicast on the loopback here (" + why + ")";
+}
+
+/// net.core.rmem_max, the most SO_RCVBUF grants (socket(7); only SO_RCVBUFFORCE, which the port
+/// does not use, goes beyond); 0 when /proc does not tell.
+inline std::size_t rmem_max() {
+  std::ifstream f("/proc/sys/net/core/rmem_max");
+  std::size_t n = 0;
+  f >> n;
+  return f ? n : 0;
+}
+
+}  // namespace hesai_test
