@@ -36,6 +36,7 @@
 #include "packet_builder.h"
 #include "safety_stream.h"
 #include "test_support.h"
+#include "udp_support.h"
 
 using namespace hesai;
 using namespace hesai_test;
@@ -121,11 +122,14 @@ int free_udp_port() {
   return ntohs(sa.sin_port);
 }
 
-// Waits until a socket is bound to UDP 127.0.0.1:`port`, as /proc/net/udp lists it (passive:
-// probing with a bind of our own could make the listener's bind fail).
-bool wait_for_listener(int port) {
+// Waits until a socket is bound to UDP `address`:`port` (an IPv4 dotted quad), as /proc/net/udp
+// lists it: the address as the kernel holds it (network byte order) printed as a host integer
+// (passive: probing with a bind of our own could make the listener's bind fail).
+bool wait_for_listener(int port, const char* address = "127.0.0.1") {
+  in_addr a{};
+  inet_pton(AF_INET, address, &a);
   char local[32];
-  std::snprintf(local, sizeof local, "0100007F:%04X", port);
+  std::snprintf(local, sizeof local, "%08X:%04X", static_cast<unsigned>(a.s_addr), port);
   for (int i = 0; i < 400; ++i) {
     std::ifstream f("/proc/net/udp");
     std::string line;
@@ -1066,6 +1070,80 @@ TEST(Cli, ListenReceivesEveryReplayedPacket) {
   for (const char* key : {"fs_packets", "init", "fs_counter_stalls", "fs_current_fault", "high_temperature", "gps_unlocked"})
     EXPECT_EQ(live[key], file[key]) << key;
   EXPECT_EQ(live["init"], 1800);
+}
+
+// `listen --multicast` joins the group on the --bind interface and receives what `replay` sends
+// to the group through 127.0.0.1: every packet of the capture, decoded as from the file.
+TEST(Cli, ListenJoinsAMulticastGroup) {
+  const char* group = "239.255.14.2";
+  if (const std::string why = loopback_multicast_missing(group); !why.empty()) GTEST_SKIP() << why;
+  const int port = free_udp_port();
+  ASSERT_NE(port, 0);
+  const std::string to = std::string(group) + ":" + std::to_string(port);
+  const std::string listen = cli() + " listen --multicast " + group + " --bind 127.0.0.1 --port " + std::to_string(port) +
+                             " --gps-port 0 --count 1800 --seconds 30 --json --quiet 2>/dev/null";
+  FILE* l = popen(listen.c_str(), "r");
+  ASSERT_NE(l, nullptr);
+  ASSERT_TRUE(wait_for_listener(port, group));
+  const CmdResult sent = run("replay " + data_path("qt128c2x_dual.pcap") + " --to " + to + " --multicast-if 127.0.0.1 --rate 4 --quiet");
+  EXPECT_EQ(sent.status, 0) << sent.err;
+  std::string out;
+  char buf[4096];
+  std::size_t n;
+  while ((n = std::fread(buf, 1, sizeof buf, l)) > 0) out.append(buf, n);
+  EXPECT_EQ(WEXITSTATUS(pclose(l)), 0);
+  auto live = json_numbers(out);
+  auto file = json_numbers(run("stats " + data_path("qt128c2x_dual.pcap") + " --json").out);
+  EXPECT_EQ(live["packets"], 1800) << out;
+  EXPECT_EQ(live["points"], file["points"]);
+  EXPECT_EQ(live["frames"], file["frames"]);
+  EXPECT_EQ(live["lost"], 0);
+}
+
+// A group outside 224.0.0.0/4 is a usage error (exit 1) naming it; so is --multicast-if for a
+// destination that is not a group, and --rcvbuf that is not a byte count the socket can take.
+TEST(Cli, MulticastAndReceiveBufferUsageErrors) {
+  for (const char* group : {"10.1.2.3", "240.0.0.1", "223.255.255.255", "group"}) {
+    const CmdResult r = run(std::string("listen --multicast ") + group + " --port 0 --seconds 1");
+    EXPECT_EQ(r.status, 1) << group;
+    EXPECT_NE(r.err.find(std::string("'") + group + "'"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("multicast"), std::string::npos) << r.err;
+  }
+  for (const char* bytes : {"0", "-1", "2147483648", "1k"}) {
+    const CmdResult r = run(std::string("listen --rcvbuf ") + bytes + " --port 0 --seconds 1");
+    EXPECT_EQ(r.status, 1) << bytes;
+    EXPECT_NE(r.err.find("--rcvbuf"), std::string::npos) << r.err;
+  }
+  const CmdResult r = run("replay " + data_path("qt128c2x_dual.pcap") + " --to 127.0.0.1:9 --multicast-if 127.0.0.1");
+  EXPECT_EQ(r.status, 1);
+  EXPECT_NE(r.err.find("multicast"), std::string::npos) << r.err;
+}
+
+// `listen --rcvbuf` prints the receive buffer the kernel granted: min(request, net.core.rmem_max)
+// usable bytes, Linux reporting twice that (socket(7)); above rmem_max it warns, even with
+// --quiet, with the sysctl that would allow the request.
+TEST(Cli, ListenReportsTheReceiveBuffer) {
+#if !defined(__linux__)
+  GTEST_SKIP() << "net.core.rmem_max and the doubled report are Linux's";
+#endif
+  const std::size_t limit = rmem_max();
+  if (limit == 0) GTEST_SKIP() << "/proc/sys/net/core/rmem_max is not readable";
+  const std::size_t small = std::min<std::size_t>(65536, limit), big = limit + 1024 * 1024;
+  const std::string common = " --bind 127.0.0.1 --port 0 --gps-port 0 --seconds 0.2";
+  const CmdResult granted = run("listen --rcvbuf " + std::to_string(small) + common);
+  EXPECT_EQ(granted.status, 0) << granted.err;
+  EXPECT_NE(granted.err.find("receive buffer " + std::to_string(small) + " bytes (requested " + std::to_string(small) +
+                             "; the kernel reports " + std::to_string(2 * small)),
+            std::string::npos)
+      << granted.err;
+  EXPECT_EQ(granted.err.find("capped"), std::string::npos) << granted.err;
+  const CmdResult capped = run("listen --quiet --rcvbuf " + std::to_string(big) + common);
+  EXPECT_EQ(capped.status, 0) << capped.err;
+  EXPECT_NE(capped.err.find("capped the receive buffer at " + std::to_string(limit) + " bytes (requested " +
+                            std::to_string(big) + ")"),
+            std::string::npos)
+      << capped.err;
+  EXPECT_NE(capped.err.find("sysctl -w net.core.rmem_max=" + std::to_string(big)), std::string::npos) << capped.err;
 }
 
 // A bounded load test: 100 800 packets at full rate (56 loops of the QT128 capture, sequence
