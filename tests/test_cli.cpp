@@ -106,40 +106,6 @@ long long text_number(const std::string& text, const std::string& key) {
   return std::stoll(text.substr(text.find_first_not_of(' ', at + 2 + key.size())));
 }
 
-// A UDP port that is free on 127.0.0.1 now (the kernel picks it).
-int free_udp_port() {
-  const int fd = socket(AF_INET, SOCK_DGRAM, 0);
-  sockaddr_in sa{};
-  sa.sin_family = AF_INET;
-  sa.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
-  socklen_t len = sizeof sa;
-  if (bind(fd, reinterpret_cast<const sockaddr*>(&sa), sizeof sa) != 0 ||
-      getsockname(fd, reinterpret_cast<sockaddr*>(&sa), &len) != 0) {
-    close(fd);
-    return 0;
-  }
-  close(fd);
-  return ntohs(sa.sin_port);
-}
-
-// Waits until a socket is bound to UDP `address`:`port` (an IPv4 dotted quad), as /proc/net/udp
-// lists it: the address as the kernel holds it (network byte order) printed as a host integer
-// (passive: probing with a bind of our own could make the listener's bind fail).
-bool wait_for_listener(int port, const char* address = "127.0.0.1") {
-  in_addr a{};
-  inet_pton(AF_INET, address, &a);
-  char local[32];
-  std::snprintf(local, sizeof local, "%08X:%04X", static_cast<unsigned>(a.s_addr), port);
-  for (int i = 0; i < 400; ++i) {
-    std::ifstream f("/proc/net/udp");
-    std::string line;
-    while (std::getline(f, line))
-      if (line.find(local) != std::string::npos) return true;
-    usleep(50000);
-  }
-  return false;
-}
-
 std::string temp_dir() {
   char tmpl[] = "/tmp/hesai_cli_XXXXXX";
   return mkdtemp(tmpl);
@@ -1044,21 +1010,35 @@ TEST(Cli, CommandLineKeyLeavesTheProcessArguments) {
   EXPECT_EQ(cmdline.find(c.key_hex.substr(0, 8)), std::string::npos);
 }
 
-TEST(Cli, ListenReceivesEveryReplayedPacket) {
+// Starts `listen LISTEN_OPTIONS --port P --gps-port 0 --count 1800 --seconds 30 --json --quiet`,
+// waits until it is bound to `bound`:P, replays the QT128 capture (1800 packets) to `to_host`:P
+// at 4 times its pace with REPLAY_OPTIONS, and returns what listen printed.
+std::string replay_into_listen(const std::string& listen_options, const char* bound, const std::string& to_host,
+                               const std::string& replay_options = "") {
   const int port = free_udp_port();
-  ASSERT_NE(port, 0);
-  const std::string listen = cli() + " listen --bind 127.0.0.1 --port " + std::to_string(port) +
+  EXPECT_NE(port, 0);
+  const std::string listen = cli() + " listen " + listen_options + " --port " + std::to_string(port) +
                              " --gps-port 0 --count 1800 --seconds 30 --json --quiet 2>/dev/null";
   FILE* l = popen(listen.c_str(), "r");
-  ASSERT_NE(l, nullptr);
-  ASSERT_TRUE(wait_for_listener(port));
-  const CmdResult sent = run("replay " + data_path("qt128c2x_dual.pcap") + " --to 127.0.0.1:" + std::to_string(port) + " --rate 4 --quiet");
-  EXPECT_EQ(sent.status, 0);
+  if (l == nullptr) {
+    ADD_FAILURE() << "cannot start " << listen;
+    return "";
+  }
+  EXPECT_TRUE(wait_for_listener(port, bound));
+  const CmdResult sent = run("replay " + data_path("qt128c2x_dual.pcap") + " --to " + to_host + ":" +
+                             std::to_string(port) + " --rate 4 --quiet " + replay_options);
+  EXPECT_EQ(sent.status, 0) << sent.err;
   std::string out;
   char buf[4096];
   std::size_t n;
   while ((n = std::fread(buf, 1, sizeof buf, l)) > 0) out.append(buf, n);
   EXPECT_EQ(WEXITSTATUS(pclose(l)), 0);
+  return out;
+}
+
+// What listen printed (`out`, JSON) after replay_into_listen: the whole capture, every counter as
+// `stats` gives it for the file.
+void expect_whole_capture(const std::string& out) {
   auto live = json_numbers(out);
   auto file = json_numbers(run("stats " + data_path("qt128c2x_dual.pcap") + " --json").out);
   EXPECT_EQ(live["packets"], 1800) << out;
@@ -1072,32 +1052,17 @@ TEST(Cli, ListenReceivesEveryReplayedPacket) {
   EXPECT_EQ(live["init"], 1800);
 }
 
+TEST(Cli, ListenReceivesEveryReplayedPacket) {
+  expect_whole_capture(replay_into_listen("--bind 127.0.0.1", "127.0.0.1", "127.0.0.1"));
+}
+
 // `listen --multicast` joins the group on the --bind interface and receives what `replay` sends
 // to the group through 127.0.0.1: every packet of the capture, decoded as from the file.
 TEST(Cli, ListenJoinsAMulticastGroup) {
   const char* group = "239.255.14.2";
   if (const std::string why = loopback_multicast_missing(group); !why.empty()) GTEST_SKIP() << why;
-  const int port = free_udp_port();
-  ASSERT_NE(port, 0);
-  const std::string to = std::string(group) + ":" + std::to_string(port);
-  const std::string listen = cli() + " listen --multicast " + group + " --bind 127.0.0.1 --port " + std::to_string(port) +
-                             " --gps-port 0 --count 1800 --seconds 30 --json --quiet 2>/dev/null";
-  FILE* l = popen(listen.c_str(), "r");
-  ASSERT_NE(l, nullptr);
-  ASSERT_TRUE(wait_for_listener(port, group));
-  const CmdResult sent = run("replay " + data_path("qt128c2x_dual.pcap") + " --to " + to + " --multicast-if 127.0.0.1 --rate 4 --quiet");
-  EXPECT_EQ(sent.status, 0) << sent.err;
-  std::string out;
-  char buf[4096];
-  std::size_t n;
-  while ((n = std::fread(buf, 1, sizeof buf, l)) > 0) out.append(buf, n);
-  EXPECT_EQ(WEXITSTATUS(pclose(l)), 0);
-  auto live = json_numbers(out);
-  auto file = json_numbers(run("stats " + data_path("qt128c2x_dual.pcap") + " --json").out);
-  EXPECT_EQ(live["packets"], 1800) << out;
-  EXPECT_EQ(live["points"], file["points"]);
-  EXPECT_EQ(live["frames"], file["frames"]);
-  EXPECT_EQ(live["lost"], 0);
+  expect_whole_capture(replay_into_listen(std::string("--multicast ") + group + " --bind 127.0.0.1", group, group,
+                                          "--multicast-if 127.0.0.1"));
 }
 
 // A group outside 224.0.0.0/4 is a usage error (exit 1) naming it; so is --multicast-if for a

@@ -9,6 +9,7 @@
 #include <unistd.h>
 
 #include <cerrno>
+#include <cstdio>
 #include <cstring>
 #include <fstream>
 #include <string>
@@ -59,6 +60,40 @@ inline std::size_t rmem_max() {
   std::size_t n = 0;
   f >> n;
   return f ? n : 0;
+}
+
+// A UDP port that is free on 127.0.0.1 now (the kernel picks it).
+inline int free_udp_port() {
+  const int fd = socket(AF_INET, SOCK_DGRAM, 0);
+  sockaddr_in sa{};
+  sa.sin_family = AF_INET;
+  sa.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+  socklen_t len = sizeof sa;
+  if (bind(fd, reinterpret_cast<const sockaddr*>(&sa), sizeof sa) != 0 ||
+      getsockname(fd, reinterpret_cast<sockaddr*>(&sa), &len) != 0) {
+    close(fd);
+    return 0;
+  }
+  close(fd);
+  return ntohs(sa.sin_port);
+}
+
+// Waits until a socket is bound to UDP `address`:`port` (an IPv4 dotted quad), as /proc/net/udp
+// lists it: the address as the kernel holds it (network byte order) printed as a host integer
+// (passive: probing with a bind of our own could make the listener's bind fail).
+inline bool wait_for_listener(int port, const char* address = "127.0.0.1") {
+  in_addr a{};
+  inet_pton(AF_INET, address, &a);
+  char local[32];
+  std::snprintf(local, sizeof local, "%08X:%04X", static_cast<unsigned>(a.s_addr), port);
+  for (int i = 0; i < 400; ++i) {
+    std::ifstream f("/proc/net/udp");
+    std::string line;
+    while (std::getline(f, line))
+      if (line.find(local) != std::string::npos) return true;
+    usleep(50000);
+  }
+  return false;
 }
 
 }  // namespace hesai_test

@@ -21,9 +21,8 @@
 #include <string>
 #include <vector>
 
+#include "process.h"
 #include "test_support.h"
-
-extern char** environ;
 
 namespace {
 
@@ -44,20 +43,11 @@ double cpu_seconds(const rusage& ru) {
 
 // Runs `args` with stdout to `out_path`, stderr to /dev/null; waits for it with wait4, whose
 // rusage is this child's alone.
-Child spawn(std::vector<std::string> args, const std::string& out_path) {
-  std::vector<char*> argv;
-  for (std::string& a : args) argv.push_back(&a[0]);
-  argv.push_back(nullptr);
-  posix_spawn_file_actions_t actions;
-  posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_addopen(&actions, 1, out_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-  posix_spawn_file_actions_addopen(&actions, 2, "/dev/null", O_WRONLY, 0);
+Child spawn(const std::vector<std::string>& args, const std::string& out_path) {
   Child c;
   const auto start = std::chrono::steady_clock::now();
-  pid_t pid = 0;
-  const int rc = posix_spawn(&pid, argv[0], &actions, nullptr, argv.data(), environ);
-  posix_spawn_file_actions_destroy(&actions);
-  if (rc != 0) return c;
+  const pid_t pid = hesai_test::start_process(args, out_path);
+  if (pid == 0) return c;
   int status = 0;
   rusage ru{};
   if (wait4(pid, &status, 0, &ru) != pid) return c;

@@ -9,10 +9,7 @@
 #include <gtest/gtest.h>
 
 #include <arpa/inet.h>
-#include <fcntl.h>
 #include <netinet/in.h>
-#include <signal.h>
-#include <spawn.h>
 #include <sys/socket.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -20,16 +17,14 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
-#include <fstream>
-#include <sstream>
 #include <string>
 #include <thread>
 #include <vector>
 
 #include "packet_builder.h"
+#include "process.h"
 #include "test_support.h"
-
-extern char** environ;
+#include "udp_support.h"
 
 namespace {
 
@@ -39,21 +34,6 @@ constexpr long kRssToleranceKb = 1024;
 
 using Clock = std::chrono::steady_clock;
 
-// Starts `args` with stdout to `out_path` and stderr to /dev/null; returns the pid (0 on failure).
-pid_t start(std::vector<std::string> args, const std::string& out_path) {
-  std::vector<char*> argv;
-  for (std::string& a : args) argv.push_back(&a[0]);
-  argv.push_back(nullptr);
-  posix_spawn_file_actions_t actions;
-  posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_addopen(&actions, 1, out_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-  posix_spawn_file_actions_addopen(&actions, 2, "/dev/null", O_WRONLY, 0);
-  pid_t pid = 0;
-  const int rc = posix_spawn(&pid, argv[0], &actions, nullptr, argv.data(), environ);
-  posix_spawn_file_actions_destroy(&actions);
-  return rc == 0 ? pid : 0;
-}
-
 // VmRSS of a process, kB; -1 once it is gone.
 long rss_kb(pid_t pid) {
   std::ifstream f("/proc/" + std::to_string(pid) + "/status");
@@ -61,31 +41,6 @@ long rss_kb(pid_t pid) {
   while (std::getline(f, line))
     if (line.rfind("VmRSS:", 0) == 0) return std::stol(line.substr(6));
   return -1;
-}
-
-// A UDP port free on 127.0.0.1 now, and whether a socket is bound to it (/proc/net/udp).
-int free_udp_port() {
-  const int fd = socket(AF_INET, SOCK_DGRAM, 0);
-  sockaddr_in sa{};
-  sa.sin_family = AF_INET;
-  sa.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
-  socklen_t len = sizeof sa;
-  const bool ok = bind(fd, reinterpret_cast<const sockaddr*>(&sa), sizeof sa) == 0 &&
-                  getsockname(fd, reinterpret_cast<sockaddr*>(&sa), &len) == 0;
-  close(fd);
-  return ok ? ntohs(sa.sin_port) : 0;
-}
-bool wait_for_listener(int port) {
-  char local[32];
-  std::snprintf(local, sizeof local, "0100007F:%04X", port);
-  for (int i = 0; i < 400; ++i) {
-    std::ifstream f("/proc/net/udp");
-    std::stringstream all;
-    all << f.rdbuf();
-    if (all.str().find(local) != std::string::npos) return true;
-    usleep(50000);
-  }
-  return false;
 }
 
 // The value of "key" in a flat JSON object; -1 if absent.
@@ -119,7 +74,7 @@ TEST(Soak, SixtySecondsAtTwentyThousandPacketsPerSecond) {
   const double rate = kPacketsPerSecond * span / static_cast<double>(packets.size());
   const long long loops = static_cast<long long>(kSeconds * kPacketsPerSecond / static_cast<double>(packets.size()) + 0.5);
   const long long sent = loops * static_cast<long long>(packets.size());
-  const int port = free_udp_port();
+  const int port = hesai_test::free_udp_port();
   ASSERT_NE(port, 0);
   const std::string to = "127.0.0.1:" + std::to_string(port);
   char out_tmpl[] = "/tmp/hesai_soak_XXXXXX";
@@ -129,16 +84,16 @@ TEST(Soak, SixtySecondsAtTwentyThousandPacketsPerSecond) {
   const std::string out_path = out_tmpl;
 
   // --count: the load and one closing packet; --idle ends it after the last if any was lost.
-  const pid_t listener = start({HESAI_CLI_PATH, "listen", "--bind", "127.0.0.1", "--port", std::to_string(port),
+  const pid_t listener = hesai_test::start_process({HESAI_CLI_PATH, "listen", "--bind", "127.0.0.1", "--port", std::to_string(port),
                                 "--gps-port", "0", "--count", std::to_string(sent + 1), "--seconds", "180", "--idle",
                                 "3", "--json", "--quiet"},
                                out_path);
   ASSERT_NE(listener, 0);
-  ASSERT_TRUE(wait_for_listener(port));
+  ASSERT_TRUE(hesai_test::wait_for_listener(port));
   char rate_text[32];
   std::snprintf(rate_text, sizeof rate_text, "%.6f", rate);
   const auto t0 = Clock::now();
-  const pid_t sender = start({HESAI_CLI_PATH, "replay", capture, "--to", to, "--rate", rate_text, "--loop",
+  const pid_t sender = hesai_test::start_process({HESAI_CLI_PATH, "replay", capture, "--to", to, "--rate", rate_text, "--loop",
                               std::to_string(loops), "--renumber", "--quiet"},
                              "/dev/null");
   ASSERT_NE(sender, 0);
