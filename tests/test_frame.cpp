@@ -691,7 +691,7 @@ TEST_P(CaptureFrames, SeamsFollowEachPointsAzimuth) {
   hesai::PacketPoints pts;
   hesai::PacketInfo info;
   for (std::uint64_t i = 0; i < packets.size(); ++i) {
-    ASSERT_EQ(dec.decode(hesai_test::view(packets[i]), info, pts), Error::ok);
+    ASSERT_EQ(dec.decode(hesai_test::view(packets[static_cast<std::size_t>(i)]), info, pts), Error::ok);
     ASSERT_EQ(fa.set_beam_spread(dec.beam_spread()), Error::ok);
     behind = std::max(behind, 100.0 * (cw ? -dec.beam_spread().min_deg : dec.beam_spread().max_deg));
     ahead = std::max(ahead, 100.0 * (cw ? dec.beam_spread().max_deg : -dec.beam_spread().min_deg));
