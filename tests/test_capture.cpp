@@ -1127,7 +1127,7 @@ TEST(CaptureFile, NonCaptureAndEmptyFile) {
 }
 
 // Resident kilobytes of the mapping that starts at `start`, as /proc/self/smaps counts them.
-long mapping_rss_kb(const void* start) {
+[[maybe_unused]] long mapping_rss_kb(const void* start) {
   std::ifstream smaps("/proc/self/smaps");
   char head[32];
   std::snprintf(head, sizeof head, "%lx-", reinterpret_cast<unsigned long>(start));
@@ -1166,9 +1166,11 @@ TEST(CaptureFile, NextReleasesConsumedPages) {
   EXPECT_EQ(reference.next(r), CaptureStatus::end);
   EXPECT_EQ(n, 16u * 2400u);
   EXPECT_EQ(f.parser().error(), CaptureError::ok);
+#if !defined(HESAI_CLI_EMULATOR)  // under qemu-user /proc/self/smaps lists the host's addresses, not the guest's
   const long rss_kb = mapping_rss_kb(f.bytes().data);
   ASSERT_GE(rss_kb, 0) << "mapping not found in /proc/self/smaps";
   EXPECT_LE(rss_kb, static_cast<long>(2 * CaptureFile::kReleaseBytes / 1024)) << "of " << big.size() / 1024 << " kB";
+#endif
   // Released pages read back from the file when touched again.
   EXPECT_EQ(std::memcmp(f.bytes().data, big.data(), big.size()), 0);
   f.close();
