@@ -84,13 +84,18 @@ inline int free_udp_port() {
 inline bool wait_for_listener(int port, const char* address = "127.0.0.1") {
   in_addr a{};
   inet_pton(AF_INET, address, &a);
-  char local[32];
-  std::snprintf(local, sizeof local, "%08X:%04X", static_cast<unsigned>(a.s_addr), port);
+  // The kernel prints the address's four bytes as a u32 in its own byte order, which a test under
+  // qemu-user for a target of the other byte order (s390x on x86-64) cannot know: accept either.
+  const unsigned raw = static_cast<unsigned>(a.s_addr);
+  const unsigned swapped = (raw >> 24) | ((raw >> 8) & 0xFF00u) | ((raw << 8) & 0xFF0000u) | (raw << 24);
+  char local[32], local_swapped[32];
+  std::snprintf(local, sizeof local, "%08X:%04X", raw, port);
+  std::snprintf(local_swapped, sizeof local_swapped, "%08X:%04X", swapped, port);
   for (int i = 0; i < 400; ++i) {
     std::ifstream f("/proc/net/udp");
     std::string line;
     while (std::getline(f, line))
-      if (line.find(local) != std::string::npos) return true;
+      if (line.find(local) != std::string::npos || line.find(local_swapped) != std::string::npos) return true;
     usleep(50000);
   }
   return false;
