@@ -258,11 +258,15 @@ class Decoder {
   [[nodiscard]] Error validate_pandar40(ByteView p, PacketInfo& info) noexcept;
   [[nodiscard]] Error validate_pandar64(ByteView p, PacketInfo& info) noexcept;
   [[nodiscard]] Error validate_qt128(ByteView p, PacketInfo& info) noexcept;
+  [[nodiscard]] Error validate_qt64(ByteView p, PacketInfo& info) noexcept;
+  [[nodiscard]] Error validate_xt(ByteView p, PacketInfo& info) noexcept;
   // Each sensor's block walk (in its file under core/src/sensors/), after validation: appends to
   // out[count...], at most max_points(model_) points in all.
   void decode_pandar40(const std::uint8_t* p, const PacketInfo& info, Point* out, std::size_t& count) const noexcept;
   void decode_pandar64(const std::uint8_t* p, const PacketInfo& info, Point* out, std::size_t& count) const noexcept;
   void decode_qt128(const std::uint8_t* p, const PacketInfo& info, Point* out, std::size_t& count) const noexcept;
+  void decode_qt64(const std::uint8_t* p, const PacketInfo& info, Point* out, std::size_t& count) const noexcept;
+  void decode_xt(const std::uint8_t* p, const PacketInfo& info, Point* out, std::size_t& count) const noexcept;
   // The per-point arithmetic every sensor shares (core/src/sensors/block_points.h): unit_count
   // units of kUnitBytes from `units`, unit j being the 0-based channel channel_of[j], or j without
   // a map (nullptr).

@@ -51,7 +51,11 @@ static_assert(HESAI_MODEL_unknown == static_cast<int>(Model::unknown) &&
               HESAI_MODEL_pandar40 == static_cast<int>(Model::pandar40) &&
               HESAI_MODEL_pandar40p == static_cast<int>(Model::pandar40p) &&
               HESAI_MODEL_pandar64 == static_cast<int>(Model::pandar64) &&
-              HESAI_MODEL_qt128c2x == static_cast<int>(Model::qt128c2x) && hesai::kModelCount == 5,
+              HESAI_MODEL_qt128c2x == static_cast<int>(Model::qt128c2x) &&
+              HESAI_MODEL_pandar_qt64 == static_cast<int>(Model::pandar_qt64) &&
+              HESAI_MODEL_pandar_xt16 == static_cast<int>(Model::pandar_xt16) &&
+              HESAI_MODEL_pandar_xt32 == static_cast<int>(Model::pandar_xt32) &&
+              HESAI_MODEL_pandar_xt32m2x == static_cast<int>(Model::pandar_xt32m2x) && hesai::kModelCount == 9,
               "hesai_model lists every hesai::Model with its value");
 static_assert(HESAI_SIGNATURE_not_signed == static_cast<int>(hesai::SignatureStatus::not_signed) &&
               HESAI_SIGNATURE_unverified == static_cast<int>(hesai::SignatureStatus::unverified) &&
@@ -163,8 +167,7 @@ void copy_info(const hesai::PacketInfo& i, hesai_packet_info& o) noexcept {
 }
 
 bool known_model(hesai_model m) noexcept {
-  return m == HESAI_MODEL_pandar40 || m == HESAI_MODEL_pandar40p || m == HESAI_MODEL_pandar64 ||
-         m == HESAI_MODEL_qt128c2x;
+  return m > HESAI_MODEL_unknown && static_cast<std::size_t>(m) < hesai::kModelCount;
 }
 
 Model cpp_model(hesai_model m) noexcept { return known_model(m) ? static_cast<Model>(m) : Model::unknown; }

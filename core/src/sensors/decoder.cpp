@@ -38,6 +38,9 @@ Error identify(ByteView p, Model& model, PacketKind& kind) noexcept {
   }
   if (p[0] != 0xEE || p[1] != 0xFF) return Error::bad_magic;
   if (detail::is_pandar64_header(p)) return detail::identify_pandar64(p, model);
+  // The other EE FF headers name their point cloud protocol in bytes 2 (major) and 3 (minor).
+  if (p[2] == 0x03 && p[3] == 0x01) return detail::identify_qt64(p, model);
+  if (p[2] == 0x06 && p[3] == 0x01) return detail::identify_xt(p, model);
   return detail::identify_qt128(p, model);
 }
 
@@ -80,6 +83,10 @@ Decoder::Decoder(Model model) noexcept : model_(model) {
         set_channel_firetime(i, tables::qt128_firetime_us_loop1[i], tables::qt128_firetime_us_loop2[i]);
       }
       break;
+    case Model::pandar_qt64: break;     // TODO(#15): design angles and firing times
+    case Model::pandar_xt16:
+    case Model::pandar_xt32:
+    case Model::pandar_xt32m2x: break;  // TODO(#15): design angles and firing times
     case Model::unknown: break;
   }
 }
@@ -210,6 +217,10 @@ Error Decoder::validate(ByteView payload, PacketInfo& info) noexcept {
     case Model::pandar40p: return validate_pandar40(payload, info);
     case Model::pandar64: return validate_pandar64(payload, info);
     case Model::qt128c2x: return validate_qt128(payload, info);
+    case Model::pandar_qt64: return validate_qt64(payload, info);
+    case Model::pandar_xt16:
+    case Model::pandar_xt32:
+    case Model::pandar_xt32m2x: return validate_xt(payload, info);
     case Model::unknown: break;
   }
   return Error::unsupported_model;
@@ -232,6 +243,10 @@ Error Decoder::decode(ByteView payload, PacketInfo& info, Point* points, std::si
     case Model::pandar40p: decode_pandar40(payload.data, info, points, count); break;
     case Model::pandar64: decode_pandar64(payload.data, info, points, count); break;
     case Model::qt128c2x: decode_qt128(payload.data, info, points, count); break;
+    case Model::pandar_qt64: decode_qt64(payload.data, info, points, count); break;
+    case Model::pandar_xt16:
+    case Model::pandar_xt32:
+    case Model::pandar_xt32m2x: decode_xt(payload.data, info, points, count); break;
     case Model::unknown: break;
   }
   return Error::ok;

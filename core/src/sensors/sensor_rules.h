@@ -22,6 +22,10 @@ bool is_pandar64_header(ByteView p) noexcept;
 /// QT128C2X: EE FF, protocol 3.2, 2 blocks, 128 lasers (1..128 with customised channels, flags
 /// bit 6), the length the laser num and flags imply.
 [[nodiscard]] Error identify_qt128(ByteView p, Model& model) noexcept;
+/// PandarQT64: EE FF, point cloud protocol 3.1 (sensors/qt64.cpp).
+[[nodiscard]] Error identify_qt64(ByteView p, Model& model) noexcept;
+/// PandarXT16, XT32, XT32M2X: EE FF, point cloud protocol 6.1 (sensors/xt.cpp).
+[[nodiscard]] Error identify_xt(ByteView p, Model& model) noexcept;
 
 constexpr std::int32_t round_to_int(double v) {
   return static_cast<std::int32_t>(v < 0 ? v - 0.5 : v + 0.5);
