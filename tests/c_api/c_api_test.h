@@ -19,6 +19,8 @@ hesai_error c_open_csv(hesai_model model, const uint8_t* angles, size_t angles_s
 /* The same from arrays indexed by channel - 1 (loop2_us NULL for one firing sequence). */
 hesai_error c_open_arrays(hesai_model model, const double* elevation_deg, const double* azimuth_deg,
                           const double* loop1_us, const double* loop2_us, size_t channels);
+/* hesai_decoder_set_rotation on the C test's decoder. */
+hesai_error c_set_rotation(int rotation);
 /* One UDP payload through the C test's decoder: a GPS packet updates it (*count = 0), any other
  * is decoded into the test's static point array (*points). */
 hesai_error c_feed(const uint8_t* payload, size_t size, hesai_packet_info* info, const hesai_point** points,

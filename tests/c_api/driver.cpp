@@ -149,6 +149,45 @@ TEST_P(CApi, CaptureDecodesToTheSamePointsAsCpp) {
   EXPECT_GT(expect_same_decoding(packets, cpp), 100000u);
 }
 
+// A counter-clockwise unit: the C setter and Decoder::set_rotation give the same points, and the
+// setting takes effect (the firing-time correction turns the other way, so points move).
+TEST_P(CApi, CounterclockwiseGivesTheSamePointsAsCpp) {
+  const Capture& c = GetParam();
+  auto packets = pcap_payloads(c.file);
+  ASSERT_GE(packets.size(), 50u);
+  packets.resize(50);
+  const auto angles = read_file(data_path(c.angles));
+  const auto firetimes = read_file(data_path(c.firetimes));
+  ASSERT_EQ(c_open_csv(c_model(c.model), angles.data(), angles.size(), firetimes.data(), firetimes.size()),
+            HESAI_ERROR_ok);
+  hesai_packet_info info{};
+  const hesai_point* got = nullptr;
+  std::size_t count = 0;
+  ASSERT_EQ(c_feed(packets[0].data(), packets[0].size(), &info, &got, &count), HESAI_ERROR_ok);
+  ASSERT_GT(count, 0u);
+  const std::vector<hesai_point> clockwise(got, got + count);
+
+  EXPECT_EQ(c_set_rotation(2), HESAI_ERROR_invalid_argument);
+  ASSERT_EQ(c_set_rotation(HESAI_ROTATION_counterclockwise), HESAI_ERROR_ok);
+  Decoder cpp = cpp_decoder(c);
+  cpp.set_rotation(Rotation::counterclockwise);
+  EXPECT_GT(expect_same_decoding(packets, cpp), 1000u);
+  ASSERT_EQ(c_feed(packets[0].data(), packets[0].size(), &info, &got, &count), HESAI_ERROR_ok);
+  ASSERT_EQ(count, clockwise.size());
+  std::size_t moved = 0;
+  for (std::size_t k = 0; k < count; ++k) moved += got[k].azimuth_deg != clockwise[k].azimuth_deg ? 1u : 0u;
+  EXPECT_GT(moved, count / 2) << "every channel fired after its block's start moves";
+
+  ASSERT_EQ(c_set_rotation(HESAI_ROTATION_clockwise), HESAI_ERROR_ok);
+  ASSERT_EQ(c_feed(packets[0].data(), packets[0].size(), &info, &got, &count), HESAI_ERROR_ok);
+  ASSERT_EQ(count, clockwise.size());
+  for (std::size_t k = 0; k < count; ++k) {
+    EXPECT_EQ(got[k].azimuth_deg, clockwise[k].azimuth_deg) << k;
+    EXPECT_EQ(got[k].x, clockwise[k].x) << k;
+    EXPECT_EQ(got[k].y, clockwise[k].y) << k;
+  }
+}
+
 // The same calibration given as arrays (read with strtod by the test): the same points.
 TEST_P(CApi, CalibrationArraysGiveTheSamePointsAsTheFiles) {
   const Capture& c = GetParam();

@@ -55,6 +55,8 @@ hesai_error c_open_arrays(hesai_model model, const double* elevation_deg, const 
   return e;
 }
 
+hesai_error c_set_rotation(int rotation) { return hesai_decoder_set_rotation(&decoder, rotation); }
+
 hesai_error c_feed(const uint8_t* payload, size_t size, hesai_packet_info* info, const hesai_point** out,
                    size_t* count) {
   uint8_t model = 0, is_gps = 0;

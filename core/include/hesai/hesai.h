@@ -75,12 +75,13 @@ enum {
 
 /* "crc_body", ...; "unknown" for a value that is no code. Never NULL. */
 const char* hesai_error_name(hesai_error e) HESAI_NOEXCEPT;
-/* "Pandar40", "Pandar40P", "Pandar64", "QT128C2X"; "unknown" otherwise. Never NULL. */
+/* "Pandar40", "Pandar40P", "Pandar64", "QT128C2X", "PandarQT64", "PandarXT16", "PandarXT32",
+ * "PandarXT32M2X"; "unknown" otherwise. Never NULL. */
 const char* hesai_model_name(hesai_model m) HESAI_NOEXCEPT;
-/* Laser channels of the model: 40, 40, 64, 128 (0 for unknown). */
+/* Laser channels of the model: 40, 40, 64, 128, 64, 16, 32, 32 in the order above (0 for unknown). */
 size_t hesai_model_channels(hesai_model m) HESAI_NOEXCEPT;
-/* The most points one packet of the model holds, blocks x channels: 400, 400, 384, 256 (0 for
- * unknown). A point array of this many entries suffices for any packet of the model. */
+/* The most points one packet of the model holds, blocks x channels: 400, 400, 384, 256, 256,
+ * 128, 256, 192 in the order above (0 for unknown). A point array of this many entries suffices for any packet of the model. */
 size_t hesai_model_max_points(hesai_model m) HESAI_NOEXCEPT;
 
 /* The most points of any model's packet (Pandar40: 10 blocks x 40 channels). */
@@ -186,7 +187,7 @@ hesai_error hesai_identify(const uint8_t* payload, size_t size, uint8_t* model, 
 
 /* Makes *decoder a decoder for `model` with the manual's design angles and firing times, no key,
  * unsigned packets refused when a key is set, firing-time correction on. May be called again on
- * the same storage (it starts over). A model that is none of the four: HESAI_ERROR_invalid_argument,
+ * the same storage (it starts over). A value that is no hesai_model (or unknown): HESAI_ERROR_invalid_argument,
  * and the decoder refuses every packet (model_mismatch). */
 hesai_error hesai_decoder_init(hesai_decoder* decoder, hesai_model model) HESAI_NOEXCEPT;
 /* The decoder's model. */
@@ -216,6 +217,16 @@ hesai_error hesai_decoder_set_firetimes(hesai_decoder* decoder, const double* lo
 
 /* Azimuth firing-time correction (on after init): adds firing time x spin rate to each point. */
 hesai_error hesai_decoder_set_firetime_correction(hesai_decoder* decoder, int on) HESAI_NOEXCEPT;
+
+/* The direction the unit spins seen from above (hesai::Rotation; clockwise after init). Azimuths
+ * grow clockwise either way; the firing-time correction is subtracted for a counter-clockwise
+ * unit. The packets carry no field for it: set it from the unit's configuration. Applies from the
+ * next decode. invalid_argument for a value that is neither. */
+enum {
+  HESAI_ROTATION_clockwise = 0,
+  HESAI_ROTATION_counterclockwise = 1
+};
+hesai_error hesai_decoder_set_rotation(hesai_decoder* decoder, int rotation) HESAI_NOEXCEPT;
 
 /* QT128 channel customisation: the bytes of the unit's channel-configuration CSV (EEFF row,
  * "LaserNum,N,BlockNum,2", "Loop1[,Loop2]", then N rows of channels), which maps the units of

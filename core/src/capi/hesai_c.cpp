@@ -57,6 +57,8 @@ static_assert(HESAI_MODEL_unknown == static_cast<int>(Model::unknown) &&
               HESAI_MODEL_pandar_xt32 == static_cast<int>(Model::pandar_xt32) &&
               HESAI_MODEL_pandar_xt32m2x == static_cast<int>(Model::pandar_xt32m2x) && hesai::kModelCount == 9,
               "hesai_model lists every hesai::Model with its value");
+static_assert(HESAI_ROTATION_clockwise == static_cast<int>(hesai::Rotation::clockwise) &&
+              HESAI_ROTATION_counterclockwise == static_cast<int>(hesai::Rotation::counterclockwise));
 static_assert(HESAI_SIGNATURE_not_signed == static_cast<int>(hesai::SignatureStatus::not_signed) &&
               HESAI_SIGNATURE_unverified == static_cast<int>(hesai::SignatureStatus::unverified) &&
               HESAI_SIGNATURE_valid == static_cast<int>(hesai::SignatureStatus::valid) &&
@@ -258,6 +260,16 @@ hesai_error hesai_decoder_set_firetimes(hesai_decoder* decoder, const double* lo
 hesai_error hesai_decoder_set_firetime_correction(hesai_decoder* decoder, int on) noexcept {
   if (decoder == nullptr) return HESAI_ERROR_invalid_argument;
   decoder_in(decoder).set_firetime_correction(on != 0);
+  return HESAI_ERROR_ok;
+}
+
+hesai_error hesai_decoder_set_rotation(hesai_decoder* decoder, int rotation) noexcept {
+  if (decoder == nullptr) return HESAI_ERROR_invalid_argument;
+  switch (rotation) {
+    case HESAI_ROTATION_clockwise: decoder_in(decoder).set_rotation(hesai::Rotation::clockwise); break;
+    case HESAI_ROTATION_counterclockwise: decoder_in(decoder).set_rotation(hesai::Rotation::counterclockwise); break;
+    default: return HESAI_ERROR_invalid_argument;
+  }
   return HESAI_ERROR_ok;
 }
 
