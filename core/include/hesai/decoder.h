@@ -163,6 +163,13 @@ enum class Reflectivity : std::uint8_t {
   nonlinear,  ///< Pandar64 set to "Nonlinear Mapping": the byte mapped by the manual's Appendix D to a percentage
 };
 
+/// Which per-point code a columnar decode runs: the best the CPU has (x86-64: AVX2 when CPUID
+/// reports it, chosen at run time; AArch64: NEON), or the portable scalar code every target has
+/// (the only one on Cortex-M). Both give the same points (tests/test_columns.cpp).
+enum class DecodePath : std::uint8_t { best, portable };
+/// Whether DecodePath::best runs vector code on this CPU.
+bool decode_simd_available() noexcept;
+
 /// Decoder state for one sensor: per-channel geometry from the built-in tables or a
 /// calibration file, the per-spin-rate point constants, the session key, the Pandar40 GPS
 /// time base and the QT128 channel configuration. 7 168 bytes; one per sensor per thread (see the
@@ -231,6 +238,18 @@ class Decoder {
   /// when capacity is below that. `count` gets the number of points, 0 on error; the entries from
   /// `count` up to max_points(model()) may be overwritten too.
   [[nodiscard]] Error decode(ByteView payload, PacketInfo& info, Point* points, std::size_t capacity, std::size_t& count) noexcept;
+  /// decode() into columns (point.h): the same points, in the same order, as the Point forms.
+  /// Error::buffer_too_small when out.capacity is below max_points(model()), Error::invalid_argument
+  /// when a column is null; both before the packet is read. `count` gets the number of points, 0 on
+  /// error. `path`: the vector code the CPU has, or the portable scalar code (see DecodePath).
+  [[nodiscard]] Error decode(ByteView payload, PacketInfo& info, const PointColumns& out, std::size_t& count,
+                             DecodePath path = DecodePath::best) noexcept;
+  /// decode() into columns with their own storage (N >= max_points(model())).
+  template <std::size_t N>
+  [[nodiscard]] Error decode(ByteView payload, PacketInfo& info, PacketColumns<N>& out,
+                             DecodePath path = DecodePath::best) noexcept {
+    return decode(payload, info, out.columns(), out.count, path);
+  }
 
  private:
   // Per-channel geometry from the tables or calibration files, one array per quantity.
@@ -262,18 +281,21 @@ class Decoder {
   [[nodiscard]] Error validate_xt(ByteView p, PacketInfo& info) noexcept;
   // Each sensor's block walk (in its file under core/src/sensors/), after validation: appends to
   // out[count...], at most max_points(model_) points in all.
-  void decode_pandar40(const std::uint8_t* p, const PacketInfo& info, Point* out, std::size_t& count) const noexcept;
-  void decode_pandar64(const std::uint8_t* p, const PacketInfo& info, Point* out, std::size_t& count) const noexcept;
-  void decode_qt128(const std::uint8_t* p, const PacketInfo& info, Point* out, std::size_t& count) const noexcept;
-  void decode_qt64(const std::uint8_t* p, const PacketInfo& info, Point* out, std::size_t& count) const noexcept;
-  void decode_xt(const std::uint8_t* p, const PacketInfo& info, Point* out, std::size_t& count) const noexcept;
+  // Where a block walk writes: Points or columns, and the count so far (block_points.h).
+  struct Output;
+  [[nodiscard]] Error decode_into(ByteView payload, PacketInfo& info, Output& out) noexcept;
+  void decode_pandar40(const std::uint8_t* p, const PacketInfo& info, Output& out) const noexcept;
+  void decode_pandar64(const std::uint8_t* p, const PacketInfo& info, Output& out) const noexcept;
+  void decode_qt128(const std::uint8_t* p, const PacketInfo& info, Output& out) const noexcept;
+  void decode_qt64(const std::uint8_t* p, const PacketInfo& info, Output& out) const noexcept;
+  void decode_xt(const std::uint8_t* p, const PacketInfo& info, Output& out) const noexcept;
   // The per-point arithmetic every sensor shares (core/src/sensors/block_points.h): unit_count
   // units of kUnitBytes from `units`, unit j being the 0-based channel channel_of[j], or j without
-  // a map (nullptr).
+  // a map (nullptr); block_offset_ns: the block's time from the packet time t0.
   template <std::size_t kUnitBytes>
   void emit_block(const std::uint8_t* units, std::size_t unit_count, const std::uint8_t* channel_of,
-                  const PacketInfo& info, std::size_t block, std::int64_t block_time_ns, std::size_t loop, Point* out,
-                  std::size_t& count) const noexcept;
+                  const PacketInfo& info, std::size_t block, std::int32_t block_offset_ns, std::size_t loop,
+                  Output& out) const noexcept;
 
   Model model_;
   bool firetime_correction_ = true;

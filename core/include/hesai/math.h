@@ -1,6 +1,8 @@
 // Sine and cosine without the C library: the core runs where there is no libm.
 #pragma once
 
+#include <cstdint>
+
 namespace hesai {
 
 inline constexpr double kPi = 3.14159265358979323846;
@@ -40,6 +42,30 @@ constexpr SinCos sin_cos_deg(double deg) {
   const double r = (deg - 90.0 * q) * kDegToRad;
   const double s = detail::sin_reduced(r);
   const double c = detail::cos_reduced(r);
+  switch (q & 3) {
+    case 0: return {s, c};
+    case 1: return {c, -s};
+    case 2: return {-s, -c};
+    default: return {-c, s};
+  }
+}
+
+/// sin and cos in single precision.
+struct SinCosF {
+  float sin;
+  float cos;
+};
+
+/// sin and cos of an angle in hundredths of a degree (a block azimuth as sent), in single
+/// precision only (no double arithmetic: a Cortex-M4F's FPU has none), within 2 float ulps of the
+/// exact values. The reduction to [-45, 45] degrees is exact, in integers.
+constexpr SinCosF sin_cos_centideg(std::uint16_t centideg) {
+  const int q = (centideg + 4500) / 9000;  // quadrant: centideg = 9000 q + r, r in [-4500, 4500)
+  const float x = static_cast<float>(centideg - 9000 * q) * static_cast<float>(kPi / 18000.0);
+  const float x2 = x * x;
+  // Taylor series on |x| <= pi/4; the first omitted terms are below 3e-10.
+  const float s = x * (1.0f - x2 * (1.0f / 6) * (1.0f - x2 * (1.0f / 20) * (1.0f - x2 * (1.0f / 42) * (1.0f - x2 * (1.0f / 72)))));
+  const float c = 1.0f - x2 * 0.5f * (1.0f - x2 * (1.0f / 12) * (1.0f - x2 * (1.0f / 30) * (1.0f - x2 * (1.0f / 56) * (1.0f - x2 * (1.0f / 90)))));
   switch (q & 3) {
     case 0: return {s, c};
     case 1: return {c, -s};

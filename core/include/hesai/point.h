@@ -1,4 +1,5 @@
-// One decoded lidar point and the fixed-size storage for one packet's points.
+// One decoded lidar point and the fixed-size storage for one packet's points; the columnar form
+// of the same points (x, y, z, time, intensity, channel, return) in caller storage.
 #pragma once
 
 #include <array>
@@ -34,6 +35,38 @@ struct PacketPoints {
 
   const Point* begin() const { return points.data(); }
   const Point* end() const { return points.data() + count; }
+};
+
+/// Caller-owned columns for one packet's points: the compact form firmware, GPUs and point-cloud
+/// messages consume (15 bytes a point instead of a Point's 40). Column i of every array is the
+/// same point as PacketPoints::points[i] of a decode of the same packet (the same order and count:
+/// distance 0 yields no point); the fields a Point adds derive from these and the PacketInfo:
+/// distance = |(x, y, z)|, block = by count per block, time_ns = info.time_ns + time_ns[i].
+/// Each pointer addresses `capacity` elements; decode() needs capacity >= max_points(model) and
+/// may overwrite every element below max_points(model), not only the first `count`.
+struct PointColumns {
+  float* x = nullptr;                     ///< metres (Point::x)
+  float* y = nullptr;                     ///< metres
+  float* z = nullptr;                     ///< metres
+  std::int32_t* time_ns = nullptr;        ///< firing time, ns from the packet time PacketInfo::time_ns
+  std::uint8_t* intensity = nullptr;      ///< as Point::intensity
+  std::uint8_t* channel = nullptr;        ///< as Point::channel (1-based)
+  std::uint8_t* return_index = nullptr;   ///< as Point::return_index
+  std::size_t capacity = 0;
+};
+
+/// Columns with storage for N points inside: PacketColumns<max_points(Model::qt128c2x)> holds a
+/// QT128 packet in 3 840 bytes (PacketPoints: 16 008). `count` is set by Decoder::decode.
+template <std::size_t N>
+struct PacketColumns {
+  std::array<float, N> x, y, z;
+  std::array<std::int32_t, N> time_ns;
+  std::array<std::uint8_t, N> intensity, channel, return_index;
+  std::size_t count = 0;
+
+  PointColumns columns() noexcept {
+    return {x.data(), y.data(), z.data(), time_ns.data(), intensity.data(), channel.data(), return_index.data(), N};
+  }
 };
 
 }  // namespace hesai

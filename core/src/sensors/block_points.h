@@ -1,5 +1,6 @@
 // The per-point arithmetic every sensor shares: one block's units to points (internal to the
-// core; each sensor's file walks its own block layout and calls Decoder::emit_block per block).
+// core; each sensor's file walks its own block layout and calls Decoder::emit_block per block,
+// which writes Points or columns, whichever the caller of decode() asked for).
 // A unit is one channel's measurement; unit j is channel j, except in QT128 packets with
 // customised channels, where the channel configuration maps it.
 //
@@ -12,78 +13,138 @@
 #include <type_traits>
 
 #include "../base/compiler.h"
+#include "columns_simd.h"
 #include "hesai/decoder.h"
 #include "hesai/math.h"
 
 namespace hesai {
 
+// Where a block walk writes: Points (points != nullptr) or columns, and the points so far.
+struct Decoder::Output {
+  Point* points = nullptr;
+  PointColumns columns;
+  DecodePath path = DecodePath::best;  // columns only
+  std::size_t count = 0;
+
+  // Replaces the intensity of points [first, count) by table[intensity].
+  void map_intensity(std::size_t first, const std::uint8_t* table) noexcept {
+    for (std::size_t i = first; i < count; ++i) {
+      std::uint8_t& v = points != nullptr ? points[i].intensity : columns.intensity[i];
+      v = table[v];
+    }
+  }
+};
+
+namespace detail {
+
+// The units of one block with their channel: unit j is channel j, or channel_of[j] with a map.
+// The loop exists twice, with a map (customised QT128 channels) and without, where one
+// induction variable walks every array (an identity map, or a test per unit, cost 21-28% more
+// instructions per packet under callgrind).
+template <std::size_t kUnitBytes, typename F>
+inline void for_each_unit(const std::uint8_t* units, std::size_t first, std::size_t unit_count,
+                          const std::uint8_t* channel_of, F&& f) {
+  if (channel_of != nullptr) {
+    for (std::size_t j = first; j < unit_count; ++j) f(units + j * kUnitBytes, std::size_t{channel_of[j]});
+  } else {
+    for (std::size_t j = first; j < unit_count; ++j) f(units + j * kUnitBytes, j);
+  }
+}
+
+// A unit's position: range r and its beam direction turned by the block azimuth (point azimuth
+// a + b by the angle-sum identities; dir_cos, dir_sin carry cos(e)).
+struct Xyz {
+  float x, y, z;
+};
+inline Xyz unit_xyz(const BlockConstants& k, float r, std::size_t ch) noexcept {
+  return {r * (k.sin_a * k.dir_cos[ch] + k.cos_a * k.dir_sin[ch]),
+          r * (k.cos_a * k.dir_cos[ch] - k.sin_a * k.dir_sin[ch]), r * k.sin_el[ch]};
+}
+
+}  // namespace detail
+
 // Optimising for size (-Os, the firmware builds), every sensor calls one shared copy per unit
 // size: inlined into each sensor's block walk it took 0.8 KB more flash on the Cortex-M0+.
 // Optimising for speed it is inlined, where the constant channel count and the absent map of the
 // Pandars make a shorter loop (8% fewer instructions per Pandar64 packet under callgrind).
+//
+// Every unit's point is written at index n and kept (n advanced) only when its distance is
+// valid: no branch to mispredict. n <= the units before this one, so the writes stay below
+// blocks x channels = max_points(model_), the capacity decode() checked.
 template <std::size_t kUnitBytes>
 HESAI_NOINLINE_FOR_SIZE void Decoder::emit_block(const std::uint8_t* units, std::size_t unit_count,
                                                  const std::uint8_t* channel_of, const PacketInfo& info,
-                                                 std::size_t block, std::int64_t block_time_ns, std::size_t loop,
-                                                 Point* out, std::size_t& count) const noexcept {
+                                                 std::size_t block, std::int32_t block_offset_ns, std::size_t loop,
+                                                 Output& out) const noexcept {
   const std::uint16_t block_azimuth = info.block_azimuth[block];
-  const float block_deg = static_cast<float>(block_azimuth) * 0.01f;
-  const SinCos ab = sin_cos_deg(static_cast<double>(block_azimuth) * 0.01);
-  const float sin_a = static_cast<float>(ab.sin);
-  const float cos_a = static_cast<float>(ab.cos);
-  const float unit_m = static_cast<float>(info.dis_unit_mm) * 0.001f;
-  const std::uint8_t return_index = info.returns == 2 ? static_cast<std::uint8_t>(block & 1) : 0;
-  const std::uint8_t block_index = static_cast<std::uint8_t>(block);
-  const std::uint16_t min_distance = model_ == Model::qt128c2x ? 2 : 1;  // QT128 reserves distance 1 as a marker
-  const float* const dir_cos = spin_.dir_cos[loop].data();
-  const float* const dir_sin = spin_.dir_sin[loop].data();
-  const float* const azimuth_deg = spin_.azimuth_deg[loop].data();
-  const float* const sin_el = geo_.sin_el.data();
-  const float* const elevation_deg = geo_.elevation_deg.data();
-  const std::int32_t* const fire_ns = geo_.fire_ns[loop].data();
+  const SinCosF ab = sin_cos_centideg(block_azimuth);
+  detail::BlockConstants k;
+  k.sin_a = ab.sin;
+  k.cos_a = ab.cos;
+  k.unit_m = static_cast<float>(info.dis_unit_mm) * 0.001f;
+  k.min_distance = model_ == Model::qt128c2x ? 2 : 1;  // QT128 reserves distance 1 as a marker
+  k.return_index = info.returns == 2 ? static_cast<std::uint8_t>(block & 1) : 0;
+  k.offset_ns = block_offset_ns;
+  k.dir_cos = spin_.dir_cos[loop].data();
+  k.dir_sin = spin_.dir_sin[loop].data();
+  k.sin_el = geo_.sin_el.data();
+  k.fire_ns = geo_.fire_ns[loop].data();
+  std::size_t n = out.count;
 
-  // Every unit's point is written at out[n] and kept (n advanced) only when its distance is
-  // valid: no branch to mispredict. n <= the units before this one, so the write stays below
-  // blocks x channels = max_points(model_), the capacity decode() checked.
-  Point* const pts = out;
-  std::size_t n = count;
-  // The loop twice: with a map (customised QT128 channels), and without, where unit j is
-  // channel j and one induction variable walks every array (an identity map, or a test per
-  // unit, cost 21-28% more instructions per packet under callgrind).
-  const auto walk = [&](auto mapped) {
-    for (std::size_t j = 0; j < unit_count; ++j) {
-      const std::uint8_t* p = units + j * kUnitBytes;
-      std::size_t ch = j;
-      if constexpr (decltype(mapped)::value) ch = channel_of[j];
+  if (out.points == nullptr) {
+    const PointColumns& c = out.columns;
+    std::size_t first = 0;
+    if (channel_of == nullptr && out.path == DecodePath::best)
+      first = detail::columns_simd(k, units, unit_count, kUnitBytes, c, n);  // whole vectors; 0 without SIMD
+    detail::for_each_unit<kUnitBytes>(units, first, unit_count, channel_of, [&](const std::uint8_t* p, std::size_t ch) {
       const std::uint16_t raw = load_le16(p);
-      const float r = static_cast<float>(raw) * unit_m;
-      // Point azimuth a + b by the angle-sum identities (dir_cos, dir_sin carry cos(e)).
-      Point& o = pts[n];
-      o.x = r * (sin_a * dir_cos[ch] + cos_a * dir_sin[ch]);
-      o.y = r * (cos_a * dir_cos[ch] - sin_a * dir_sin[ch]);
-      o.z = r * sin_el[ch];
-      o.distance_m = r;
-      // Both terms lie in [0, 360): one exact subtraction brings the sum into range.
-      float az = block_deg + azimuth_deg[ch];
-      if (az >= 360.0f) az -= 360.0f;
-      o.azimuth_deg = az;
-      o.elevation_deg = elevation_deg[ch];
-      o.time_ns = block_time_ns + fire_ns[ch];
-      o.intensity = p[2];
-      o.channel = static_cast<std::uint8_t>(ch + 1);
-      o.return_index = return_index;
-      if constexpr (kUnitBytes == 4) {
-        o.confidence = p[3];
-      } else {
-        o.confidence = 0;
-      }
-      o.block = block_index;
-      n += static_cast<std::size_t>(raw >= min_distance);
+      const detail::Xyz v = detail::unit_xyz(k, static_cast<float>(raw) * k.unit_m, ch);
+      c.x[n] = v.x;
+      c.y[n] = v.y;
+      c.z[n] = v.z;
+      c.time_ns[n] = k.offset_ns + k.fire_ns[ch];
+      c.intensity[n] = p[2];
+      c.channel[n] = static_cast<std::uint8_t>(ch + 1);
+      c.return_index[n] = k.return_index;
+      n += static_cast<std::size_t>(raw >= k.min_distance);
+    });
+    out.count = n;
+    return;
+  }
+
+  Point* const pts = out.points;
+  const float block_deg = static_cast<float>(block_azimuth) * 0.01f;
+  const std::int64_t block_time_ns = info.time_ns + block_offset_ns;
+  const std::uint8_t block_index = static_cast<std::uint8_t>(block);
+  const float* const azimuth_deg = spin_.azimuth_deg[loop].data();
+  const float* const elevation_deg = geo_.elevation_deg.data();
+  detail::for_each_unit<kUnitBytes>(units, 0, unit_count, channel_of, [&](const std::uint8_t* p, std::size_t ch) {
+    const std::uint16_t raw = load_le16(p);
+    const float r = static_cast<float>(raw) * k.unit_m;
+    const detail::Xyz v = detail::unit_xyz(k, r, ch);
+    Point& o = pts[n];
+    o.x = v.x;
+    o.y = v.y;
+    o.z = v.z;
+    o.distance_m = r;
+    // Both terms lie in [0, 360): one exact subtraction brings the sum into range.
+    float az = block_deg + azimuth_deg[ch];
+    if (az >= 360.0f) az -= 360.0f;
+    o.azimuth_deg = az;
+    o.elevation_deg = elevation_deg[ch];
+    o.time_ns = block_time_ns + k.fire_ns[ch];
+    o.intensity = p[2];
+    o.channel = static_cast<std::uint8_t>(ch + 1);
+    o.return_index = k.return_index;
+    if constexpr (kUnitBytes == 4) {
+      o.confidence = p[3];
+    } else {
+      o.confidence = 0;
     }
-  };
-  if (channel_of != nullptr) walk(std::true_type{});
-  else walk(std::false_type{});
-  count = n;
+    o.block = block_index;
+    n += static_cast<std::size_t>(raw >= k.min_distance);
+  });
+  out.count = n;
 }
 
 }  // namespace hesai

@@ -11,6 +11,7 @@
 #include "hesai/tables/pandar40_tables.h"
 #include "hesai/tables/pandar64_tables.h"
 #include "hesai/tables/qt128_tables.h"
+#include "block_points.h"
 #include "sensor_rules.h"
 
 namespace hesai {
@@ -234,19 +235,44 @@ Error Decoder::decode(ByteView payload, PacketInfo& info, Point* points, std::si
                       std::size_t& count) noexcept {
   count = 0;
   if (capacity < max_points(model_)) return Error::buffer_too_small;
+  Output out;
+  out.points = points;
+  const Error e = decode_into(payload, info, out);
+  count = out.count;
+  return e;
+}
+
+Error Decoder::decode(ByteView payload, PacketInfo& info, const PointColumns& columns, std::size_t& count,
+                      DecodePath path) noexcept {
+  count = 0;
+  if (columns.capacity < max_points(model_)) return Error::buffer_too_small;
+  if (columns.x == nullptr || columns.y == nullptr || columns.z == nullptr || columns.time_ns == nullptr ||
+      columns.intensity == nullptr || columns.channel == nullptr || columns.return_index == nullptr)
+    return Error::invalid_argument;
+  Output out;
+  out.columns = columns;
+  out.path = path;
+  const Error e = decode_into(payload, info, out);
+  count = out.count;
+  return e;
+}
+
+bool decode_simd_available() noexcept { return detail::columns_simd_available(); }
+
+Error Decoder::decode_into(ByteView payload, PacketInfo& info, Output& out) noexcept {
   const Error e = validate(payload, info);
   if (e != Error::ok) return e;
   const std::uint16_t rpm = firetime_correction_ ? info.motor_rpm : 0;
   if (rpm != spin_.rpm) update_spin(rpm);
   switch (model_) {
     case Model::pandar40:
-    case Model::pandar40p: decode_pandar40(payload.data, info, points, count); break;
-    case Model::pandar64: decode_pandar64(payload.data, info, points, count); break;
-    case Model::qt128c2x: decode_qt128(payload.data, info, points, count); break;
-    case Model::pandar_qt64: decode_qt64(payload.data, info, points, count); break;
+    case Model::pandar40p: decode_pandar40(payload.data, info, out); break;
+    case Model::pandar64: decode_pandar64(payload.data, info, out); break;
+    case Model::qt128c2x: decode_qt128(payload.data, info, out); break;
+    case Model::pandar_qt64: decode_qt64(payload.data, info, out); break;
     case Model::pandar_xt16:
     case Model::pandar_xt32:
-    case Model::pandar_xt32m2x: decode_xt(payload.data, info, points, count); break;
+    case Model::pandar_xt32m2x: decode_xt(payload.data, info, out); break;
     case Model::unknown: break;
   }
   return Error::ok;

@@ -76,12 +76,12 @@ Error Decoder::validate_pandar40(ByteView p, PacketInfo& info) noexcept {
   return Error::ok;
 }
 
-void Decoder::decode_pandar40(const std::uint8_t* p, const PacketInfo& info, Point* out, std::size_t& count) const noexcept {
+void Decoder::decode_pandar40(const std::uint8_t* p, const PacketInfo& info, Output& out) const noexcept {
   using namespace pandar40;
   const std::size_t dual = info.returns == 2 ? 1 : 0;
   for (std::size_t b = 0; b < kBlocks; ++b)
     emit_block<kPointBytes>(p + b * kBlockBytes + kBlockPoints, kChannels, nullptr, info, b,
-                            info.time_ns + kBlockNs[dual][b], 0, out, count);
+                            kBlockNs[dual][b], 0, out);
 }
 
 }  // namespace hesai

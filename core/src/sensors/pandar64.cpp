@@ -64,15 +64,14 @@ Error Decoder::validate_pandar64(ByteView p, PacketInfo& info) noexcept {
   return detail::tail_time(detail::tail_date_time(detail::pandar_year(dt[0]), dt), 999999, info);
 }
 
-void Decoder::decode_pandar64(const std::uint8_t* p, const PacketInfo& info, Point* out, std::size_t& count) const noexcept {
+void Decoder::decode_pandar64(const std::uint8_t* p, const PacketInfo& info, Output& out) const noexcept {
   using namespace pandar64;
   const std::size_t dual = info.returns == 2 ? 1 : 0;
-  const std::size_t first = count;
+  const std::size_t first = out.count;
   for (std::size_t b = 0; b < kBlocks; ++b)
     emit_block<kPointBytes>(p + kBody + b * kBlockBytes + kBlockPoints, kChannels, nullptr, info, b,
-                            info.time_ns + kBlockNs[dual][b], 0, out, count);
-  if (reflectivity_ == Reflectivity::nonlinear)
-    for (std::size_t i = first; i < count; ++i) out[i].intensity = kNonlinearPercent[out[i].intensity];
+                            kBlockNs[dual][b], 0, out);
+  if (reflectivity_ == Reflectivity::nonlinear) out.map_intensity(first, kNonlinearPercent.data());
 }
 
 Error Decoder::set_reflectivity(Reflectivity mapping) noexcept {

@@ -179,7 +179,7 @@ Error Decoder::validate_qt128(ByteView p, PacketInfo& info) noexcept {
   return detail::tail_time(t, 1000000, info);
 }
 
-void Decoder::decode_qt128(const std::uint8_t* p, const PacketInfo& info, Point* out, std::size_t& count) const noexcept {
+void Decoder::decode_qt128(const std::uint8_t* p, const PacketInfo& info, Output& out) const noexcept {
   using namespace qt128;
   const Layout layout = Layout::from_header(p[kLaserNum], info.flags);
   const bool custom = (info.flags & kFlagChannelCustom) != 0;
@@ -192,11 +192,11 @@ void Decoder::decode_qt128(const std::uint8_t* p, const PacketInfo& info, Point*
     const std::size_t loop = (dual || b == 0) ? loop1 : 1 - loop1;
     const std::uint8_t* units = p + kBody + b * layout.block + kBlockPoints;
     const std::uint8_t* channel_of = custom ? custom_channel_[loop].data() : nullptr;
-    const std::int64_t t = info.time_ns + kBlockNs[dual][b];
+    const std::int32_t t = kBlockNs[dual][b];
     if (layout.unit == kUnitBytes + kConfidenceBytes)
-      emit_block<kUnitBytes + kConfidenceBytes>(units, layout.lasers, channel_of, info, b, t, loop, out, count);
+      emit_block<kUnitBytes + kConfidenceBytes>(units, layout.lasers, channel_of, info, b, t, loop, out);
     else
-      emit_block<kUnitBytes>(units, layout.lasers, channel_of, info, b, t, loop, out, count);
+      emit_block<kUnitBytes>(units, layout.lasers, channel_of, info, b, t, loop, out);
   }
 }
 

@@ -34,9 +34,9 @@ constexpr std::int32_t round_to_int(double v) {
 /// Block time offsets from t0 in ns (tables/block_times.h: end times for Pandar40/40P/64, start
 /// times for QT128), indexed [dual][block].
 template <std::size_t N>
-constexpr std::array<std::array<std::int64_t, N>, 2> block_ns(const std::array<double, N>& single,
+constexpr std::array<std::array<std::int32_t, N>, 2> block_ns(const std::array<double, N>& single,
                                                               const std::array<double, N>& dual) {
-  std::array<std::array<std::int64_t, N>, 2> ns{};
+  std::array<std::array<std::int32_t, N>, 2> ns{};
   for (std::size_t b = 0; b < N; ++b) {
     ns[0][b] = round_to_int(single[b] * 1000);
     ns[1][b] = round_to_int(dual[b] * 1000);

@@ -2,6 +2,7 @@
 // walk over their blocks.
 // TODO(#15): not implemented yet; every 6.1 packet is unsupported_version, as before.
 #include "hesai/decoder.h"
+#include "block_points.h"
 #include "sensor_rules.h"
 
 namespace hesai {
@@ -10,6 +11,6 @@ Error detail::identify_xt(ByteView, Model&) noexcept { return Error::unsupported
 
 Error Decoder::validate_xt(ByteView, PacketInfo&) noexcept { return Error::unsupported_version; }
 
-void Decoder::decode_xt(const std::uint8_t*, const PacketInfo&, Point*, std::size_t&) const noexcept {}
+void Decoder::decode_xt(const std::uint8_t*, const PacketInfo&, Output&) const noexcept {}
 
 }  // namespace hesai

@@ -1,0 +1,145 @@
+// The columnar decode with AVX2 on x86-64 (see columns_simd.h): eight units a step. Compiled with
+// a function-level target attribute, so that the library needs no -m flags; chosen at run time
+// from CPUID, as the CRC's PCLMULQDQ path is. Empty on other targets.
+#include "columns_simd.h"
+
+#if defined(HESAI_COLUMNS_AVX2)
+
+#include <cpuid.h>
+#include <immintrin.h>
+
+#include <array>
+#include <atomic>
+
+#define HESAI_AVX2_TARGET __attribute__((target("avx2,popcnt")))
+
+namespace hesai::detail {
+namespace {
+
+// 0: not asked yet, 1: absent, 2: present. Relaxed: every thread computes the same answer.
+std::atomic<std::uint8_t> g_avx2{0};
+
+bool cpu_has_avx2() noexcept {
+  unsigned eax = 0, ebx = 0, ecx = 0, edx = 0;
+  if (__get_cpuid(1, &eax, &ebx, &ecx, &edx) == 0) return false;
+  // CPUID.01H:ECX (Intel SDM vol. 2A, table 3-10): OSXSAVE (27) and AVX (28); XCR0 bits 1 and 2:
+  // the OS saves the SSE and AVX state; CPUID.(EAX=07H, ECX=0):EBX bit 5: AVX2. POPCNT: ECX bit 23.
+  constexpr unsigned kNeed = (1u << 23) | (1u << 27) | (1u << 28);
+  if ((ecx & kNeed) != kNeed) return false;
+  unsigned xcr0_lo = 0, xcr0_hi = 0;
+  __asm__("xgetbv" : "=a"(xcr0_lo), "=d"(xcr0_hi) : "c"(0));
+  if ((xcr0_lo & 6u) != 6u) return false;
+  if (__get_cpuid_count(7, 0, &eax, &ebx, &ecx, &edx) == 0) return false;
+  return (ebx & (1u << 5)) != 0;
+}
+
+// For each 8-bit mask of kept lanes, the indices of the kept lanes, lowest first, one byte each
+// (the rest 0): the permutation that packs them to the front (2 KiB).
+constexpr std::array<std::uint64_t, 256> compress_table() {
+  std::array<std::uint64_t, 256> t{};
+  for (std::size_t m = 0; m < 256; ++m) {
+    std::uint64_t v = 0;
+    unsigned k = 0;
+    for (unsigned lane = 0; lane < 8; ++lane)
+      if (m & (1u << lane)) v |= static_cast<std::uint64_t>(lane) << (8 * k++);
+    t[m] = v;
+  }
+  return t;
+}
+constexpr std::array<std::uint64_t, 256> kCompress = compress_table();
+
+// Byte shuffles of one 16-byte load holding four units (the first at byte `first`, `stride`
+// bytes apart): each unit's distance (little-endian 16 bits) into a 32-bit lane, and its intensity
+// byte into byte `to` + i. -1 clears.
+struct UnitShuffle {
+  std::int8_t distance[16], intensity[16];
+};
+constexpr UnitShuffle unit_shuffle(int first, int stride, int to) {
+  UnitShuffle u{};
+  for (int i = 0; i < 16; ++i) u.distance[i] = u.intensity[i] = -1;
+  for (int i = 0; i < 4; ++i) {
+    const int at = first + i * stride;
+    u.distance[4 * i] = static_cast<std::int8_t>(at);
+    u.distance[4 * i + 1] = static_cast<std::int8_t>(at + 1);
+    u.intensity[to + i] = static_cast<std::int8_t>(at + 2);
+  }
+  return u;
+}
+// [unit_bytes == 4][half]: units 0..3 from the 16 bytes at the first unit, 4..7 from the 16 bytes
+// at kSecond[unit_bytes == 4]: 3-byte units 4..7 start at byte 12, read from byte 8 so as not to
+// read past unit 7.
+constexpr UnitShuffle kShuffle[2][2] = {{unit_shuffle(0, 3, 0), unit_shuffle(4, 3, 4)},
+                                        {unit_shuffle(0, 4, 0), unit_shuffle(0, 4, 4)}};
+constexpr std::size_t kSecond[2] = {8, 16};
+
+HESAI_AVX2_TARGET inline __m128i load16(const std::int8_t* p) noexcept {
+  return _mm_loadu_si128(reinterpret_cast<const __m128i*>(p));
+}
+
+HESAI_AVX2_TARGET std::size_t columns_avx2(const BlockConstants& k, const std::uint8_t* units, std::size_t unit_count,
+                                           std::size_t unit_bytes, const PointColumns& out, std::size_t& count) noexcept {
+  const std::size_t wide = unit_bytes == 4 ? 1 : 0;
+  const std::size_t second = kSecond[wide];
+  const __m128i lo_distance = load16(kShuffle[wide][0].distance), lo_intensity = load16(kShuffle[wide][0].intensity);
+  const __m128i hi_distance = load16(kShuffle[wide][1].distance), hi_intensity = load16(kShuffle[wide][1].intensity);
+  const __m256 sin_a = _mm256_set1_ps(k.sin_a), cos_a = _mm256_set1_ps(k.cos_a), unit_m = _mm256_set1_ps(k.unit_m);
+  const __m256i below = _mm256_set1_epi32(k.min_distance - 1);
+  const __m256i offset = _mm256_set1_epi32(k.offset_ns);
+  const __m128i ret = _mm_set1_epi8(static_cast<char>(k.return_index));
+  __m128i channel = _mm_setr_epi8(1, 2, 3, 4, 5, 6, 7, 8, 0, 0, 0, 0, 0, 0, 0, 0);
+  const __m128i eight = _mm_set1_epi8(8);
+  std::size_t n = count;
+  std::size_t j = 0;
+  for (; j + 8 <= unit_count; j += 8) {
+    const std::uint8_t* p = units + j * unit_bytes;
+    const __m128i a = _mm_loadu_si128(reinterpret_cast<const __m128i*>(p));
+    const __m128i b = _mm_loadu_si128(reinterpret_cast<const __m128i*>(p + second));
+    const __m256i raw = _mm256_inserti128_si256(_mm256_castsi128_si256(_mm_shuffle_epi8(a, lo_distance)),
+                                                _mm_shuffle_epi8(b, hi_distance), 1);
+    const __m128i intensity = _mm_or_si128(_mm_shuffle_epi8(a, lo_intensity), _mm_shuffle_epi8(b, hi_intensity));
+    // The scalar loop's operations in its order (block_points.h, unit_xyz).
+    const __m256 r = _mm256_mul_ps(_mm256_cvtepi32_ps(raw), unit_m);
+    const __m256 dc = _mm256_loadu_ps(k.dir_cos + j);
+    const __m256 ds = _mm256_loadu_ps(k.dir_sin + j);
+    const __m256 x = _mm256_mul_ps(r, _mm256_add_ps(_mm256_mul_ps(sin_a, dc), _mm256_mul_ps(cos_a, ds)));
+    const __m256 y = _mm256_mul_ps(r, _mm256_sub_ps(_mm256_mul_ps(cos_a, dc), _mm256_mul_ps(sin_a, ds)));
+    const __m256 z = _mm256_mul_ps(r, _mm256_loadu_ps(k.sin_el + j));
+    const __m256i t = _mm256_add_epi32(offset, _mm256_loadu_si256(reinterpret_cast<const __m256i*>(k.fire_ns + j)));
+    // Keep the lanes with a valid distance, packed to the front.
+    const unsigned keep = static_cast<unsigned>(_mm256_movemask_ps(_mm256_castsi256_ps(_mm256_cmpgt_epi32(raw, below))));
+    const __m128i order = _mm_cvtsi64_si128(static_cast<long long>(kCompress[keep]));
+    const __m256i perm = _mm256_cvtepu8_epi32(order);
+    _mm256_storeu_ps(out.x + n, _mm256_permutevar8x32_ps(x, perm));
+    _mm256_storeu_ps(out.y + n, _mm256_permutevar8x32_ps(y, perm));
+    _mm256_storeu_ps(out.z + n, _mm256_permutevar8x32_ps(z, perm));
+    _mm256_storeu_si256(reinterpret_cast<__m256i*>(out.time_ns + n), _mm256_permutevar8x32_epi32(t, perm));
+    _mm_storel_epi64(reinterpret_cast<__m128i*>(out.intensity + n), _mm_shuffle_epi8(intensity, order));
+    _mm_storel_epi64(reinterpret_cast<__m128i*>(out.channel + n), _mm_shuffle_epi8(channel, order));
+    _mm_storel_epi64(reinterpret_cast<__m128i*>(out.return_index + n), ret);
+    channel = _mm_add_epi8(channel, eight);
+    n += static_cast<std::size_t>(_mm_popcnt_u32(keep));
+  }
+  count = n;
+  return j;
+}
+
+}  // namespace
+
+bool columns_simd_available() noexcept {
+  std::uint8_t state = g_avx2.load(std::memory_order_relaxed);
+  if (state == 0) {
+    state = cpu_has_avx2() ? 2 : 1;
+    g_avx2.store(state, std::memory_order_relaxed);
+  }
+  return state == 2;
+}
+
+std::size_t columns_simd(const BlockConstants& k, const std::uint8_t* units, std::size_t unit_count,
+                         std::size_t unit_bytes, const PointColumns& out, std::size_t& count) noexcept {
+  if (!columns_simd_available()) return 0;
+  return columns_avx2(k, units, unit_count, unit_bytes, out, count);
+}
+
+}  // namespace hesai::detail
+
+#endif  // HESAI_COLUMNS_AVX2

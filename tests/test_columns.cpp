@@ -1,0 +1,170 @@
+// The columnar output (PointColumns, PacketColumns<N>) against the Point output, and the vector
+// paths (AVX2 on x86-64, NEON on AArch64) against the portable scalar path: every point of every
+// bundled capture.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "hesai/decoder.h"
+#include "test_support.h"
+
+using namespace hesai;
+using namespace hesai_test;
+
+namespace {
+
+struct Capture {
+  const char* file;
+  Model model;
+};
+const Capture kCaptures[] = {{"pandar40p_dual.pcap", Model::pandar40p},
+                             {"pandar64_dual.pcap", Model::pandar64},
+                             {"qt128c2x_dual.pcap", Model::qt128c2x}};
+
+// Columns sized for the largest packet, with their count.
+struct Columns {
+  PacketColumns<kMaxPointsPerPacket> c;
+};
+
+// Decodes every packet of a capture into Points and, with a second decoder of the same settings,
+// into columns; calls check(points, info, columns) per packet.
+template <typename Setup, typename Check>
+void each_packet(const Capture& cap, Setup setup, DecodePath path, Check check) {
+  const auto packets = pcap_payloads(cap.file);
+  ASSERT_FALSE(packets.empty()) << cap.file;
+  Decoder by_point(cap.model), by_column(cap.model);
+  setup(by_point);
+  setup(by_column);
+  static PacketPoints pts;
+  static Columns cols;
+  std::size_t points = 0;
+  for (const auto& p : packets) {
+    PacketInfo info, info_c;
+    ASSERT_EQ(by_point.decode(view(p), info, pts), Error::ok) << cap.file;
+    ASSERT_EQ(by_column.decode(view(p), info_c, cols.c, path), Error::ok) << cap.file;
+    ASSERT_EQ(info_c.time_ns, info.time_ns);
+    ASSERT_EQ(cols.c.count, pts.count) << cap.file;
+    check(pts, info, cols.c);
+    points += pts.count;
+  }
+  EXPECT_GT(points, 0u) << cap.file;
+}
+
+void expect_same_points(const Capture& cap, void (*setup)(Decoder&), DecodePath path) {
+  each_packet(cap, setup, path, [&](const PacketPoints& pts, const PacketInfo& info, const auto& c) {
+    for (std::size_t i = 0; i < pts.count; ++i) {
+      const Point& q = pts.points[i];
+      ASSERT_EQ(c.x[i], q.x) << cap.file << " point " << i;
+      ASSERT_EQ(c.y[i], q.y) << cap.file << " point " << i;
+      ASSERT_EQ(c.z[i], q.z) << cap.file << " point " << i;
+      ASSERT_EQ(info.time_ns + c.time_ns[i], q.time_ns) << cap.file << " point " << i;
+      ASSERT_EQ(c.intensity[i], q.intensity) << cap.file << " point " << i;
+      ASSERT_EQ(c.channel[i], q.channel) << cap.file << " point " << i;
+      ASSERT_EQ(c.return_index[i], q.return_index) << cap.file << " point " << i;
+    }
+  });
+}
+
+void defaults(Decoder&) {}
+
+TEST(Columns, SameValuesAsPointsOnEveryCapturePortable) {
+  for (const Capture& cap : kCaptures) expect_same_points(cap, defaults, DecodePath::portable);
+}
+
+TEST(Columns, SameValuesAsPointsOnEveryCaptureBestPath) {
+  for (const Capture& cap : kCaptures) expect_same_points(cap, defaults, DecodePath::best);
+}
+
+TEST(Columns, SameValuesWithoutFiretimeCorrectionAndWithNonlinearReflectivity) {
+  for (const Capture& cap : kCaptures)
+    expect_same_points(cap, [](Decoder& d) { d.set_firetime_correction(false); }, DecodePath::best);
+  expect_same_points(kCaptures[1], [](Decoder& d) { ASSERT_EQ(d.set_reflectivity(Reflectivity::nonlinear), Error::ok); },
+                     DecodePath::best);
+}
+
+// The bound for a vector path: within 1e-6 relative of the scalar path, every point of
+// every capture (with the same operations in the same order they are in fact equal).
+TEST(Columns, VectorPathWithinOneMillionthOfScalar) {
+  for (const Capture& cap : kCaptures) {
+    const auto packets = pcap_payloads(cap.file);
+    Decoder scalar(cap.model), vector(cap.model);
+    static Columns a, b;
+    std::size_t points = 0;
+    const auto near = [](float u, float v) { return std::fabs(u - v) <= 1e-6f * std::max(std::fabs(u), std::fabs(v)); };
+    for (const auto& p : packets) {
+      PacketInfo info;
+      ASSERT_EQ(scalar.decode(view(p), info, a.c, DecodePath::portable), Error::ok);
+      ASSERT_EQ(vector.decode(view(p), info, b.c), Error::ok);
+      ASSERT_EQ(a.c.count, b.c.count);
+      for (std::size_t i = 0; i < a.c.count; ++i) {
+        ASSERT_TRUE(near(a.c.x[i], b.c.x[i]) && near(a.c.y[i], b.c.y[i]) && near(a.c.z[i], b.c.z[i]))
+            << cap.file << " point " << i;
+        ASSERT_EQ(a.c.time_ns[i], b.c.time_ns[i]);
+        ASSERT_EQ(a.c.intensity[i], b.c.intensity[i]);
+        ASSERT_EQ(a.c.channel[i], b.c.channel[i]);
+        ASSERT_EQ(a.c.return_index[i], b.c.return_index[i]);
+      }
+      points += a.c.count;
+    }
+    EXPECT_GT(points, 0u) << cap.file;
+  }
+}
+
+// Storage sized per model: PacketColumns<max_points(model)> suffices; one element less is refused
+// before the packet is read, and so is a missing column.
+TEST(Columns, CallerStorageSizedForTheModel) {
+  for (const Capture& cap : kCaptures) {
+    const auto packets = pcap_payloads(cap.file);
+    ASSERT_FALSE(packets.empty());
+    const std::size_t most = max_points(cap.model);
+    std::vector<float> x(most), y(most), z(most);
+    std::vector<std::int32_t> t(most);
+    std::vector<std::uint8_t> intensity(most), channel(most), ret(most);
+    PointColumns c{x.data(), y.data(), z.data(), t.data(), intensity.data(), channel.data(), ret.data(), most};
+    Decoder dec(cap.model);
+    PacketInfo info;
+    std::size_t count = 99;
+    EXPECT_EQ(dec.decode(view(packets[0]), info, c, count), Error::ok);
+    EXPECT_GT(count, 0u);
+
+    c.capacity = most - 1;
+    count = 99;
+    info.motor_rpm = 4321;
+    EXPECT_EQ(dec.decode(view(packets[0]), info, c, count), Error::buffer_too_small) << cap.file;
+    EXPECT_EQ(count, 0u);
+    EXPECT_EQ(info.motor_rpm, 4321) << "info untouched";
+
+    c.capacity = most;
+    c.channel = nullptr;
+    count = 99;
+    EXPECT_EQ(dec.decode(view(packets[0]), info, c, count), Error::invalid_argument) << cap.file;
+    EXPECT_EQ(count, 0u);
+  }
+  static PacketColumns<max_points(Model::qt128c2x)> qt;
+  static_assert(sizeof(qt.x) == 256 * 4, "a QT128 packet's columns: 256 points");
+  Decoder dec(Model::qt128c2x);
+  PacketInfo info;
+  EXPECT_EQ(dec.decode(view(pcap_payloads("qt128c2x_dual.pcap")[0]), info, qt), Error::ok);
+  EXPECT_GT(qt.count, 0u);
+  PacketColumns<max_points(Model::qt128c2x)> too_small_for_pandar64;
+  Decoder p64(Model::pandar64);
+  EXPECT_EQ(p64.decode(view(pcap_payloads("pandar64_dual.pcap")[0]), info, too_small_for_pandar64), Error::buffer_too_small);
+  EXPECT_EQ(too_small_for_pandar64.count, 0u);
+}
+
+// A decode error leaves count 0 in the columns too.
+TEST(Columns, ErrorGivesNoPoints) {
+  auto p = pcap_payloads("pandar64_dual.pcap")[0];
+  p[8] ^= 0xFF;  // a wrong number of blocks in the header
+  Decoder dec(Model::pandar64);
+  static Columns cols;
+  cols.c.count = 7;
+  PacketInfo info;
+  EXPECT_NE(dec.decode(view(p), info, cols.c), Error::ok);
+  EXPECT_EQ(cols.c.count, 0u);
+}
+
+}  // namespace
