@@ -10,6 +10,9 @@
 // - The C path (c_path.c, C99 through hesai.h) decodes the QT128 packet to the same points as
 //   hesai::Decoder, and gives the errors hesai.h names for a damaged packet and a short array.
 // - The stack each entry point used, measured by painting the stack, and sizeof(Decoder).
+// - Under qemu-system-arm -icount shift=7 (report.py runs it so): the instructions per packet of
+//   validate() and decode() for each sensor, of decode() when the spin rate changed, and of the
+//   QT128 signature check, exact (see "Instructions per packet").
 #include <cstddef>
 #include <cstdint>
 #include <cstring>
@@ -19,6 +22,9 @@
 #include "hesai/decoder.h"
 #include "hesai/hkdf.h"
 #include "hesai/hmac.h"
+#include "hesai/pandar40_packet.h"
+#include "hesai/pandar64_packet.h"
+#include "hesai/qt128_packet.h"
 #include "hesai/sha256.h"
 #include "c_path.h"
 #include "semihost.h"
@@ -378,6 +384,131 @@ void stack_use() {
   report_stack("Decoder::Decoder QT128C2X", stack_used([] { ::new (&decoders[3]) Decoder(Model::qt128c2x); }));
 }
 
+// ---- Instructions per packet --------------------------------------------------------------------
+//
+// qemu models no cycles, but with -icount shift=7 it advances its virtual clock by exactly 2^7 =
+// 128 ns per instruction executed, and SysTick, on the board's 25 MHz processor clock, counts that
+// clock down every 40 ns: n instructions move it by 3.2 n ticks, less than one tick off at either
+// end (the reading rounds the time to the next tick). So n = round(ticks / 3.2) exactly: the error,
+// under 1 / 3.2 instruction, is below one half. The count runs from one SysTick read to the next, so
+// the same span around an empty function is subtracted; what is left is the callee's instructions,
+// call and return included. Checked on functions of exactly 1 and 1 000 instructions beside the
+// empty one (a nop each); without -icount (the plain ctest run) the check fails and no count is
+// printed. The 24-bit counter allows 5.2 million instructions per count (COUNTFLAG: over).
+
+volatile std::uint32_t& syst_csr = *reinterpret_cast<volatile std::uint32_t*>(0xE000E010u);
+volatile std::uint32_t& syst_rvr = *reinterpret_cast<volatile std::uint32_t*>(0xE000E014u);
+volatile std::uint32_t& syst_cvr = *reinterpret_cast<volatile std::uint32_t*>(0xE000E018u);
+constexpr std::uint32_t kCountFlag = 1u << 16;
+
+// SysTick ticks from just before f() to just after it; ~0u when the counter wrapped.
+__attribute__((noinline)) std::uint32_t ticks_of(void (*f)()) {
+  syst_csr = 0;
+  syst_rvr = 0xFFFFFFu;
+  syst_cvr = 0;            // any write clears it: reloads on the next tick
+  syst_csr = 5;            // enabled, processor clock, no interrupt
+  while (syst_cvr == 0) {}
+  [[maybe_unused]] const std::uint32_t clear = syst_csr;  // a read clears COUNTFLAG
+  const std::uint32_t start = syst_cvr;
+  f();
+  const std::uint32_t end = syst_cvr;
+  const bool wrapped = (syst_csr & kCountFlag) != 0;
+  syst_csr = 0;
+  return wrapped ? ~0u : start - end;
+}
+
+std::uint32_t span_of(void (*f)()) {
+  const std::uint32_t t = ticks_of(f);
+  return t == ~0u ? ~0u : (t * 10 + 16) / 32;  // round(t / 3.2)
+}
+
+__attribute__((noinline)) void nothing() { __asm volatile(""); }
+__attribute__((noinline)) void one_nop() { __asm volatile("nop"); }
+__attribute__((noinline)) void thousand_nops() { __asm volatile(".rept 1000\n\tnop\n\t.endr"); }
+
+// Instructions f() executes (call and return included); ~0u when too long to count.
+std::uint32_t instructions(void (*f)()) {
+  const std::uint32_t n = span_of(f), empty = span_of(nothing);
+  return n == ~0u ? ~0u : n - empty + 1;  // + 1: the empty function's own return
+}
+
+// What the measured calls work on (captureless lambdas, so plain function pointers).
+hesai::Decoder* subject = nullptr;
+ByteView packet;
+hesai::PacketInfo subject_info;
+Error subject_error = Error::ok;
+
+void count(const char* sensor, const char* what, void (*f)()) {
+  subject_error = Error::ok;
+  const std::uint32_t n = instructions(f);
+  check(subject_error == Error::ok, what);
+  check(n != ~0u, "instruction count within the 24-bit counter");
+  print("instructions: ");
+  print(sensor);
+  print(" ");
+  print(what);
+  print(" ");
+  print_int(n);
+  print("\n");
+}
+
+// The packet `p` of `n` bytes copied to `into` with its motor speed set to `rpm` (CRCs re-sealed).
+ByteView with_rpm(Model m, const std::uint8_t* p, std::size_t n, std::uint16_t rpm, std::uint8_t* into) {
+  std::memcpy(into, p, n);
+  std::size_t at = 0;
+  if (m == Model::pandar64) at = hesai::pandar64::kMotorSpeed;
+  else if (m == Model::qt128c2x) at = hesai::qt128::Layout::from_header(p[hesai::qt128::kLaserNum], p[hesai::qt128::kFlags]).tail + hesai::qt128::kTailMotorSpeed;
+  else at = hesai::pandar40::kMotorSpeed;
+  hesai::store_le16(into + at, rpm);
+  if (m == Model::qt128c2x) check(hesai::qt128::seal(into, n) == Error::ok, "re-seal");
+  return {into, n};
+}
+
+void instruction_counts() {
+  const bool exact = span_of(one_nop) - span_of(nothing) == 1 && span_of(thousand_nops) - span_of(nothing) == 1000;
+  if (!exact) {
+    print("instructions per packet: not counted (run under qemu-system-arm -icount shift=7; report.py does)\n");
+    return;
+  }
+  print("instructions per packet (qemu -icount shift=7 and SysTick, checked on 1 and 1000 nops):\n");
+  struct Subject {
+    const char* name;
+    hesai::Decoder* decoder;
+    ByteView packet;
+  };
+  const Subject subjects[] = {{"Pandar40", &decoders[0], {kPandar40P, 1256}},
+                              {"Pandar40P", &decoders[1], {kPandar40P, sizeof kPandar40P}},
+                              {"Pandar64", &decoders[2], {kPandar64, sizeof kPandar64}},
+                              {"QT128C2X", &decoders[3], {kQt128, sizeof kQt128}}};
+  static hesai::PacketInfo info;
+  for (const Subject& s : subjects) {
+    subject = s.decoder;
+    packet = s.packet;
+    check(subject->decode(packet, info, points) == Error::ok, s.name);  // the spin-rate cache warm
+    count(s.name, "validate", [] { subject_error = subject->validate(packet, subject_info); });
+    count(s.name, "decode", [] { subject_error = subject->decode(packet, subject_info, points); });
+    // The worst case: a packet at another spin rate, so the decode rebuilds the cache first.
+    packet = with_rpm(subject->model(), s.packet.data, s.packet.size, static_cast<std::uint16_t>(info.motor_rpm + 2), shifted);
+    count(s.name, "decode_rpm_change", [] { subject_error = subject->decode(packet, subject_info, points); });
+  }
+#if HESAI_SIGNATURE
+  // The QT128 signature check: validate() of the packet signed under a session key.
+  std::uint8_t key[32];
+  for (std::size_t i = 0; i < 32; ++i) key[i] = static_cast<std::uint8_t>(i * 7 + 1);
+  std::memcpy(shifted, kQt128, sizeof kQt128);
+  const std::size_t at = hesai::qt128::Layout::from_header(kQt128[hesai::qt128::kLaserNum], kQt128[hesai::qt128::kFlags]).signature;
+  hesai::hmac_sha256({key, 32}, {shifted, at}, shifted + at);
+  subject = &decoders[3];
+  packet = {shifted, sizeof kQt128};
+  check(subject->set_session_key(key) == Error::ok, "QT128 session key");
+  count("QT128C2X", "validate_signed", [] {
+    subject_error = subject->validate(packet, subject_info);
+    if (subject_error == Error::ok && subject_info.signature != hesai::SignatureStatus::valid) subject_error = Error::signature_invalid;
+  });
+  subject->clear_session_key();
+#endif
+}
+
 }  // namespace
 
 int main() {
@@ -394,6 +525,7 @@ int main() {
   known_answers();
   real_packets();
   c_path();
+  instruction_counts();
   stack_use();
   print("sizeof(Decoder): ");
   print_int(static_cast<std::int64_t>(sizeof(hesai::Decoder)));

@@ -2,7 +2,8 @@
 //
 // HESAI_GNU is 1 with GNU C++ (GCC, Clang and compilers that emulate them) unless
 // HESAI_NO_GNU_EXTENSIONS is defined. It enables: the empty-asm optimisation barriers of ct.cpp,
-// always_inline in sha256.cpp, noinline for size in sensors/block_points.h, and the x86-64 SHA-NI
+// always_inline in sha256.cpp and sensors/decoder.cpp (with __builtin_bit_cast there), noinline
+// for size in sensors/block_points.h, and the x86-64 SHA-NI
 // and PCLMULQDQ paths (target attributes,
 // <cpuid.h>). Any other compiler takes the portable paths, which ISO C++17 alone defines; CI
 // compiles and tests them by defining HESAI_NO_GNU_EXTENSIONS (the hesai_portable_tests target).

@@ -13,6 +13,7 @@
 #include "hesai/tables/pandar40_tables.h"
 #include "hesai/tables/pandar64_tables.h"
 #include "hesai/tables/qt128_tables.h"
+#include "../base/compiler.h"
 #include "block_points.h"
 #include "sensor_rules.h"
 
@@ -125,34 +126,37 @@ namespace {
 // because a float comparison may trap (-ftrapping-math, GCC's default), and a selection under a
 // trapping comparison is not turned into a vector blend: with them the loop below is scalar code
 // with two branches per channel; with these, 4 or 8 channels at a time.
-inline std::int32_t bits(float v) noexcept {
-  std::int32_t b;
-  std::memcpy(&b, &v, sizeof b);
-  return b;
+// The bits of a float and back (the GNU builtin where there is one: a 4-byte memcpy to a float
+// register stays a library call at -Os on Arm).
+template <class To, class From>
+HESAI_ALWAYS_INLINE inline To same_bits(From v) noexcept {
+  static_assert(sizeof(To) == sizeof(From), "same size");
+#if HESAI_GNU
+  return __builtin_bit_cast(To, v);
+#else
+  To t;
+  std::memcpy(&t, &v, sizeof t);
+  return t;
+#endif
 }
-inline bool below_zero(float a) noexcept { return bits(-a) > 0; }
-inline bool at_least(float a, float positive) noexcept { return bits(a) >= bits(positive); }
-inline bool above(float a, float positive) noexcept { return bits(a) > bits(positive); }
+HESAI_ALWAYS_INLINE inline std::int32_t bits(float v) noexcept { return same_bits<std::int32_t>(v); }
+HESAI_ALWAYS_INLINE inline bool below_zero(float a) noexcept { return bits(-a) > 0; }
+HESAI_ALWAYS_INLINE inline bool at_least(float a, float positive) noexcept { return bits(a) >= bits(positive); }
+HESAI_ALWAYS_INLINE inline bool above(float a, float positive) noexcept { return bits(a) > bits(positive); }
 // c ? a : b on the bits: both computed, neither moved into a branch (which GCC does to a float
 // ternary's operands, and then cannot make a blend of it).
-inline float select(bool c, float a, float b) noexcept {
-  const std::int32_t chosen = bits(b) ^ ((bits(a) ^ bits(b)) & -static_cast<std::int32_t>(c));
-  float v;
-  std::memcpy(&v, &chosen, sizeof v);
-  return v;
+HESAI_ALWAYS_INLINE inline float select(bool c, float a, float b) noexcept {
+  return same_bits<float>(bits(b) ^ ((bits(a) ^ bits(b)) & -static_cast<std::int32_t>(c)));
 }
 
 // A key whose int32 order is the order of the floats (no NaN): negative floats' magnitude bits
 // reversed. -0 and +0 get keys -1 and 0.
-inline std::int32_t order_key(float v) noexcept {
+HESAI_ALWAYS_INLINE inline std::int32_t order_key(float v) noexcept {
   const std::int32_t b = bits(v);
   return b ^ ((b >> 31) & 0x7FFFFFFF);
 }
-inline float from_order_key(std::int32_t k) noexcept {
-  const std::int32_t b = k ^ ((k >> 31) & 0x7FFFFFFF);
-  float v;
-  std::memcpy(&v, &b, sizeof v);
-  return v;
+HESAI_ALWAYS_INLINE inline float from_order_key(std::int32_t k) noexcept {
+  return same_bits<float>(k ^ ((k >> 31) & 0x7FFFFFFF));
 }
 
 }  // namespace
