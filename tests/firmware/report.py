@@ -9,18 +9,53 @@ deepest chain of calls). Budgets: the four decoders with CRC and HMAC (with the 
 libgcc routines they pull in) within 48 KiB of flash; at most 1 KiB of stack per call. With
 --minimal-map, the same image built with the smallest configuration (HESAI_CRC_SLICING 1,
 HESAI_SIGNATURE 0) gets a column too, and must link no crypto/ member (the decoder without
-signature support needs no SHA-256/HMAC). Prints a Markdown report, writes it to --out, and exits 1
-when a budget is exceeded.
+signature support needs no SHA-256/HMAC). With --emulator and --image, runs the image under
+qemu-system-arm -icount shift=7, where it counts the instructions of validate() and decode() per
+packet of each sensor exactly (main.cpp, "Instructions per packet"), and checks them against
+INSTRUCTION_BUDGETS. No double-precision soft-float routine (__aeabi_d*, __aeabi_*2d) may be reachable
+from Decoder::validate or Decoder::decode (issue #13). Prints a Markdown report, writes it to --out,
+and exits 1 when a budget is exceeded.
 """
 import argparse
 import glob
 import os
 import re
+import shlex
 import subprocess
 import sys
 
 FLASH_BUDGET = 48 * 1024
 STACK_BUDGET = 1024
+
+# Instructions per packet, by core and sensor: what the image measured (GCC 12.2 -Os, the packets of
+# fuzz/seed_packets.inc) plus about 25%, rounded up. Exact counts would fail on any compiler
+# update or honest change; 25% still catches a double-precision routine or a library call per
+# point coming back onto the path, each of which costs more than that. (The per-block double sine/cosine, replaced by float in
+# issue #13's columnar decode, is still in these counts: tighten them when it goes.)
+INSTRUCTION_BUDGETS = {
+    'cortex-m4': {
+        'Pandar40': {'validate': 2000, 'decode': 151000, 'decode_rpm_change': 155000},
+        'Pandar40P': {'validate': 2000, 'decode': 151000, 'decode_rpm_change': 155000},
+        'Pandar64': {'validate': 2000, 'decode': 101000, 'decode_rpm_change': 108000},
+        'QT128C2X': {'validate': 16000, 'decode': 58000, 'decode_rpm_change': 85000, 'signature': 97000},
+    },
+    'cortex-m0plus': {
+        'Pandar40': {'validate': 2000, 'decode': 896000, 'decode_rpm_change': 1003000},
+        'Pandar40P': {'validate': 3000, 'decode': 896000, 'decode_rpm_change': 1003000},
+        'Pandar64': {'validate': 3000, 'decode': 733000, 'decode_rpm_change': 904000},
+        'QT128C2X': {'validate': 25000, 'decode': 489000, 'decode_rpm_change': 1120000, 'signature': 161000},
+    },
+}
+# Packets per second at 600 rpm in dual return, the bundled captures' mode (packets per rotation
+# counted between azimuth wraps in data/*.pcap, and the pcap timestamps agree): Pandar40/40P 10
+# blocks = 5 azimuths of 0.2 degrees per packet, 360 per rotation; Pandar64 6 blocks = 3 azimuths,
+# 600 per rotation; QT128C2X 2 blocks = 1 azimuth of 0.4 degrees, 900 per rotation. rpm / 60 x that.
+PACKETS_PER_ROTATION = {'Pandar40': 360, 'Pandar40P': 360, 'Pandar64': 600, 'QT128C2X': 900}
+RPM = 600
+CLOCKS = (('Cortex-M4F at 168 MHz', 168e6), ('Cortex-M7 at 400 MHz', 400e6))
+# Double-precision soft-float: __aeabi_dadd, __aeabi_d2f, ..., and the conversions to double
+# (__aeabi_f2d, __aeabi_i2d, __aeabi_l2d, ...); libgcc's generic names (__adddf3, __extendsfdf2, ...).
+DOUBLE_ROUTINE = re.compile(r'^(__aeabi_d\w+|__aeabi_\w+2d|__\w+df\d?)$')
 
 # Components of the core: (label, folder of core/src, archive members = source files). Every
 # object the build produces must belong to exactly one row, in its own folder (checked below), so a
@@ -165,6 +200,96 @@ def short_name(demangled):
     head = re.sub(r'\[with .*\]$', '', demangled).split('(')[0].strip()
     return head.split(' ')[-1] if head else demangled
 
+def double_precision_check(rows, edges, frames, names, over):
+    """Issue #13: no double-precision soft-float reachable from validate() or decode(). Names the
+    core function that calls each routine found."""
+    lines = ['', '### Double-precision soft-float under validate/decode', '']
+    found = {}
+    for total, name, chain, external, unbounded in rows:
+        if name not in ('hesai::Decoder::validate', 'hesai::Decoder::decode'):
+            continue
+        doubles = sorted(e for e in external if DOUBLE_ROUTINE.match(e))
+        if not doubles:
+            continue
+        callers = set()
+        stack, seen = [chain[0]], set()
+        while stack:  # every core function reachable from the entry point that calls one directly
+            fn = stack.pop()
+            if fn in seen:
+                continue
+            seen.add(fn)
+            for callee in edges.get(fn, ()):
+                if callee in frames:
+                    stack.append(callee)
+                elif DOUBLE_ROUTINE.match(callee):
+                    callers.add(short_name(names.get(fn, fn)).replace('hesai::', ''))
+        found[name] = (doubles, sorted(callers))
+    if not found:
+        lines.append('None: no __aeabi_d* (or conversion to double) reachable from Decoder::validate or Decoder::decode.')
+    for name, (doubles, callers) in sorted(found.items()):
+        lines.append('**%s** reaches %s, called from %s.' % (name.replace('hesai::', ''), ', '.join(doubles), ', '.join(callers)))
+        over.append('double-precision soft-float under %s (%s)' % (name.replace('hesai::', ''), ', '.join(callers)))
+    lines.append('')
+    return lines
+
+
+def instruction_counts(emulator, image, over):
+    """Runs the image under -icount shift=7 and tabulates its instruction counts."""
+    cmd = shlex.split(emulator)
+    at = cmd.index('-kernel') if '-kernel' in cmd else len(cmd)
+    cmd = cmd[:at] + ['-icount', 'shift=7'] + cmd[at:] + ([image] if '-kernel' in cmd else ['-kernel', image])
+    run = subprocess.run(cmd, capture_output=True, text=True, timeout=300)
+    out = run.stdout + run.stderr  # semihosting writes to stderr when stdout is not a terminal
+    core = 'cortex-m0plus' if 'cortex-m0plus' in out else 'cortex-m4' if 'cortex-m4' in out else None
+    counts = {}
+    for m in re.finditer(r'^instructions: (\S+) (\S+) (\d+)$', out, re.M):
+        counts.setdefault(m.group(1), {})[m.group(2)] = int(m.group(3))
+    lines = ['### Instructions per packet (qemu-system-arm -icount shift=7, counted with SysTick)', '']
+    if not counts or core is None or 'all checks passed' not in out:
+        over.append('no instruction counts from %s' % image)
+        return lines + ['The image printed no instruction counts (or failed): see its output.', '']
+    budgets = INSTRUCTION_BUDGETS[core]
+    lines += ['Exact counts of the instructions executed per call (main.cpp says how), for one real packet of '
+              'each sensor (dual return); `decode` includes its `validate`. *rate change*: the packet at another '
+              'spin rate, so that the per-rate cache is rebuilt first (the worst case). Budget (%s, in brackets): '
+              'the count measured when it was set, plus 25%%.' % core, '',
+              '| sensor | validate | decode | decode, rate change | packets/s | decode, M instructions/s |',
+              '| --- | ---: | ---: | ---: | ---: | ---: |']
+    per_second = {}
+    for sensor, c in counts.items():
+        rate = RPM / 60 * PACKETS_PER_ROTATION.get(sensor, 0)
+        per_second[sensor] = c.get('decode', 0) * rate
+        budget = budgets.get(sensor, {})
+        cell = lambda what: '%d (%s)' % (c.get(what, 0), budget.get(what, 'no budget'))
+        lines.append('| %s | %s | %s | %s | %d | %.0f |' % (sensor, cell('validate'), cell('decode'),
+                                                           cell('decode_rpm_change'), rate, per_second[sensor] / 1e6))
+        for what in ('validate', 'decode', 'decode_rpm_change'):
+            if what not in budget or c.get(what, 0) > budget[what]:
+                over.append('instructions %s %s %d > budget %s' % (sensor, what, c.get(what, 0), budget.get(what)))
+    qt = counts.get('QT128C2X', {})
+    if 'validate_signed' in qt:
+        signature = qt['validate_signed'] - qt['validate']
+        rate = RPM / 60 * PACKETS_PER_ROTATION['QT128C2X']
+        per_second['QT128C2X, signed'] = (qt['decode'] + signature) * rate
+        lines += ['', 'QT128C2X signature check (validate of a signed packet with a session key, less validate '
+                  'without): **%d instructions** (budget %d; HMAC-SHA256 over 1 095 bytes, key prepared; validate '
+                  'signed: %d).' % (signature, budgets['QT128C2X']['signature'], qt['validate_signed'])]
+        if signature > budgets['QT128C2X']['signature']:
+            over.append('instructions QT128C2X signature %d > %d' % (signature, budgets['QT128C2X']['signature']))
+    if core == 'cortex-m4':
+        # The same ARMv7E-M code on a Cortex-M7. 1 instruction = 1 cycle: low on a Cortex-M4F
+        # (loads take 2 cycles, taken branches 2-4, flash wait states above ~30 MHz unless an
+        # accelerator or cache hides them), high on a Cortex-M7 (dual issue, from TCM or cache).
+        lines += ['', 'CPU time per second of sensor data at 600 rpm, dual return, taking 1 instruction as 1 cycle '
+                  '(an underestimate on a Cortex-M4F: loads take 2 cycles and taken branches 2-4, plus any flash wait '
+                  'states; an overestimate on a Cortex-M7, which issues two instructions a cycle where it can):', '',
+                  '| sensor | instructions/s | ' + ' | '.join(c[0] for c in CLOCKS) + ' |',
+                  '| --- | ---: |' + ' ---: |' * len(CLOCKS)]
+        for sensor, ips in per_second.items():
+            lines.append('| %s | %.1f M | %s |' % (sensor, ips / 1e6, ' | '.join('%.0f%%' % (100 * ips / hz) for _, hz in CLOCKS)))
+    lines.append('')
+    return lines
+
 
 def main():
     ap = argparse.ArgumentParser()
@@ -172,6 +297,8 @@ def main():
     ap.add_argument('--objects', required=True)
     ap.add_argument('--size', required=True)
     ap.add_argument('--minimal-map', help='linker map of the image built with the smallest configuration')
+    ap.add_argument('--emulator', help='the command that runs an image, up to and including -kernel')
+    ap.add_argument('--image', help='the firmware image that counts instructions under -icount')
     ap.add_argument('--out')
     args = ap.parse_args()
     lines, over = [], []
@@ -244,6 +371,9 @@ def main():
         if total > STACK_BUDGET or unbounded:
             over.append('stack %s %d' % (name, total))
     lines += ['', 'Budget: at most %d bytes of stack per call; worst: %d bytes.' % (STACK_BUDGET, rows[0][0] if rows else 0)]
+    lines += double_precision_check(rows, edges, frames, names, over)
+    if args.emulator and args.image:
+        lines += instruction_counts(args.emulator, args.image, over)
 
     text = '\n'.join(lines) + '\n'
     print(text)
