@@ -157,6 +157,28 @@ def main():
     write('qt128', 'unix_time_3byte', qt128_with_flags(qt[0], 0x0D, unix_time=1602245009))
     write('qt128', 'fs_fault', qt128_with_flags(qt[6], 0x05, fs=fix_fs_crc(bytes([1, 2, 0x11, 0x34, 0x12]) + bytes(8) + bytes(4))))
 
+    # PandarQT64, protocol 3.1 (core/include/hesai/qt64_packet.h): tail at 1044, flags byte 11.
+    q64 = payloads('pandar_qt64.pcap')
+    for i, p in enumerate(pick(q64, 3)):
+        write('qt64', 'real_%d' % i, p)
+    for n in (0, 1, 4, 12, len(q64[0]) // 2, len(q64[0]) - 1):
+        write('qt64', 'trunc_%d' % n, q64[0][:n])
+    write('qt64', 'long', q64[0] + b'\x00')
+
+    def qt64_with(p, flags=None, tail=None):
+        q = bytearray(p)
+        if flags is not None:
+            q[11] = flags
+        for at, v in (tail or {}).items():
+            q[1044 + at:1044 + at + len(v)] = v
+        return bytes(q) if flags is None or flags & 1 else bytes(q[:1068])
+    write('qt64', 'no_sequence', qt64_with(q64[5], flags=0x00))
+    write('qt64', 'imu_flag', qt64_with(q64[5], flags=0x03))
+    write('qt64', 'single_strongest', qt64_with(q64[5], tail={16: b'\x37'}))
+    write('qt64', 'dual_last_strongest', qt64_with(q64[5], tail={16: b'\x39'}))
+    write('qt64', 'unix_time', qt64_with(q64[0], tail={18: bytes(2) + struct.pack('>I', 1504708282)}))
+    write('qt64', 'year_20', qt64_with(q64[0], tail={18: b'\x14'}))
+
     # Signature: signed under KEY (valid), unsigned (zeros), wrong key, no signature section.
     for i, p in enumerate(pick(qt, 2)):
         write('signature', 'signed_%d' % i, qt128_with_flags(p, 0x1D, sign=True))
@@ -185,9 +207,9 @@ def main():
     # CSV files: the shipped files and short pieces of them.
     cal = os.path.join(DATA, 'calibration')
     for harness, files in (('angles_csv', ['pandar40p_unit_a_angles.csv', 'pandar64_unit_b_angles.csv',
-                                           'qt128c2x_unit_a_angles.csv']),
+                                           'qt128c2x_unit_a_angles.csv', 'pandar_qt64_angles.csv']),
                            ('firetimes_csv', ['pandar40p_firetimes.csv', 'pandar64_firetimes.csv',
-                                              'qt128c2x_firetimes.csv']),
+                                              'qt128c2x_firetimes.csv', 'pandar_qt64_firetimes.csv']),
                            ('channel_config_csv', ['qt128c2x_channel_config.csv'])):
         for f in files:
             text = open(os.path.join(cal, f), 'rb').read()
@@ -240,6 +262,7 @@ def main():
     write('frames', 'qt128', stream(128, qt[:4]))
     write('frames', 'pandar40_gps', stream(0, [p40[0], gps40, p40[1]]))
     write('frames', 'pandar40p', stream(200, p40p[:3]))
+    write('frames', 'qt64', stream(0, q64[297:303]))
     write('frames', 'mixed', stream(10, [gps64, p64[10], qt[10], p40p[10], b'\xEE\xFF']))
 
     # The functional-safety monitor: a rolling counter held 10, 21 and 25 ms (a stall at 21 ms),
