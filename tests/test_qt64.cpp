@@ -12,6 +12,7 @@
 #include "hesai/calibration.h"
 #include "hesai/decoder.h"
 #include "hesai/frame.h"
+#include "hesai/sequence.h"
 #include "test_support.h"
 
 using hesai::Decoder;
@@ -26,10 +27,17 @@ namespace {
 // The layout, typed from the SDK's udp_protocol_v3_1.h: 12-byte header, 4 blocks of azimuth u16
 // + 64 x {distance u16, reflectivity u8, confidence u8}, 28-byte tail ending in the UDP sequence.
 constexpr std::size_t kPayload = 1072, kBody = 12, kBlockBytes = 258, kTail = 1044;
-constexpr std::size_t kPackets = 1200;
-constexpr std::size_t kPoints = 299376;  // non-zero distances, counted by RawCounts below
+// The capture's packets and points (non-zero distances), counted by RawCounts below and again by
+// tests/golden/count_points.py (ctest golden_counts), which reads them from this initializer.
+struct Totals {
+  const char* capture;
+  std::size_t packets, points;
+};
+constexpr Totals kTotals{"pandar_qt64.pcap", 1200, 299376};
+constexpr std::size_t kPackets = kTotals.packets;
+constexpr std::size_t kPoints = kTotals.points;
 
-const char* const kCapture = "pandar_qt64.pcap";
+const char* const kCapture = kTotals.capture;
 const char* const kAngles = "calibration/pandar_qt64_angles.csv";
 const char* const kFiretimes = "calibration/pandar_qt64_firetimes.csv";
 
@@ -119,6 +127,25 @@ TEST(Qt64Golden, SequenceHasNoGap) {
   ASSERT_EQ(packets.size(), kPackets);
   for (std::size_t i = 1; i < packets.size(); ++i)
     ASSERT_EQ(hesai::load_le32(&packets[i][kTail + 24]), hesai::load_le32(&packets[i - 1][kTail + 24]) + 1) << i;
+}
+
+// Loss accounting from the tail's UDP sequence (flags bit 0): the capture with packets 10, 11 and
+// 500 left out loses 3, in two gaps.
+TEST(Qt64Golden, SequenceLossFromTheTail) {
+  const auto packets = pcap_payloads(kCapture);
+  ASSERT_EQ(packets.size(), kPackets);
+  Decoder dec(Model::pandar_qt64);
+  hesai::SequenceTracker tracker;
+  PacketInfo info;
+  std::uint64_t lost = 0;
+  for (std::size_t i = 0; i < packets.size(); ++i) {
+    if (i == 10 || i == 11 || i == 500) continue;
+    ASSERT_EQ(dec.validate(view(packets[i]), info), Error::ok);
+    ASSERT_TRUE(info.has_sequence);
+    lost += tracker.observe(info.sequence);
+  }
+  EXPECT_EQ(lost, 3u);
+  EXPECT_EQ(tracker.counts().lost, 3u);
 }
 
 // Every point against the reference, with the unit's angle file and the vendor's firing times
