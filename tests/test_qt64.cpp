@@ -15,6 +15,7 @@
 #include "hesai/decoder.h"
 #include "hesai/frame.h"
 #include "hesai/sequence.h"
+#include "packet_builder.h"
 #include "test_support.h"
 
 using hesai::Decoder;
@@ -152,11 +153,17 @@ TEST(Qt64Golden, SequenceLossFromTheTail) {
 // Reference: distance x 4 mm; azimuth = block azimuth + channel offset + firing time x rpm x 360
 // / 60e6 (the SDK's GetFiretimesCorrection, rpm x 6e-6 degree per us); time = t0 + 25.71 us +
 // 166.67 us x firing (block / 2 in dual return) + firing time (SDK udp3_1_parser.cc).
-void expect_every_point_matches(bool files) {
-  const auto packets = pcap_payloads(kCapture);
+// Counter-clockwise: the capture's block azimuths mirrored (a -> 36000 - a) and the firing-time
+// term subtracted, as for every sensor (README, "Geometry and time").
+void expect_every_point_matches(bool files, hesai::Rotation rotation = hesai::Rotation::clockwise) {
+  const bool ccw = rotation == hesai::Rotation::counterclockwise;
+  auto packets = pcap_payloads(kCapture);
   ASSERT_EQ(packets.size(), kPackets);
+  if (ccw)
+    for (auto& p : packets) p = counterclockwise_copy(p, Model::pandar_qt64);
   const ReferenceCalibration ref = read_reference_calibration(kAngles, kFiretimes, 64);
   Decoder dec(Model::pandar_qt64);
+  dec.set_rotation(rotation);
   if (files) {
     hesai::AngleCorrection a;
     hesai::FiretimeCorrection f;
@@ -187,7 +194,7 @@ void expect_every_point_matches(bool files) {
         const std::uint16_t raw = hesai::load_le16(q);
         if (raw == 0) continue;
         const double r = raw * 0.004;
-        const double az = block_az + ref.azimuth[c] + ref.fire1[c] * rpm * 360.0 / 60e6;
+        const double az = block_az + ref.azimuth[c] + (ccw ? -1 : 1) * ref.fire1[c] * rpm * 360.0 / 60e6;
         const double e = ref.elevation[c] * kDeg;
         const double x = r * std::cos(e) * std::sin(az * kDeg);
         const double y = r * std::cos(e) * std::cos(az * kDeg);
@@ -220,6 +227,9 @@ void expect_every_point_matches(bool files) {
 
 TEST(Qt64Golden, EveryPointMatchesDoubleReferenceWithUnitFiles) { expect_every_point_matches(true); }
 TEST(Qt64Golden, EveryPointMatchesDoubleReferenceWithBuiltInTables) { expect_every_point_matches(false); }
+TEST(Qt64Golden, CounterClockwiseEveryPointMatchesDoubleReference) {
+  expect_every_point_matches(true, hesai::Rotation::counterclockwise);
+}
 
 // Worked by hand. Packet 1, block 3 (the second firing of the dual-return packet), channel 10:
 // unit bytes 19 00 c1 00 -> 25 x 4 mm = 0.100 m, reflectivity 193; block azimuth b4 00 = 1.80 deg.
