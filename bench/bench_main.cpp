@@ -67,6 +67,7 @@ const Sensor& sensor(hesai::Model m) {
   static const Sensor p40p{hesai::Model::pandar40p, pcap_payloads("pandar40p_dual.pcap", kPacketsPerSensor)};
   static const Sensor p64{hesai::Model::pandar64, pcap_payloads("pandar64_dual.pcap", kPacketsPerSensor)};
   static const Sensor qt{hesai::Model::qt128c2x, pcap_payloads("qt128c2x_dual.pcap", kPacketsPerSensor)};
+  static const Sensor qt64{hesai::Model::pandar_qt64, pcap_payloads("pandar_qt64.pcap", kPacketsPerSensor)};
   // Pandar40 (1256 bytes): no bundled capture; the 40P packets' 1240 bytes of blocks + the
   // first 16 bytes of their tail.
   static const Sensor p40 = [] {
@@ -78,6 +79,7 @@ const Sensor& sensor(hesai::Model m) {
     case hesai::Model::pandar40: return p40;
     case hesai::Model::pandar40p: return p40p;
     case hesai::Model::pandar64: return p64;
+    case hesai::Model::pandar_qt64: return qt64;
     default: return qt;
   }
 }
@@ -374,7 +376,8 @@ struct NamedModel {
 constexpr NamedModel kSensors[] = {{"Pandar40", hesai::Model::pandar40},
                                    {"Pandar40P", hesai::Model::pandar40p},
                                    {"Pandar64", hesai::Model::pandar64},
-                                   {"QT128C2X", hesai::Model::qt128c2x}};
+                                   {"QT128C2X", hesai::Model::qt128c2x},
+                                   {"PandarQT64", hesai::Model::pandar_qt64}};
 
 void register_all() {
   for (const NamedModel& s : kSensors) {

@@ -35,7 +35,7 @@ def ns(b):
 
 
 def baseline_of(name, names):
-    m = re.match(r'BM_(Pandar40P|Pandar40|Pandar64|QT128C2X)_', name)
+    m = re.match(r'BM_(Pandar40P|Pandar40|Pandar64|QT128C2X|PandarQT64)_', name)
     if m:
         return 'BM_Baseline_copy_' + m.group(1)
     m = re.match(r'BM_CRC32_(\w+)/(\d+)$', name)
@@ -127,7 +127,7 @@ def main():
     # What the output alone costs: writing the same number of 40-byte Points, or of the smallest
     # possible x, y, z, time records (16 bytes), computing nothing; with validation beside it.
     floors = []
-    for sensor in ('Pandar40', 'Pandar40P', 'Pandar64', 'QT128C2X'):
+    for sensor in ('Pandar40', 'Pandar40P', 'Pandar64', 'QT128C2X', 'PandarQT64'):
         dec, val = get('BM_%s_decode' % sensor), get('BM_%s_validate' % sensor)
         wp, wx = get('BM_Baseline_write_points_%s' % sensor), get('BM_Baseline_write_xyzt_%s' % sensor)
         if dec and val and wp and wx:

@@ -43,8 +43,12 @@ Totals run(hesai::ByteView in) {
   using hesai_fuzz::check;
   Totals t;
   if (in.size == 0) return t;
-  hesai::Decoder decoders[] = {hesai::Decoder(hesai::Model::pandar40), hesai::Decoder(hesai::Model::pandar40p),
-                               hesai::Decoder(hesai::Model::pandar64), hesai::Decoder(hesai::Model::qt128c2x)};
+  // One decoder per model, indexed by Model - 1.
+  hesai::Decoder decoders[] = {hesai::Decoder(hesai::Model::pandar40),     hesai::Decoder(hesai::Model::pandar40p),
+                               hesai::Decoder(hesai::Model::pandar64),     hesai::Decoder(hesai::Model::qt128c2x),
+                               hesai::Decoder(hesai::Model::pandar_qt64),  hesai::Decoder(hesai::Model::pandar_xt16),
+                               hesai::Decoder(hesai::Model::pandar_xt32),  hesai::Decoder(hesai::Model::pandar_xt32m2x)};
+  static_assert(sizeof decoders / sizeof decoders[0] == hesai::kModelCount - 1, "a decoder for every model");
   static hesai::SequenceTracker tracker;
   tracker.reset();
   hesai::SafetyMonitor monitor;

@@ -13,6 +13,7 @@ inline hesai::ByteView seed_packet(hesai::Model model) {
   switch (model) {
     case hesai::Model::pandar64: return {kPandar64, sizeof kPandar64};
     case hesai::Model::qt128c2x: return {kQt128, sizeof kQt128};
+    case hesai::Model::pandar_qt64: return {kQt64, sizeof kQt64};
     default: return {kPandar40P, sizeof kPandar40P};
   }
 }

@@ -29,6 +29,7 @@ HEADERS = {  # public header (under core/include/hesai/) -> concern
     'calibration.h': 'calibration', 'decimal.h': 'calibration',
     'decoder.h': 'sensors', 'point.h': 'sensors', 'gps.h': 'sensors', 'pandar40_packet.h': 'sensors',
     'pandar64_packet.h': 'sensors', 'qt128_packet.h': 'sensors', 'tables/': 'sensors',
+    'qt64_packet.h': 'sensors',
     'frame.h': 'streams', 'sequence.h': 'streams', 'stats.h': 'streams', 'safety.h': 'streams',
     'rotation.h': 'streams',
     'hesai.h': 'capi',

@@ -255,6 +255,7 @@ inline std::vector<std::uint8_t> counterclockwise_copy(const std::vector<std::ui
   std::size_t first = 2, stride = 124, blocks = 10;
   if (model == hesai::Model::pandar64) { first = 8; stride = 194; blocks = 6; }
   if (model == hesai::Model::qt128c2x) { first = 12; stride = 514; blocks = 2; }
+  if (model == hesai::Model::pandar_qt64) { first = 12; stride = 258; blocks = 4; }  // protocol 3.1: no CRC
   for (std::size_t b = 0; b < blocks; ++b) {
     const std::uint16_t a = hesai::load_le16(&p[first + b * stride]);
     hesai::store_le16(&p[first + b * stride], static_cast<std::uint16_t>((36000 - a) % 36000));

@@ -391,7 +391,8 @@ TEST_P(CliCapture, PerFrameCsvEqualsDecoderApi) {
 INSTANTIATE_TEST_SUITE_P(Bundled, CliCapture,
                          ::testing::Values(CaptureCase{"pandar40p_dual.pcap", Model::pandar40p, 1439, 434934},
                                            CaptureCase{"pandar64_dual.pcap", Model::pandar64, 2400, 716622},
-                                           CaptureCase{"qt128c2x_dual.pcap", Model::qt128c2x, 1800, 337108}),
+                                           CaptureCase{"qt128c2x_dual.pcap", Model::qt128c2x, 1800, 337108},
+                                           CaptureCase{"pandar_qt64.pcap", Model::pandar_qt64, 1200, 299376}),
                          [](const auto& i) { return std::string(model_name(i.param.model)); });
 
 // A counter-clockwise unit: the QT128 capture mirrored (every block azimuth a -> 36000 - a).

@@ -22,7 +22,8 @@ struct Capture {
 };
 const Capture kCaptures[] = {{"pandar40p_dual.pcap", Model::pandar40p},
                              {"pandar64_dual.pcap", Model::pandar64},
-                             {"qt128c2x_dual.pcap", Model::qt128c2x}};
+                             {"qt128c2x_dual.pcap", Model::qt128c2x},
+                             {"pandar_qt64.pcap", Model::pandar_qt64}};
 
 // Columns sized for the largest packet, with their count.
 struct Columns {

@@ -463,9 +463,12 @@ TEST(Identify, ByLengthMagicAndHeader) {
   EXPECT_EQ(identify(view(gps), m, k), Error::ok);
   EXPECT_EQ(k, PacketKind::gps);
 
-  // Another protocol version (QT128 3.1, or a 4.x sensor) is unsupported, never guessed.
-  q[3] = 0x01;
+  // Another protocol version (3.3, or a 4.x sensor) is unsupported, never guessed.
+  q[3] = 0x03;
   EXPECT_EQ(identify(view(q), m, k), Error::unsupported_version);
+  // Protocol 3.1 is the PandarQT64's: 128 lasers and 2 blocks are not.
+  q[3] = 0x01;
+  EXPECT_EQ(identify(view(q), m, k), Error::unsupported_model);
   q[3] = 0x02;
   q[6] = 0x40;  // 64 lasers in a 3.2 header: another model
   EXPECT_EQ(identify(view(q), m, k), Error::unsupported_model);

@@ -34,6 +34,7 @@ void decode_all_without_allocating(const char* capture, Model model) {
 TEST(ZeroAllocation, DecodePandar40P) { decode_all_without_allocating("pandar40p_dual.pcap", Model::pandar40p); }
 TEST(ZeroAllocation, DecodePandar64) { decode_all_without_allocating("pandar64_dual.pcap", Model::pandar64); }
 TEST(ZeroAllocation, DecodeQt128) { decode_all_without_allocating("qt128c2x_dual.pcap", Model::qt128c2x); }
+TEST(ZeroAllocation, DecodePandarQt64) { decode_all_without_allocating("pandar_qt64.pcap", Model::pandar_qt64); }
 
 TEST(ZeroAllocation, SignedQt128WithKey) {
   // The capture's packets carry a signature section left all-zero (signing not started): every

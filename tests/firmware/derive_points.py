@@ -2,7 +2,8 @@
 """Derives, from the manuals alone, the points the firmware image checks (tests/firmware/main.cpp).
 
 Every input below is read off a packet's bytes (data/*.pcap, packet index 7, the packet that
-fuzz/seed_packets.inc holds) or off a manual's table, named by model, section and table.
+fuzz/seed_packets.inc holds) or off a manual's table, named by model, section and table (for the
+PandarQT64, which has no manual here, off the vendor SDK's files, named by path).
 Formulas (README, "How a point is computed"): r = raw x unit; a = block azimuth + channel azimuth
 offset + firing time x spin rate; x = r cos(e) sin(a), y = r cos(e) cos(a), z = r sin(e);
 time = t0 + block time + the channel's firing time. Run it to print the expected values.
@@ -69,6 +70,19 @@ pts['pandar64 ch5'] = point(537, 4, 4.92, -1.042, 3.040, -17.964, 599, P64_T0, P
 QT_T0 = t0(2020, 10, 9, 12, 3, 29, 403796)
 pts['qt128 ch35'] = point(87, 4, 13.60, -6.157, -16.627, 2.312, 600, QT_T0, 9.0)
 pts['qt128 ch38'] = point(82, 4, 13.60, -6.080, -14.102, 5.48, 600, QT_T0, 9.0)
+# PandarQT64 (point cloud protocol 3.1; HesaiLidar_SDK_2.0 libhesai/UdpProtocol/udp_protocol_v3_1.h):
+# header dis unit 4 mm; tail rpm 0x0258 = 600, return mode 0x3B (dual: first + last), date
+# 117-09-06 14:31:22 (year byte + 1900), timestamp 0x000C84C5 = 820421 us.
+# Block 3 azimuth 0x03FC = 1020 -> 10.20 deg; it is the second firing of the dual-return packet,
+# which starts at t0 + 25.71 + 166.67 us (udp_protocol_v3_1.h, PandarQT_BLOCK_NS_OFFSET1 + OFFSET2[1]).
+# Channel 10: bytes 1B 00 CA 00 -> raw 27, reflectivity 202; elevation -34.320, azimuth 6.554
+#   (correction/angle_correction/PandarQT_Angle Correction File.csv); firing time 21.22 us
+#   (correction/firetime_correction/PandarQT_Firetime Correction File.csv).
+# Channel 54: bytes DE 04 1E 00 -> raw 1246, reflectivity 30; elevation 32.627, azimuth -5.740;
+#   firing time 115.49 us (the same files).
+QT64_T0 = t0(2017, 9, 6, 14, 31, 22, 820421)
+pts['qt64 ch10'] = point(27, 4, 10.20, 6.554, -34.320, 21.22, 600, QT64_T0, 25.71 + 166.67)
+pts['qt64 ch54'] = point(1246, 4, 10.20, -5.740, 32.627, 115.49, 600, QT64_T0, 25.71 + 166.67)
 
 for name, (x, y, z, a, t) in pts.items():
     print('%-14s x %.4f y %.4f z %.4f azimuth %.4f time_ns %d' % (name, x, y, z, a, t))

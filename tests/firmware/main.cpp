@@ -148,6 +148,8 @@ struct Expected {
 };
 
 hesai::PacketPoints points;
+// Four decoders fit the 64 KiB RAM region beside the stack: the Pandar40's is rebuilt as the
+// PandarQT64's once the Pandar40 packet is checked (real_packets()).
 hesai::Decoder decoders[] = {hesai::Decoder(Model::pandar40), hesai::Decoder(Model::pandar40p),
                              hesai::Decoder(Model::pandar64), hesai::Decoder(Model::qt128c2x)};
 // The packet copied to an offset 0..3 from a 4-byte boundary.
@@ -222,6 +224,9 @@ void real_packets() {
                                  {0, 5, 8, 0.1427f, 2.1402f, 0.1139f, 3.8134f, 1593086529978336336}};
   static const Expected qt[] = {{0, 35, 1, 0.0432f, 0.3306f, -0.0996f, 7.4513f, 1602245009403807312},
                                 {0, 38, 15, 0.0417f, 0.3154f, -0.0799f, 7.5397f, 1602245009403810480}};
+  // PandarQT64 (no manual here: the vendor SDK's layout and files, named in derive_points.py).
+  static const Expected qt64[] = {{2, 10, 202, 0.0258f, 0.0854f, -0.0609f, 16.8304f, 1504708282820634600},
+                                  {2, 54, 30, 0.3568f, 4.1823f, 2.6872f, 4.8758f, 1504708282820728870}};
 
   // The Pandar40: the real Pandar40P packet's blocks with the Pandar40's 16-byte tail (its first
   // 1256 bytes); no Pandar40 capture is at hand.
@@ -232,6 +237,10 @@ void real_packets() {
   check_packet("Pandar64", decoders[2], b64, nonzero_distances(b64, 8 + 2, 194, 6, 64, 3, 1), p64, 2);
   // QT128: distance 1 is a marker, not a point.
   check_packet("QT128C2X", decoders[3], bqt, nonzero_distances(bqt, 12 + 2, 514, 2, 128, 4, 2), qt, 2);
+  const ByteView bqt64{kQt64, sizeof kQt64};
+  decoders[0].~Decoder();
+  ::new (&decoders[0]) hesai::Decoder(Model::pandar_qt64);
+  check_packet("PandarQT64", decoders[0], bqt64, nonzero_distances(bqt64, 12 + 2, 258, 4, 64, 4, 1), qt64, 2);
 
   // Integrity on the target: a flipped body byte fails CRC1; a session key with an unsigned packet
   // fails as signature_missing (without signature support: no key, a signed packet is unverified).
@@ -367,6 +376,7 @@ void stack_use() {
   report_stack("Decoder::decode Pandar40P", stack_used([] { measured = decoders[1].decode({kPandar40P, sizeof kPandar40P}, info, points); }));
   report_stack("Decoder::decode Pandar64", stack_used([] { measured = decoders[2].decode({kPandar64, sizeof kPandar64}, info, points); }));
   report_stack("Decoder::decode QT128C2X", stack_used([&] { measured = decoders[3].decode(bqt, info, points); }));
+  report_stack("Decoder::decode PandarQT64", stack_used([] { measured = decoders[0].decode({kQt64, sizeof kQt64}, info, points); }));
   report_stack("Decoder::validate QT128C2X", stack_used([&] { measured = decoders[3].validate(bqt, info); }));
   report_stack("crc32_mpeg2 (1095 B)", stack_used([] { (void)crc32_mpeg2({data, sizeof data}); }));
 #if HESAI_SIGNATURE

@@ -5,7 +5,7 @@ Sizes: arm-none-eabi-size of each core object (every function it has), and what 
 image's linker map says each object contributes after --gc-sections (what a product linking the
 same functions pays). Stack: the worst path from each entry point through the call graph that GCC
 writes with -fcallgraph-info=su (each function's own frame, from -fstack-usage, summed along the
-deepest chain of calls). Budgets: the four decoders with CRC and HMAC (with the C library and
+deepest chain of calls). Budgets: every decoder with CRC and HMAC (with the C library and
 libgcc routines they pull in) within 48 KiB of flash; at most 1 KiB of stack per call. With
 --minimal-map, the same image built with the smallest configuration (HESAI_CRC_SLICING 1,
 HESAI_SIGNATURE 0) gets a column too, and must link no crypto/ member (the decoder without
@@ -62,7 +62,7 @@ DOUBLE_ROUTINE = re.compile(r'^(__aeabi_d\w+|__aeabi_\w+2d|__\w+df\d?)$')
 # object the build produces must belong to exactly one row, in its own folder (checked below), so a
 # new source file cannot drop out of the report.
 COMPONENTS = [
-    ('sensors/: identify, validate, decode (all four sensors)', 'sensors',
+    ('sensors/: identify, validate, decode (every sensor)', 'sensors',
      ['decoder', 'pandar40', 'pandar64', 'qt128', 'qt64', 'xt', 'tables', 'columns_x86', 'columns_neon']),
     ('base/: error names', 'base', ['error']),
     ('crc/: CRC-32/MPEG-2', 'crc', ['crc32', 'crc32_arm', 'crc32_x86']),
@@ -74,7 +74,7 @@ COMPONENTS = [
      ['frame', 'rotation', 'sequence', 'safety', 'stats']),
     ('capi/: the C interface (hesai.h)', 'capi', ['hesai_c']),
 ]
-IN_BUDGET = {'sensors/: identify, validate, decode (all four sensors)', 'base/: error names', 'crc/: CRC-32/MPEG-2',
+IN_BUDGET = {'sensors/: identify, validate, decode (every sensor)', 'base/: error names', 'crc/: CRC-32/MPEG-2',
              'crypto/: SHA-256 + HMAC-SHA256'}
 
 
@@ -331,12 +331,12 @@ def main():
     runtime = flash(linked, ['libgcc', 'picolibc'])
     lines.append('| libgcc + picolibc routines the image uses (soft-float double, memcpy, ...) | | | %d | |' % runtime
                  + (' %d |' % flash(minimal, ['libgcc', 'picolibc']) if minimal else ''))
-    lines.append('| the test image itself (known answers, four real packets, startup) | | | %d | %d |'
+    lines.append('| the test image itself (known answers, one real packet per sensor, startup) | | | %d | %d |'
                  % (linked.get('test image', [0, 0])[0], linked.get('test image', [0, 0])[1])
                  + (' %d |' % flash(minimal, ['test image']) if minimal else ''))
     budget_flash += runtime
     verdict = 'within' if budget_flash <= FLASH_BUDGET else 'OVER'
-    lines += ['', 'Four decoders + CRC + SHA-256/HMAC + the libgcc/picolibc routines linked: **%d bytes (%.1f KiB), %s the 48 KiB budget**.'
+    lines += ['', 'Every decoder + CRC + SHA-256/HMAC + the libgcc/picolibc routines linked: **%d bytes (%.1f KiB), %s the 48 KiB budget**.'
               % (budget_flash, budget_flash / 1024.0, verdict)]
     if minimal:
         minimal_flash += flash(minimal, ['libgcc', 'picolibc'])

@@ -12,6 +12,9 @@ headers (the IPv4 header length read from the packet), then the point-cloud layo
   QT128C2X (QT128C2X manual, Section 3.1.2 UDP Data): 12-byte header, 2 blocks of 514 bytes, each
     azimuth u16, 128 x {distance u16, reflectivity u8, reserved u8}; the payload length follows
     the header's flags (bit 0 UDP sequence +4, bit 2 functional safety +17, bit 3 signature +32).
+  PandarQT64 (point cloud protocol 3.1; no manual here: the vendor SDK's udp_protocol_v3_1.h):
+    12-byte header, 4 blocks of 258 bytes, each azimuth u16, 64 x {distance u16, reflectivity u8,
+    confidence u8}; payload 1072 (1068 without the UDP sequence).
 A point is a distance that is not 0 (no return); for the QT128 not 1 either (the Chinese QT128C2X
 manual, Section 3.1.2, notes on the Distance field: 1 is a reserved marker, not a measurement).
 
@@ -61,7 +64,11 @@ MODELS = {
     "pandar40p": ((1262, 1266), 0, 10, 124, 4, 40, 3, 1),
     "pandar64": ((1194, 1198), 8, 6, 194, 2, 64, 3, 1),
     "qt128c2x": (None, 12, 2, 514, 2, 128, 4, 2),
+    "pandar_qt64": ((1068, 1072), 12, 4, 258, 2, 64, 4, 1),
 }
+# The bundled capture of each model.
+CAPTURES = {"pandar40p": "pandar40p_dual.pcap", "pandar64": "pandar64_dual.pcap", "qt128c2x": "qt128c2x_dual.pcap",
+            "pandar_qt64": "pandar_qt64.pcap"}
 
 
 def count(path, model):
@@ -84,27 +91,31 @@ def main():
     here = os.path.dirname(os.path.abspath(__file__))
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--data", default=os.path.join(here, "..", "..", "data"), help="folder of the captures")
-    ap.add_argument("--check", metavar="FILE", help="test_golden.cpp whose totals must match")
+    ap.add_argument("--check", metavar="FILE", action="append",
+                    help="a test file whose totals must match (test_golden.cpp, test_qt64.cpp); repeatable")
     args = ap.parse_args()
 
     counted = {}
     for model in MODELS:
-        name = f"{model}_dual.pcap"
+        name = CAPTURES[model]
         counted[name] = count(os.path.join(args.data, name), model)
         packets, points, markers = counted[name]
         print(f"{name}: {packets} packets, {points} points ({markers} distance-1 markers)")
     if not args.check:
         return 0
 
-    with open(args.check, encoding="utf-8") as f:
-        claimed = {m[0]: (int(m[1]), int(m[2])) for m in re.findall(r'\{"(\w+\.pcap)",\s*(\d+),\s*(\d+),', f.read())}
+    claimed = {}
+    for path in args.check:
+        with open(path, encoding="utf-8") as f:
+            claimed.update({m[0]: (int(m[1]), int(m[2]))
+                            for m in re.findall(r'\{"(\w+\.pcap)",\s*(\d+),\s*(\d+)[,}]', f.read())})
     ok = True
     for name, (packets, points, _) in counted.items():
         if claimed.get(name) != (packets, points):
-            print(f"MISMATCH {name}: {args.check} says {claimed.get(name)}, counted ({packets}, {points})")
+            print(f"MISMATCH {name}: {', '.join(args.check)} say {claimed.get(name)}, counted ({packets}, {points})")
             ok = False
     if ok:
-        print(f"all totals in {os.path.basename(args.check)} match")
+        print(f"all totals in {', '.join(os.path.basename(c) for c in args.check)} match")
     return 0 if ok else 1
 
 

@@ -149,7 +149,7 @@ struct PacketInfo {
   std::uint32_t timestamp_us = 0; ///< the tail's timestamp field as sent
   bool has_sequence = false;
   std::uint32_t sequence = 0;     ///< UDP sequence when present
-  std::uint8_t high_temperature = 0;  ///< Pandar40/40P/64 shutdown flag
+  std::uint8_t high_temperature = 0;  ///< Pandar40/40P/64 shutdown flag; PandarQT64: the tail's shutdown bit
   std::uint8_t factory_info = 0;
   std::uint8_t flags = 0;         ///< QT128 header flags
   std::uint8_t mode_flag = 0;     ///< QT128 tail mode flag (bit 0: block 1 uses firing sequence 1)

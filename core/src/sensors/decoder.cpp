@@ -13,6 +13,7 @@
 #include "hesai/tables/pandar40_tables.h"
 #include "hesai/tables/pandar64_tables.h"
 #include "hesai/tables/qt128_tables.h"
+#include "hesai/tables/qt64_tables.h"
 #include "../base/compiler.h"
 #include "block_points.h"
 #include "columns_simd.h"
@@ -88,7 +89,12 @@ Decoder::Decoder(Model model) noexcept : model_(model) {
         set_channel_firetime(i, tables::qt128_firetime_us_loop1[i], tables::qt128_firetime_us_loop2[i]);
       }
       break;
-    case Model::pandar_qt64: break;     // TODO(#15): design angles and firing times
+    case Model::pandar_qt64:
+      for (std::size_t i = 0; i < tables::qt64_channel_count; ++i) {
+        set_channel_angle(i, tables::qt64_elevation_deg[i], tables::qt64_azimuth_deg[i]);
+        set_channel_firetime(i, tables::qt64_firetime_us[i], tables::qt64_firetime_us[i]);
+      }
+      break;
     case Model::pandar_xt16:
     case Model::pandar_xt32:
     case Model::pandar_xt32m2x: break;  // TODO(#15): design angles and firing times

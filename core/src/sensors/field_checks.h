@@ -17,6 +17,26 @@ namespace hesai::detail {
   return Error::ok;
 }
 
+/// The return modes of the QT128C2X manual (Section 3.1.2, Tail) and of the PandarQT64 (nebula's
+/// hesai_packet.hpp get_n_returns, the modes one or two returns a firing): 0x33 first, 0x34
+/// second, 0x37 strongest, 0x38 last give one return a firing; 0x39 last + strongest, 0x3A first
+/// + second, 0x3B first + last, 0x3C first + strongest, 0x3E strongest + second strongest give
+/// two, in adjacent blocks. False for any other byte.
+[[nodiscard]] inline bool returns_of_mode(std::uint8_t byte, std::uint8_t& returns) {
+  switch (static_cast<ReturnMode>(byte)) {
+    case ReturnMode::first:
+    case ReturnMode::second:
+    case ReturnMode::strongest:
+    case ReturnMode::last: returns = 1; return true;
+    case ReturnMode::last_strongest:
+    case ReturnMode::first_second:
+    case ReturnMode::first_last:
+    case ReturnMode::first_strongest:
+    case ReturnMode::strongest_second_strongest: returns = 2; return true;
+  }
+  return false;
+}
+
 /// The manuals' spin rates are 600 and 1200 rpm; 1500 leaves room for a motor settling. Beyond
 /// it the field is corrupt (and the firing-time correction, a short series, would lose accuracy).
 inline constexpr std::uint16_t kMaxMotorRpm = 1500;
@@ -48,6 +68,13 @@ inline DateTime tail_date_time(std::int32_t year, const std::uint8_t* dt) {
 /// says; 70..255 are years since 1900, as the bundled Pandar64 unit sends them (120 = 2020).
 constexpr std::int32_t pandar_year(std::uint8_t byte) { return byte < 70 ? 2000 + byte : 1900 + byte; }
 static_assert(pandar_year(17) == 2017 && pandar_year(69) == 2069 && pandar_year(70) == 1970 && pandar_year(120) == 2020);
+
+/// A 6-byte date-time as the vendor SDK reads it for protocols 3.1 and 3.2 (GetMicroLidarTimeU64 in
+/// udp_protocol_v3_1.h, udp_protocol_v3_2.h): a year byte of 0 means Unix seconds, u32 big-endian,
+/// in bytes 2..5 (byte 1 is not read); otherwise the calendar fields with the year `year_of(byte)`.
+inline DateTime sdk_date_time(const std::uint8_t* dt, std::int32_t (*year_of)(std::uint8_t)) {
+  return dt[0] == 0 ? date_time_from_unix(load_be32(dt + 2)) : tail_date_time(year_of(dt[0]), dt);
+}
 
 /// t0 = the tail's date-time (whole seconds, UTC) + its microseconds (at most max_us).
 [[nodiscard]] inline Error tail_time(const DateTime& date_time, std::uint32_t max_us, PacketInfo& info) {

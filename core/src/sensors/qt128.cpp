@@ -19,21 +19,6 @@ namespace {
 constexpr auto kBlockNs = detail::block_ns(tables::qt128_block_start_us_single, tables::qt128_block_start_us_dual);
 static_assert(kBlockNs[0][1] == 120110 && kBlockNs[1][1] == 9000);
 
-bool qt128_return_mode(std::uint8_t byte, std::uint8_t& returns) {
-  switch (static_cast<ReturnMode>(byte)) {
-    case ReturnMode::first:
-    case ReturnMode::second:
-    case ReturnMode::strongest:
-    case ReturnMode::last: returns = 1; return true;
-    case ReturnMode::last_strongest:
-    case ReturnMode::first_second:
-    case ReturnMode::first_last:
-    case ReturnMode::first_strongest:
-    case ReturnMode::strongest_second_strongest: returns = 2; return true;
-  }
-  return false;
-}
-
 // The three CRCs of a packet, in the order validation checks them (manual 3.1.2): CRC1 over
 // the body (both blocks), CRC2 over the functional-safety section after its version byte, CRC3
 // over the tail before it; with the code a mismatch gives.
@@ -59,6 +44,8 @@ bool all_zero(const std::uint8_t* p, std::size_t n) {
   for (std::size_t i = 0; i < n; ++i) acc = static_cast<std::uint8_t>(acc | p[i]);
   return acc == 0;
 }
+
+constexpr std::int32_t qt128_year(std::uint8_t byte) { return 1900 + byte; }
 
 }  // namespace
 
@@ -167,16 +154,14 @@ Error Decoder::validate_qt128(ByteView p, PacketInfo& info) noexcept {
     info.has_sequence = true;
     info.sequence = load_le32(tail + kTailSequence);
   }
-  if (!qt128_return_mode(info.return_mode, info.returns) || info.returns != return_num) return Error::bad_return_mode;
+  if (!detail::returns_of_mode(info.return_mode, info.returns) || info.returns != return_num) return Error::bad_return_mode;
   if (const Error e = detail::motor_speed(info); e != Error::ok) return e;
 
   if (const Error e = detail::block_azimuths(p.data + kBody, layout.block, info); e != Error::ok) return e;
   // Date & Time: year - 1900 (>= 70), or with a year byte of 0 Unix seconds, big-endian, in bytes
   // 2..5 (the vendor SDK's reading; byte 1 is not read); Timestamp: us, 0..1000000 (the manual's range).
   const std::uint8_t* dt = tail + kTailDateTime;
-  const DateTime t = dt[0] == 0 ? date_time_from_unix(load_be32(dt + kDateTimeUnixSeconds))
-                                : detail::tail_date_time(1900 + dt[0], dt);
-  return detail::tail_time(t, 1000000, info);
+  return detail::tail_time(detail::sdk_date_time(dt, qt128_year), 1000000, info);
 }
 
 void Decoder::decode_qt128(const std::uint8_t* p, const PacketInfo& info, Output& out) const noexcept {

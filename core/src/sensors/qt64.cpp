@@ -1,15 +1,80 @@
-// PandarQT64 (point cloud protocol 3.1): identification, validation and the walk over its blocks.
-// TODO(#15): not implemented yet; every 3.1 packet is unsupported_version, as before.
+// PandarQT64, point cloud protocol 3.1: identification (version, laser and block numbers, and the
+// length the flags imply), validation of every field with a published rule, and the walk over its
+// four blocks. Layout: hesai/qt64_packet.h; tables: hesai/tables/qt64_tables.h. Sources: the
+// vendor SDK (HesaiLidar_SDK_2.0 ea7f86f: udp_protocol_v3_1.h, udp3_1_parser.cc), tier4/nebula
+// (606ac41f: pandar_qt64.hpp, hesai_packet.hpp), and the bundled capture data/pandar_qt64.pcap.
 #include "hesai/decoder.h"
+#include "hesai/qt64_packet.h"
+#include "hesai/tables/qt64_tables.h"
 #include "block_points.h"
+#include "field_checks.h"
 #include "sensor_rules.h"
 
 namespace hesai {
 
-Error detail::identify_qt64(ByteView, Model&) noexcept { return Error::unsupported_version; }
+namespace {
+constexpr auto kBlockNs = detail::block_ns(tables::qt64_block_start_us_single, tables::qt64_block_start_us_dual);
+// SDK: 25 710 + {0, 166 670, 333 330, 500 000} ns by firing; dual return, two blocks a firing.
+static_assert(kBlockNs[0][1] == 192380 && kBlockNs[0][3] == 525710 && kBlockNs[1][1] == 25710 &&
+              kBlockNs[1][3] == 192380);
+}  // namespace
 
-Error Decoder::validate_qt64(ByteView, PacketInfo&) noexcept { return Error::unsupported_version; }
+Error detail::identify_qt64(ByteView p, Model& model) noexcept {
+  using namespace qt64;
+  // identify() has checked EE FF and version 3.1 (bytes 2, 3).
+  if (p.size < kHeaderEnd) return Error::bad_length;
+  if (p[kLaserNum] != kChannels || p[kBlockNum] != kBlocks) return Error::unsupported_model;
+  // SDK GetPacketSize: header + 4 blocks + tail, the u32 UDP sequence only with flags bit 0.
+  if (p.size != ((p[kFlags] & kFlagSequence) ? kSequencePacketBytes : kPacketBytes)) return Error::flags_length_mismatch;
+  model = Model::pandar_qt64;
+  return Error::ok;
+}
 
-void Decoder::decode_qt64(const std::uint8_t*, const PacketInfo&, Output&) const noexcept {}
+Error Decoder::validate_qt64(ByteView p, PacketInfo& info) noexcept {
+  using namespace qt64;
+  info.blocks = kBlocks;
+  info.flags = p[kFlags];
+  // The SDK names flags bit 1 "IMU" but gives no layout for it (GetPacketSize adds no bytes).
+  if (info.flags & kFlagImu) return Error::unsupported_section;
+  // Distance unit, mm (SDK GetDistUnit: byte / 1000 m; nebula get_dis_unit). The header's return
+  // num (SDK "echo num") is not checked: the tail's return mode gives the returns per firing, as
+  // the XT32M2X capture (6.1, same header) shows with return num 3 and a dual tail.
+  info.dis_unit_mm = p[kDisUnit];
+  if (info.dis_unit_mm == 0) return Error::bad_header;
+
+  const std::uint8_t* tail = p.data + kTail;
+  info.high_temperature = static_cast<std::uint8_t>(tail[kTailShutdown] & 1);  // SDK HasShutdown(): bit 0
+  info.motor_rpm = load_le16(tail + kTailMotorSpeed);
+  info.timestamp_us = load_le32(tail + kTailTimestamp);
+  info.return_mode = tail[kTailReturnMode];
+  info.factory_info = tail[kTailFactoryInfo];
+  if (info.flags & kFlagSequence) {
+    info.has_sequence = true;
+    info.sequence = load_le32(tail + kTailSequence);
+  }
+
+  // Return mode: the modes nebula decodes for the QT64 (get_n_returns; its triple mode 0x3D
+  // cannot fill 4 blocks). The SDK's tail names only 0x37, 0x38, 0x39, but the capture sends 0x3B
+  // (first + last: block 1 of each pair is never farther than block 2 on any of its points).
+  if (!detail::returns_of_mode(info.return_mode, info.returns)) return Error::bad_return_mode;
+  if (const Error e = detail::motor_speed(info); e != Error::ok) return e;
+  // Block azimuths, 0.01 degree, below 36000; the two blocks of a dual firing at one azimuth
+  // (the capture: 120, 120, 180, 180 in its first packet).
+  if (const Error e = detail::block_azimuths(p.data + kBody, kBlockBytes, info); e != Error::ok) return e;
+  // Date & Time by the SDK's GetMicroLidarTimeU64 (year byte + 1900, + 100 below 70 as in
+  // pandar_year; 0: Unix seconds); Timestamp: us within the second, which the SDK adds to the
+  // whole seconds: 0..999999.
+  return detail::tail_time(detail::sdk_date_time(tail + kTailDateTime, detail::pandar_year), 999999, info);
+}
+
+void Decoder::decode_qt64(const std::uint8_t* p, const PacketInfo& info, Output& out) const noexcept {
+  using namespace qt64;
+  // One firing sequence (the vendor's firetime file has one column); in dual return the two
+  // blocks of a firing share its start time (tables/qt64_tables.h).
+  const std::size_t dual = info.returns == 2 ? 1 : 0;
+  for (std::size_t b = 0; b < kBlocks; ++b)
+    emit_block<kUnitBytes>(p + kBody + b * kBlockBytes + kBlockPoints, kChannels, nullptr, info, b,
+                           kBlockNs[dual][b], 0, out);
+}
 
 }  // namespace hesai

@@ -4,4 +4,5 @@
 #include "hesai/tables/pandar40_tables.h"
 #include "hesai/tables/pandar64_tables.h"
 #include "hesai/tables/qt128_tables.h"
+#include "hesai/tables/qt64_tables.h"
 #include "hesai/tables/table_types.h"
