@@ -25,15 +25,14 @@ inline constexpr std::uint16_t kMaxMotorRpm = 1500;
 }
 
 /// Reads the block azimuths (u16 LE at `first`, then every `stride` bytes): each below 360.00
-/// degrees, and the two blocks of a dual-return firing at one azimuth.
+/// degrees, and the blocks of one firing (two in dual return, three in triple) at one azimuth.
 [[nodiscard]] inline Error block_azimuths(const std::uint8_t* first, std::size_t stride, PacketInfo& info) {
   for (std::size_t b = 0; b < info.blocks; ++b) {
     info.block_azimuth[b] = load_le16(first + b * stride);
     if (info.block_azimuth[b] >= 36000) return Error::bad_azimuth;
   }
-  if (info.returns == 2)
-    for (std::size_t b = 0; b + 1 < info.blocks; b += 2)
-      if (info.block_azimuth[b] != info.block_azimuth[b + 1]) return Error::dual_block_mismatch;
+  for (std::size_t b = 1; b < info.blocks; ++b)
+    if (b % info.returns != 0 && info.block_azimuth[b] != info.block_azimuth[b - 1]) return Error::dual_block_mismatch;
   return Error::ok;
 }
 

@@ -30,6 +30,7 @@ bool qt128_return_mode(std::uint8_t byte, std::uint8_t& returns) {
     case ReturnMode::first_last:
     case ReturnMode::first_strongest:
     case ReturnMode::strongest_second_strongest: returns = 2; return true;
+    case ReturnMode::first_last_strongest: break;  // PandarXT32M2X only
   }
   return false;
 }

@@ -5,3 +5,4 @@
 #include "hesai/tables/pandar64_tables.h"
 #include "hesai/tables/qt128_tables.h"
 #include "hesai/tables/table_types.h"
+#include "hesai/tables/xt_tables.h"
