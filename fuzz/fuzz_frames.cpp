@@ -44,7 +44,10 @@ Totals run(hesai::ByteView in) {
   Totals t;
   if (in.size == 0) return t;
   hesai::Decoder decoders[] = {hesai::Decoder(hesai::Model::pandar40), hesai::Decoder(hesai::Model::pandar40p),
-                               hesai::Decoder(hesai::Model::pandar64), hesai::Decoder(hesai::Model::qt128c2x)};
+                               hesai::Decoder(hesai::Model::pandar64), hesai::Decoder(hesai::Model::qt128c2x),
+                               hesai::Decoder(hesai::Model::pandar_qt64), hesai::Decoder(hesai::Model::pandar_xt16),
+                               hesai::Decoder(hesai::Model::pandar_xt32), hesai::Decoder(hesai::Model::pandar_xt32m2x)};
+  static_assert(sizeof decoders / sizeof decoders[0] == hesai::kModelCount - 1, "one decoder per model, in Model order");
   static hesai::SequenceTracker tracker;
   tracker.reset();
   hesai::SafetyMonitor monitor;
