@@ -42,7 +42,6 @@ inline constexpr std::size_t kTailMotorSpeed = 11;
 /// Year - 1900 (SDK: + 100 more when below 70), month, day, hour, minute, second; a year byte of
 /// 0 means Unix seconds, u32 big-endian, in bytes 2..5 (SDK GetMicroLidarTimeU64).
 inline constexpr std::size_t kTailDateTime = 13;
-inline constexpr std::size_t kDateTimeUnixSeconds = 2;  ///< within the date-time, when its year byte is 0
 inline constexpr std::size_t kTailTimestamp = 19;
 inline constexpr std::size_t kTailFactoryInfo = 23;
 inline constexpr std::size_t kTailSequence = 24;

@@ -57,4 +57,28 @@ static_assert(pandar_year(17) == 2017 && pandar_year(69) == 2069 && pandar_year(
   return Error::ok;
 }
 
+/// The tail fields the EE FF protocols with a 6-byte date-time share (QT128 3.2, PandarXT 6.1), at
+/// their offsets from the tail's start: return mode, motor speed (u16 rpm), timestamp (u32 us),
+/// factory info, and the u32 UDP sequence when `has_sequence`.
+struct TailFields {
+  std::size_t return_mode, motor_speed, timestamp, factory_info, sequence;
+};
+inline void read_tail(const std::uint8_t* tail, const TailFields& at, bool has_sequence, PacketInfo& info) {
+  info.return_mode = tail[at.return_mode];
+  info.motor_rpm = load_le16(tail + at.motor_speed);
+  info.timestamp_us = load_le32(tail + at.timestamp);
+  info.factory_info = tail[at.factory_info];
+  if (has_sequence) {
+    info.has_sequence = true;
+    info.sequence = load_le32(tail + at.sequence);
+  }
+}
+
+/// A 6-byte date-time whose year byte 0 means Unix seconds, big-endian, in bytes 2..5 (the vendor
+/// SDK's GetMicroLidarTimeU64, QT128 3.2 and PandarXT 6.1; byte 1 is not read); otherwise the
+/// calendar form with `year` decoded by the caller from byte 0.
+inline DateTime calendar_or_unix(const std::uint8_t* dt, std::int32_t year) {
+  return dt[0] == 0 ? date_time_from_unix(load_be32(dt + 2)) : tail_date_time(year, dt);
+}
+
 }  // namespace hesai::detail

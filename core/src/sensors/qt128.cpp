@@ -160,14 +160,8 @@ Error Decoder::validate_qt128(ByteView p, PacketInfo& info) noexcept {
   }
   const std::uint8_t* tail = p.data + layout.tail;
   info.mode_flag = tail[kTailModeFlag];
-  info.return_mode = tail[kTailReturnMode];
-  info.motor_rpm = load_le16(tail + kTailMotorSpeed);
-  info.timestamp_us = load_le32(tail + kTailTimestamp);
-  info.factory_info = tail[kTailFactoryInfo];
-  if (info.flags & kFlagSequence) {
-    info.has_sequence = true;
-    info.sequence = load_le32(tail + kTailSequence);
-  }
+  detail::read_tail(tail, {kTailReturnMode, kTailMotorSpeed, kTailTimestamp, kTailFactoryInfo, kTailSequence},
+                    (info.flags & kFlagSequence) != 0, info);
   if (!qt128_return_mode(info.return_mode, info.returns) || info.returns != return_num) return Error::bad_return_mode;
   if (const Error e = detail::motor_speed(info); e != Error::ok) return e;
 
@@ -175,8 +169,7 @@ Error Decoder::validate_qt128(ByteView p, PacketInfo& info) noexcept {
   // Date & Time: year - 1900 (>= 70), or with a year byte of 0 Unix seconds, big-endian, in bytes
   // 2..5 (the vendor SDK's reading; byte 1 is not read); Timestamp: us, 0..1000000 (the manual's range).
   const std::uint8_t* dt = tail + kTailDateTime;
-  const DateTime t = dt[0] == 0 ? date_time_from_unix(load_be32(dt + kDateTimeUnixSeconds))
-                                : detail::tail_date_time(1900 + dt[0], dt);
+  const DateTime t = detail::calendar_or_unix(dt, 1900 + dt[0]);
   return detail::tail_time(t, 1000000, info);
 }
 

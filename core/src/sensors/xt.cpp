@@ -73,14 +73,8 @@ Error Decoder::validate_xt(ByteView p, PacketInfo& info) noexcept {
 
   const std::uint8_t* tail = p.data + tail_offset(lasers, info.blocks);
   info.high_temperature = tail[kTailShutdown];
-  info.return_mode = tail[kTailReturnMode];
-  info.motor_rpm = load_le16(tail + kTailMotorSpeed);
-  info.timestamp_us = load_le32(tail + kTailTimestamp);
-  info.factory_info = tail[kTailFactoryInfo];
-  if (info.flags & kFlagSequence) {
-    info.has_sequence = true;
-    info.sequence = load_le32(tail + kTailSequence);
-  }
+  detail::read_tail(tail, {kTailReturnMode, kTailMotorSpeed, kTailTimestamp, kTailFactoryInfo, kTailSequence},
+                    (info.flags & kFlagSequence) != 0, info);
   // The returns per firing follow the tail's return mode, not the header's echo num (the XT32M2X
   // capture: header 3, tail 0x3C dual, block azimuths in pairs, timestamps 150 us = 3 firings
   // apart). A packet holds whole firings: triple return only with 6 blocks.
@@ -92,8 +86,7 @@ Error Decoder::validate_xt(ByteView p, PacketInfo& info) noexcept {
   // below 70 (the Pandar rule, detail::pandar_year; the captures send 119 = 2019), or, with a
   // year byte of 0, Unix seconds big-endian in bytes 2..5. Timestamp: us within the second.
   const std::uint8_t* dt = tail + kTailDateTime;
-  const DateTime t = dt[0] == 0 ? date_time_from_unix(load_be32(dt + kDateTimeUnixSeconds))
-                                : detail::tail_date_time(detail::pandar_year(dt[0]), dt);
+  const DateTime t = detail::calendar_or_unix(dt, detail::pandar_year(dt[0]));
   return detail::tail_time(t, 999999, info);
 }
 
