@@ -111,9 +111,21 @@ TEST_P(Xt, CountsFromRawBytes) {
 // Every point against the double-precision reference: r = distance x dis unit, azimuth = block
 // azimuth + offset + firing time x spin rate, elevation from the file; time = t0 - 50 us x the
 // firings after the block + the channel's firing time.
-void expect_every_point_matches(const XtCapture& c, const ReferenceCalibration& ref, Decoder& dec) {
-  const auto packets = pcap_payloads(c.capture);
+// Counter-clockwise: every block azimuth mirrored (a -> 36000 - a), and the firing-time
+// correction subtracted (the coordinate system stays clockwise, see hesai::Rotation).
+void expect_every_point_matches(const XtCapture& c, const ReferenceCalibration& ref, Decoder& dec,
+                                hesai::Rotation rotation = hesai::Rotation::clockwise) {
+  const bool ccw = rotation == hesai::Rotation::counterclockwise;
+  auto packets = pcap_payloads(c.capture);
   ASSERT_EQ(packets.size(), c.packets);
+  if (ccw)
+    for (auto& p : packets)
+      for (std::size_t b = 0; b < c.blocks; ++b) {
+        std::uint8_t* a = &p[12 + b * block_bytes(c)];
+        hesai::store_le16(a, static_cast<std::uint16_t>((36000 - hesai::load_le16(a)) % 36000));
+      }
+  dec.set_rotation(rotation);
+  const double turn = ccw ? -1.0 : 1.0;
   PacketPoints pts;
   PacketInfo info;
   const double kDeg = M_PI / 180;
@@ -132,7 +144,7 @@ void expect_every_point_matches(const XtCapture& c, const ReferenceCalibration& 
         const std::uint16_t raw = hesai::load_le16(q);
         if (raw == 0) continue;
         const double r = raw * c.unit_m;
-        const double az = block_az + ref.azimuth[ch] + ref.fire1[ch] * rpm * 360.0 / 60e6;
+        const double az = block_az + ref.azimuth[ch] + turn * ref.fire1[ch] * rpm * 360.0 / 60e6;
         const double e = ref.elevation[ch] * kDeg;
         const double x = r * std::cos(e) * std::sin(az * kDeg);
         const double y = r * std::cos(e) * std::cos(az * kDeg);
@@ -183,6 +195,12 @@ TEST_P(Xt, EveryPointMatchesDoubleReferenceWithDesignTables) {
   for (std::size_t i = 0; i < c.channels; ++i) EXPECT_NEAR(vendor.fire1[i], design.fire1[i], 1e-9) << i + 1;
   Decoder dec(c.model);
   expect_every_point_matches(c, design, dec);
+}
+
+TEST_P(Xt, CounterClockwiseEveryPointMatchesDoubleReference) {
+  const XtCapture& c = GetParam();
+  Decoder dec(c.model);
+  expect_every_point_matches(c, design_reference(c), dec, hesai::Rotation::counterclockwise);
 }
 
 // One frame per rotation: the block azimuths wrap 4 times in each capture (counted here), so the
