@@ -75,7 +75,14 @@ const Sensor& sensor(hesai::Model m) {
     for (const Bytes& p : p40p.packets) s.packets.emplace_back(p.begin(), p.begin() + 1256);
     return s;
   }();
+  // PandarXT16, XT32, XT32M2X (protocol 6.1).
+  static const Sensor xt16{hesai::Model::pandar_xt16, pcap_payloads("pandar_xt16.pcap", kPacketsPerSensor)};
+  static const Sensor xt32{hesai::Model::pandar_xt32, pcap_payloads("pandar_xt32.pcap", kPacketsPerSensor)};
+  static const Sensor xt32m2x{hesai::Model::pandar_xt32m2x, pcap_payloads("pandar_xt32m2x.pcap", kPacketsPerSensor)};
   switch (m) {
+    case hesai::Model::pandar_xt16: return xt16;
+    case hesai::Model::pandar_xt32: return xt32;
+    case hesai::Model::pandar_xt32m2x: return xt32m2x;
     case hesai::Model::pandar40: return p40;
     case hesai::Model::pandar40p: return p40p;
     case hesai::Model::pandar64: return p64;
@@ -377,7 +384,10 @@ constexpr NamedModel kSensors[] = {{"Pandar40", hesai::Model::pandar40},
                                    {"Pandar40P", hesai::Model::pandar40p},
                                    {"Pandar64", hesai::Model::pandar64},
                                    {"QT128C2X", hesai::Model::qt128c2x},
-                                   {"PandarQT64", hesai::Model::pandar_qt64}};
+                                   {"PandarQT64", hesai::Model::pandar_qt64},
+                                   {"PandarXT16", hesai::Model::pandar_xt16},
+                                   {"PandarXT32", hesai::Model::pandar_xt32},
+                                   {"PandarXT32M2X", hesai::Model::pandar_xt32m2x}};
 
 void register_all() {
   for (const NamedModel& s : kSensors) {

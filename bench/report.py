@@ -35,7 +35,7 @@ def ns(b):
 
 
 def baseline_of(name, names):
-    m = re.match(r'BM_(Pandar40P|Pandar40|Pandar64|QT128C2X|PandarQT64)_', name)
+    m = re.match(r'BM_(Pandar40P|Pandar40|Pandar64|QT128C2X|PandarQT64|PandarXT16|PandarXT32M2X|PandarXT32)_', name)
     if m:
         return 'BM_Baseline_copy_' + m.group(1)
     m = re.match(r'BM_CRC32_(\w+)/(\d+)$', name)
@@ -127,16 +127,16 @@ def main():
     # What the output alone costs: writing the same number of 40-byte Points, or of the smallest
     # possible x, y, z, time records (16 bytes), computing nothing; with validation beside it.
     floors = []
-    for sensor in ('Pandar40', 'Pandar40P', 'Pandar64', 'QT128C2X', 'PandarQT64'):
+    for sensor in ('Pandar40', 'Pandar40P', 'Pandar64', 'QT128C2X', 'PandarQT64', 'PandarXT16', 'PandarXT32', 'PandarXT32M2X'):
         dec, val = get('BM_%s_decode' % sensor), get('BM_%s_validate' % sensor)
         wp, wx = get('BM_Baseline_write_points_%s' % sensor), get('BM_Baseline_write_xyzt_%s' % sensor)
         if dec and val and wp and wx:
-            floors.append('%-10s %8.1f %10.1f %13.1f %13.1f %22.1f' % (
+            floors.append('%-13s %8.1f %10.1f %13.1f %13.1f %22.1f' % (
                 sensor, ns(dec), ns(val), ns(wp), ns(wx), ns(val) + ns(wx)))
     if floors:
         print()
         print('output floor, ns per packet (BM_Baseline_write_points_<sensor>, BM_Baseline_write_xyzt_<sensor>):')
-        print('%-10s %8s %10s %13s %13s %22s' % ('sensor', 'decode', 'validate', 'write Points', 'write x,y,z,t',
+        print('%-13s %8s %10s %13s %13s %22s' % ('sensor', 'decode', 'validate', 'write Points', 'write x,y,z,t',
                                                  'validate + write x,y,z,t'))
         for line in floors:
             print(line)

@@ -13,7 +13,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   const hesai_fuzz::ExactCopy in(data, size);
   using hesai_fuzz::check;
   static hesai::AngleCorrection a, b;
-  for (const hesai::Model model : {hesai::Model::pandar40p, hesai::Model::pandar64, hesai::Model::qt128c2x}) {
+  for (const hesai::Model model : {hesai::Model::pandar40p, hesai::Model::pandar64, hesai::Model::qt128c2x,
+                                    hesai::Model::pandar_xt16, hesai::Model::pandar_xt32m2x}) {
     const std::size_t n = hesai::channel_count(model);
     const hesai::ParseResult r = hesai::parse_angle_csv(in.view(), n, a);
     const hesai::ParseResult r2 = hesai::parse_angle_csv(in.view(), n, b);

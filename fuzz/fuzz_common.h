@@ -68,7 +68,7 @@ inline void check_points(hesai::Model model, const hesai::PacketInfo& info, cons
   const std::size_t channels = hesai::channel_count(model);
   check(info.model == model);
   check(info.blocks <= blocks);
-  check(info.returns == 1 || info.returns == 2);
+  check(info.returns >= 1 && info.returns <= 3 && info.blocks % info.returns == 0);  // 3: XT32M2X triple
   check(info.dis_unit_mm > 0);
   check(out.count <= blocks * channels && out.count <= hesai::kMaxPointsPerPacket);
   check(std::strcmp(hesai::return_mode_name(info.return_mode), "unknown") != 0);
@@ -87,7 +87,7 @@ inline void check_points(hesai::Model model, const hesai::PacketInfo& info, cons
     check(p.elevation_deg >= -90.0f && p.elevation_deg <= 90.0f);
     check(p.channel >= 1 && p.channel <= channels);
     check(p.block < info.blocks);
-    check(p.return_index <= 1 && (info.returns == 2 || p.return_index == 0));
+    check(p.return_index < info.returns && p.return_index == p.block % info.returns);
     // Every channel fires within one packet period (well under 1 ms) of the packet time.
     const std::int64_t dt = p.time_ns - info.time_ns;
     check(dt > -2000000 && dt < 2000000);

@@ -10,7 +10,7 @@ SECONDS_EACH=${1:-30}
 shift || true
 HARNESSES=("$@")
 if [ ${#HARNESSES[@]} -eq 0 ]; then
-  HARNESSES=(pandar40 pandar40p pandar64 qt128 gps angles_csv firetimes_csv channel_config_csv capture frames signature)
+  HARNESSES=(pandar40 pandar40p pandar64 qt128 gps angles_csv firetimes_csv channel_config_csv capture frames signature xt)
 fi
 JOBS=${HESAI_JOBS:-2}
 cmake --preset fuzz >/dev/null

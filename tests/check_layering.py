@@ -28,7 +28,7 @@ HEADERS = {  # public header (under core/include/hesai/) -> concern
     'sha256.h': 'crypto', 'hmac.h': 'crypto', 'hkdf.h': 'crypto', 'ct.h': 'crypto',
     'calibration.h': 'calibration', 'decimal.h': 'calibration',
     'decoder.h': 'sensors', 'point.h': 'sensors', 'gps.h': 'sensors', 'pandar40_packet.h': 'sensors',
-    'pandar64_packet.h': 'sensors', 'qt128_packet.h': 'sensors', 'tables/': 'sensors',
+    'pandar64_packet.h': 'sensors', 'qt128_packet.h': 'sensors', 'xt_packet.h': 'sensors', 'tables/': 'sensors',
     'qt64_packet.h': 'sensors',
     'frame.h': 'streams', 'sequence.h': 'streams', 'stats.h': 'streams', 'safety.h': 'streams',
     'rotation.h': 'streams',

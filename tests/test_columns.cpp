@@ -23,7 +23,10 @@ struct Capture {
 const Capture kCaptures[] = {{"pandar40p_dual.pcap", Model::pandar40p},
                              {"pandar64_dual.pcap", Model::pandar64},
                              {"qt128c2x_dual.pcap", Model::qt128c2x},
-                             {"pandar_qt64.pcap", Model::pandar_qt64}};
+                             {"pandar_qt64.pcap", Model::pandar_qt64},
+                             {"pandar_xt16.pcap", Model::pandar_xt16},
+                             {"pandar_xt32.pcap", Model::pandar_xt32},
+                             {"pandar_xt32m2x.pcap", Model::pandar_xt32m2x}};
 
 // Columns sized for the largest packet, with their count.
 struct Columns {

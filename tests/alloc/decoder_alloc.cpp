@@ -35,6 +35,9 @@ TEST(ZeroAllocation, DecodePandar40P) { decode_all_without_allocating("pandar40p
 TEST(ZeroAllocation, DecodePandar64) { decode_all_without_allocating("pandar64_dual.pcap", Model::pandar64); }
 TEST(ZeroAllocation, DecodeQt128) { decode_all_without_allocating("qt128c2x_dual.pcap", Model::qt128c2x); }
 TEST(ZeroAllocation, DecodePandarQt64) { decode_all_without_allocating("pandar_qt64.pcap", Model::pandar_qt64); }
+TEST(ZeroAllocation, DecodePandarXt16) { decode_all_without_allocating("pandar_xt16.pcap", Model::pandar_xt16); }
+TEST(ZeroAllocation, DecodePandarXt32) { decode_all_without_allocating("pandar_xt32.pcap", Model::pandar_xt32); }
+TEST(ZeroAllocation, DecodePandarXt32m2x) { decode_all_without_allocating("pandar_xt32m2x.pcap", Model::pandar_xt32m2x); }
 
 TEST(ZeroAllocation, SignedQt128WithKey) {
   // The capture's packets carry a signature section left all-zero (signing not started): every

@@ -31,6 +31,10 @@ const Capture kCaptures[] = {
     {Model::pandar64, "pandar64_dual.pcap", "calibration/pandar64_unit_a_angles.csv", "calibration/pandar64_firetimes.csv"},
     {Model::qt128c2x, "qt128c2x_dual.pcap", "calibration/qt128c2x_unit_a_angles.csv", "calibration/qt128c2x_firetimes.csv"},
     {Model::pandar_qt64, "pandar_qt64.pcap", "calibration/pandar_qt64_angles.csv", "calibration/pandar_qt64_firetimes.csv"},
+    {Model::pandar_xt16, "pandar_xt16.pcap", "calibration/pandar_xt16_angles.csv", "calibration/pandar_xt16_firetimes.csv"},
+    {Model::pandar_xt32, "pandar_xt32.pcap", "calibration/pandar_xt32_angles.csv", "calibration/pandar_xt32_firetimes.csv"},
+    {Model::pandar_xt32m2x, "pandar_xt32m2x.pcap", "calibration/pandar_xt32m2x_angles.csv",
+     "calibration/pandar_xt32m2x_firetimes.csv"},
 };
 
 hesai_model c_model(Model m) { return static_cast<hesai_model>(m); }

@@ -83,6 +83,35 @@ pts['qt128 ch38'] = point(82, 4, 13.60, -6.080, -14.102, 5.48, 600, QT_T0, 9.0)
 QT64_T0 = t0(2017, 9, 6, 14, 31, 22, 820421)
 pts['qt64 ch10'] = point(27, 4, 10.20, 6.554, -34.320, 21.22, 600, QT64_T0, 25.71 + 166.67)
 pts['qt64 ch54'] = point(1246, 4, 10.20, -5.740, 32.627, 115.49, 600, QT64_T0, 25.71 + 166.67)
+# PandarXT16, XT32, XT32M2X (point cloud protocol 6.1; no manual among the seeds: layout from the
+# vendor SDK's udp_protocol_v6_1.h, block timing from its udp6_1_parser.cc, design tables from
+# core/include/hesai/tables/xt_tables.h with their sources). Tail: return mode +10, rpm +11,
+# date-time +13 (year - 1900), timestamp +19. Dual return: the 4 (XT16, XT32) or 3 (XT32M2X)
+# firings of a packet are 50 us apart, the last at t0; block pairs share one firing. Design
+# azimuth offsets are 0.
+# XT16: dis unit 4 mm; tail 39 | 58 02 (600 rpm) | 77 07 19 04 0c 1d (2019-07-25 04:12:29) |
+# dd 36 04 00 (276189 us). Block 1 azimuth 0x6B4C = 27468 -> 274.68 deg, at t0 - 150 us; block 8
+# azimuth 0x6B82 = 27522 -> 275.22 deg, at t0.
+# Block 1 channel 1: e6 00 30 -> raw 230, reflectivity 48; elevation 15, fires at 6 us.
+# Block 8 channel 16: 0d 01 01 -> raw 269, reflectivity 1; elevation -15, fires at 51.36 us.
+XT16_T0 = t0(2019, 7, 25, 4, 12, 29, 276189)
+pts['xt16 b1 ch1'] = point(230, 4, 274.68, 0, 15, 6.0, 600, XT16_T0, -150.0)
+pts['xt16 b8 ch16'] = point(269, 4, 275.22, 0, -15, 51.36, 600, XT16_T0, 0.0)
+# XT32: dis unit 4 mm; tail 39 | 57 02 (599 rpm) | 77 07 19 03 13 1d (2019-07-25 03:19:29) |
+# 15 78 09 00 (620565 us). Block 1 azimuth 0x0264 = 612 -> 6.12 deg; block 8 0x029A -> 6.66 deg.
+# Block 1 channel 2: 39 02 34 -> raw 569, reflectivity 52; elevation 14, fires at 7.512 us.
+# Block 8 channel 32: 32 00 00 -> raw 50, reflectivity 0; elevation -16, fires at 52.872 us.
+XT32_T0 = t0(2019, 7, 25, 3, 19, 29, 620565)
+pts['xt32 b1 ch2'] = point(569, 4, 6.12, 0, 14, 7.512, 599, XT32_T0, -150.0)
+pts['xt32 b8 ch32'] = point(50, 4, 6.66, 0, -16, 52.872, 599, XT32_T0, 0.0)
+# XT32M2X: dis unit 5 mm; tail 3c (dual) | 57 02 (599 rpm) | 77 07 19 06 2e 10 (2019-07-25
+# 06:46:16) | d1 fc 0c 00 (851153 us). 6 blocks = 3 firings: block 1 at t0 - 100 us, azimuth
+# 0x01C2 = 450 -> 4.50 deg; block 6 at t0, azimuth 0x01E6 = 486 -> 4.86 deg.
+# Block 1 channel 2: 2b 02 56 -> raw 555, reflectivity 86; elevation 18.2, fires at 8.888 us.
+# Block 6 channel 1: 31 02 51 -> raw 561, reflectivity 81; elevation 19.5, fires at 6 us.
+XT32M_T0 = t0(2019, 7, 25, 6, 46, 16, 851153)
+pts['xt32m2x b1 ch2'] = point(555, 5, 4.50, 0, 18.2, 8.888, 599, XT32M_T0, -100.0)
+pts['xt32m2x b6 ch1'] = point(561, 5, 4.86, 0, 19.5, 6.0, 599, XT32M_T0, 0.0)
 
 for name, (x, y, z, a, t) in pts.items():
     print('%-14s x %.4f y %.4f z %.4f azimuth %.4f time_ns %d' % (name, x, y, z, a, t))

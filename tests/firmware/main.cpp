@@ -152,6 +152,9 @@ hesai::PacketPoints points;
 // PandarQT64's once the Pandar40 packet is checked (real_packets()).
 hesai::Decoder decoders[] = {hesai::Decoder(Model::pandar40), hesai::Decoder(Model::pandar40p),
                              hesai::Decoder(Model::pandar64), hesai::Decoder(Model::qt128c2x)};
+// The PandarXT models reuse the Pandar40's decoder once its packet is checked (decoders[0],
+// rebuilt for each): 64 KiB of RAM hold no fifth decoder beside the points and the stack.
+hesai::Decoder& xt_decoder = decoders[0];
 // The packet copied to an offset 0..3 from a 4-byte boundary.
 alignas(8) std::uint8_t shifted[1300];
 
@@ -241,6 +244,31 @@ void real_packets() {
   decoders[0].~Decoder();
   ::new (&decoders[0]) hesai::Decoder(Model::pandar_qt64);
   check_packet("PandarQT64", decoders[0], bqt64, nonzero_distances(bqt64, 12 + 2, 258, 4, 64, 4, 1), qt64, 2);
+
+  // PandarXT16, XT32, XT32M2X (protocol 6.1, no CRC): each with its design tables, 4-byte units
+  // after a 2-byte block azimuth, 12-byte header.
+  static const Expected xt16[] = {{0, 1, 48, -0.8857f, 0.0728f, 0.2381f, 274.7016f, 1564027949276045000},
+                                  {7, 16, 1, -1.0347f, 0.0979f, -0.2785f, 275.4049f, 1564027949276240360}};
+  static const Expected xt32[] = {{0, 2, 52, 0.2365f, 2.1957f, 0.5506f, 6.1470f, 1564024769620422512},
+                                  {7, 32, 0, 0.0229f, 0.1909f, -0.0551f, 6.8500f, 1564024769620617872}};
+  static const Expected xt32m2x[] = {{0, 2, 86, 0.2083f, 2.6279f, 0.8667f, 4.5319f, 1564037176851061888},
+                                     {5, 1, 81, 0.2250f, 2.6345f, 0.9363f, 4.8816f, 1564037176851159000}};
+  struct XtCase {
+    const char* name;
+    Model model;
+    ByteView packet;
+    std::size_t blocks, channels;
+    const Expected* want;
+  };
+  const XtCase xts[] = {{"PandarXT16", Model::pandar_xt16, {kXt16, sizeof kXt16}, 8, 16, xt16},
+                        {"PandarXT32", Model::pandar_xt32, {kXt32, sizeof kXt32}, 8, 32, xt32},
+                        {"PandarXT32M2X", Model::pandar_xt32m2x, {kXt32m2x, sizeof kXt32m2x}, 6, 32, xt32m2x}};
+  for (const XtCase& c : xts) {
+    xt_decoder.~Decoder();
+    ::new (&xt_decoder) Decoder(c.model);
+    check_packet(c.name, xt_decoder, c.packet,
+                 nonzero_distances(c.packet, 12 + 2, 2 + 4 * c.channels, c.blocks, c.channels, 4, 1), c.want, 2);
+  }
 
   // Integrity on the target: a flipped body byte fails CRC1; a session key with an unsigned packet
   // fails as signature_missing (without signature support: no key, a signed packet is unverified).
@@ -378,6 +406,7 @@ void stack_use() {
   report_stack("Decoder::decode QT128C2X", stack_used([&] { measured = decoders[3].decode(bqt, info, points); }));
   report_stack("Decoder::decode PandarQT64", stack_used([] { measured = decoders[0].decode({kQt64, sizeof kQt64}, info, points); }));
   report_stack("Decoder::validate QT128C2X", stack_used([&] { measured = decoders[3].validate(bqt, info); }));
+  report_stack("Decoder::decode PandarXT32M2X", stack_used([] { measured = xt_decoder.decode({kXt32m2x, sizeof kXt32m2x}, info, points); }));
   report_stack("crc32_mpeg2 (1095 B)", stack_used([] { (void)crc32_mpeg2({data, sizeof data}); }));
 #if HESAI_SIGNATURE
   report_stack("sha256 (1095 B)", stack_used([] { sha256({data, sizeof data}, out); }));

@@ -81,9 +81,10 @@ enum class ReturnMode : std::uint8_t {
   first_second = 0x3A,            ///< QT128 dual
   first_last = 0x3B,              ///< QT128 dual
   first_strongest = 0x3C,         ///< QT128 dual
+  first_last_strongest = 0x3D,    ///< PandarXT32M2X triple (first, last, strongest)
   strongest_second_strongest = 0x3E,  ///< QT128 dual
 };
-/// True for the dual-return codes.
+/// True for the dual-return codes (first_last_strongest is triple, not dual).
 constexpr bool is_dual(ReturnMode m) {
   return m == ReturnMode::last_strongest || m == ReturnMode::first_second || m == ReturnMode::first_last ||
          m == ReturnMode::first_strongest || m == ReturnMode::strongest_second_strongest;
@@ -138,7 +139,7 @@ struct FunctionalSafety {
 struct PacketInfo {
   Model model = Model::unknown;
   std::uint8_t return_mode = 0;   ///< raw return-mode byte (see ReturnMode)
-  std::uint8_t returns = 1;       ///< 1 single return, 2 dual return
+  std::uint8_t returns = 1;       ///< 1 single return, 2 dual return, 3 triple return (PandarXT32M2X)
   std::uint8_t blocks = 0;
   std::uint8_t dis_unit_mm = 4;   ///< distance step, mm
   std::uint16_t motor_rpm = 0;
@@ -273,6 +274,8 @@ class Decoder {
 
   void set_channel_angle(std::size_t ch, double elevation_deg, double azimuth_deg) noexcept;
   void set_channel_firetime(std::size_t ch, double loop1_us, double loop2_us) noexcept;
+  template <std::size_t N>
+  void set_design_tables(const std::array<float, N>& elevation_deg, const std::array<float, N>& firetime_us) noexcept;
   void update_spin(std::uint16_t rpm) noexcept;
   [[nodiscard]] Error validate_pandar40(ByteView p, PacketInfo& info) noexcept;
   [[nodiscard]] Error validate_pandar64(ByteView p, PacketInfo& info) noexcept;

@@ -129,7 +129,7 @@ typedef struct hesai_point {
   int64_t time_ns;      /* firing time of this channel, ns since the Unix epoch (see time_reference) */
   uint8_t intensity;    /* reflectivity byte as sent (0..255) */
   uint8_t channel;      /* laser channel, 1-based as in the manuals */
-  uint8_t return_index; /* 0 for single return; in dual return 0 = odd block, 1 = even block */
+  uint8_t return_index; /* 0 for single return; in dual return 0 = odd block, 1 = even block; triple: 0, 1, 2 */
   uint8_t confidence;   /* QT128 per-point confidence byte; 0 for other models */
   uint8_t block;        /* 0-based block index in the packet */
 } hesai_point;
@@ -163,7 +163,7 @@ typedef struct hesai_packet_info {
   uint16_t block_azimuth[10];   /* per block, 0.01 degree */
   uint8_t model;                /* a hesai_model */
   uint8_t return_mode;          /* the return-mode byte (0x37 strongest, 0x38 last, 0x39 ...) */
-  uint8_t returns;              /* 1 single return, 2 dual return */
+  uint8_t returns;              /* 1 single return, 2 dual return, 3 triple return */
   uint8_t blocks;               /* blocks in the packet */
   uint8_t dis_unit_mm;          /* distance step, mm */
   uint8_t time_reference;       /* HESAI_TIME_utc or HESAI_TIME_hour_relative */

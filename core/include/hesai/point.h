@@ -22,7 +22,7 @@ struct Point {
   std::int64_t time_ns = 0; ///< firing time of this channel: ns since the Unix epoch (UTC), see PacketInfo::time_reference
   std::uint8_t intensity = 0;    ///< reflectivity byte as sent (0..255); Pandar64 with Reflectivity::nonlinear: percent (Appendix D)
   std::uint8_t channel = 0;      ///< laser channel, 1-based as in the manuals (customised QT128 units: mapped)
-  std::uint8_t return_index = 0; ///< 0 for single return; in dual return 0 = odd block, 1 = even block
+  std::uint8_t return_index = 0; ///< 0 for single return; in dual return 0 = odd block, 1 = even block; in triple return (PandarXT32M2X) 0, 1, 2 = blocks 1, 2, 3 of the firing
   std::uint8_t confidence = 0;   ///< QT128 confidence byte (units of 4 bytes, flags bit 4); 0 otherwise
   std::uint8_t block = 0;        ///< 0-based block index in the packet
 };

@@ -14,6 +14,7 @@
 #include "hesai/tables/pandar64_tables.h"
 #include "hesai/tables/qt128_tables.h"
 #include "hesai/tables/qt64_tables.h"
+#include "hesai/tables/xt_tables.h"
 #include "../base/compiler.h"
 #include "block_points.h"
 #include "columns_simd.h"
@@ -60,6 +61,7 @@ const char* return_mode_name(std::uint8_t mode) noexcept {
     case ReturnMode::first_second: return "first_second";
     case ReturnMode::first_last: return "first_last";
     case ReturnMode::first_strongest: return "first_strongest";
+    case ReturnMode::first_last_strongest: return "first_last_strongest";
     case ReturnMode::strongest_second_strongest: return "strongest_second_strongest";
   }
   return "unknown";
@@ -95,10 +97,19 @@ Decoder::Decoder(Model model) noexcept : model_(model) {
         set_channel_firetime(i, tables::qt64_firetime_us[i], tables::qt64_firetime_us[i]);
       }
       break;
-    case Model::pandar_xt16:
-    case Model::pandar_xt32:
-    case Model::pandar_xt32m2x: break;  // TODO(#15): design angles and firing times
+    case Model::pandar_xt16: set_design_tables(tables::xt16_elevation_deg, tables::xt16_firetime_us); break;
+    case Model::pandar_xt32: set_design_tables(tables::xt32_elevation_deg, tables::xt32_firetime_us); break;
+    case Model::pandar_xt32m2x: set_design_tables(tables::xt32m2x_elevation_deg, tables::xt32m2x_firetime_us); break;
     case Model::unknown: break;
+  }
+}
+
+template <std::size_t N>
+void Decoder::set_design_tables(const std::array<float, N>& elevation_deg, const std::array<float, N>& firetime_us) noexcept {
+  // Tables of elevations with every azimuth offset 0 and one firing sequence (the XT family).
+  for (std::size_t i = 0; i < N; ++i) {
+    set_channel_angle(i, static_cast<double>(elevation_deg[i]), 0.0);
+    set_channel_firetime(i, static_cast<double>(firetime_us[i]), static_cast<double>(firetime_us[i]));
   }
 }
 

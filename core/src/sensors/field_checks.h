@@ -33,6 +33,7 @@ namespace hesai::detail {
     case ReturnMode::first_last:
     case ReturnMode::first_strongest:
     case ReturnMode::strongest_second_strongest: returns = 2; return true;
+    case ReturnMode::first_last_strongest: break;  // triple: the PandarXT32M2X only (xt.cpp)
   }
   return false;
 }
@@ -45,15 +46,14 @@ inline constexpr std::uint16_t kMaxMotorRpm = 1500;
 }
 
 /// Reads the block azimuths (u16 LE at `first`, then every `stride` bytes): each below 360.00
-/// degrees, and the two blocks of a dual-return firing at one azimuth.
+/// degrees, and the blocks of one firing (two in dual return, three in triple) at one azimuth.
 [[nodiscard]] inline Error block_azimuths(const std::uint8_t* first, std::size_t stride, PacketInfo& info) {
   for (std::size_t b = 0; b < info.blocks; ++b) {
     info.block_azimuth[b] = load_le16(first + b * stride);
     if (info.block_azimuth[b] >= 36000) return Error::bad_azimuth;
   }
-  if (info.returns == 2)
-    for (std::size_t b = 0; b + 1 < info.blocks; b += 2)
-      if (info.block_azimuth[b] != info.block_azimuth[b + 1]) return Error::dual_block_mismatch;
+  for (std::size_t b = 1; b < info.blocks; ++b)
+    if (b % info.returns != 0 && info.block_azimuth[b] != info.block_azimuth[b - 1]) return Error::dual_block_mismatch;
   return Error::ok;
 }
 
@@ -69,13 +69,6 @@ inline DateTime tail_date_time(std::int32_t year, const std::uint8_t* dt) {
 constexpr std::int32_t pandar_year(std::uint8_t byte) { return byte < 70 ? 2000 + byte : 1900 + byte; }
 static_assert(pandar_year(17) == 2017 && pandar_year(69) == 2069 && pandar_year(70) == 1970 && pandar_year(120) == 2020);
 
-/// A 6-byte date-time as the vendor SDK reads it for protocols 3.1 and 3.2 (GetMicroLidarTimeU64 in
-/// udp_protocol_v3_1.h, udp_protocol_v3_2.h): a year byte of 0 means Unix seconds, u32 big-endian,
-/// in bytes 2..5 (byte 1 is not read); otherwise the calendar fields with the year `year_of(byte)`.
-inline DateTime sdk_date_time(const std::uint8_t* dt, std::int32_t (*year_of)(std::uint8_t)) {
-  return dt[0] == 0 ? date_time_from_unix(load_be32(dt + 2)) : tail_date_time(year_of(dt[0]), dt);
-}
-
 /// t0 = the tail's date-time (whole seconds, UTC) + its microseconds (at most max_us).
 [[nodiscard]] inline Error tail_time(const DateTime& date_time, std::uint32_t max_us, PacketInfo& info) {
   info.date_time = date_time;
@@ -83,6 +76,31 @@ inline DateTime sdk_date_time(const std::uint8_t* dt, std::int32_t (*year_of)(st
   if (info.timestamp_us > max_us) return Error::bad_timestamp;
   info.time_ns = unix_seconds(info.date_time) * 1000000000LL + static_cast<std::int64_t>(info.timestamp_us) * 1000;
   return Error::ok;
+}
+
+/// The tail fields the EE FF protocols with a 6-byte date-time share (QT128 3.2, PandarQT64 3.1,
+/// PandarXT 6.1), at
+/// their offsets from the tail's start: return mode, motor speed (u16 rpm), timestamp (u32 us),
+/// factory info, and the u32 UDP sequence when `has_sequence`.
+struct TailFields {
+  std::size_t return_mode, motor_speed, timestamp, factory_info, sequence;
+};
+inline void read_tail(const std::uint8_t* tail, const TailFields& at, bool has_sequence, PacketInfo& info) {
+  info.return_mode = tail[at.return_mode];
+  info.motor_rpm = load_le16(tail + at.motor_speed);
+  info.timestamp_us = load_le32(tail + at.timestamp);
+  info.factory_info = tail[at.factory_info];
+  if (has_sequence) {
+    info.has_sequence = true;
+    info.sequence = load_le32(tail + at.sequence);
+  }
+}
+
+/// A 6-byte date-time whose year byte 0 means Unix seconds, big-endian, in bytes 2..5 (the vendor
+/// SDK's GetMicroLidarTimeU64 in udp_protocol_v3_1.h, v3_2.h and v6_1.h; byte 1 is not read); otherwise the
+/// calendar form with `year` decoded by the caller from byte 0.
+inline DateTime calendar_or_unix(const std::uint8_t* dt, std::int32_t year) {
+  return dt[0] == 0 ? date_time_from_unix(load_be32(dt + 2)) : tail_date_time(year, dt);
 }
 
 }  // namespace hesai::detail

@@ -45,8 +45,6 @@ bool all_zero(const std::uint8_t* p, std::size_t n) {
   return acc == 0;
 }
 
-constexpr std::int32_t qt128_year(std::uint8_t byte) { return 1900 + byte; }
-
 }  // namespace
 
 Error detail::identify_qt128(ByteView p, Model& model) noexcept {
@@ -146,14 +144,8 @@ Error Decoder::validate_qt128(ByteView p, PacketInfo& info) noexcept {
   }
   const std::uint8_t* tail = p.data + layout.tail;
   info.mode_flag = tail[kTailModeFlag];
-  info.return_mode = tail[kTailReturnMode];
-  info.motor_rpm = load_le16(tail + kTailMotorSpeed);
-  info.timestamp_us = load_le32(tail + kTailTimestamp);
-  info.factory_info = tail[kTailFactoryInfo];
-  if (info.flags & kFlagSequence) {
-    info.has_sequence = true;
-    info.sequence = load_le32(tail + kTailSequence);
-  }
+  detail::read_tail(tail, {kTailReturnMode, kTailMotorSpeed, kTailTimestamp, kTailFactoryInfo, kTailSequence},
+                    (info.flags & kFlagSequence) != 0, info);
   if (!detail::returns_of_mode(info.return_mode, info.returns) || info.returns != return_num) return Error::bad_return_mode;
   if (const Error e = detail::motor_speed(info); e != Error::ok) return e;
 
@@ -161,7 +153,7 @@ Error Decoder::validate_qt128(ByteView p, PacketInfo& info) noexcept {
   // Date & Time: year - 1900 (>= 70), or with a year byte of 0 Unix seconds, big-endian, in bytes
   // 2..5 (the vendor SDK's reading; byte 1 is not read); Timestamp: us, 0..1000000 (the manual's range).
   const std::uint8_t* dt = tail + kTailDateTime;
-  return detail::tail_time(detail::sdk_date_time(dt, qt128_year), 1000000, info);
+  return detail::tail_time(detail::calendar_or_unix(dt, 1900 + dt[0]), 1000000, info);
 }
 
 void Decoder::decode_qt128(const std::uint8_t* p, const PacketInfo& info, Output& out) const noexcept {

@@ -44,14 +44,8 @@ Error Decoder::validate_qt64(ByteView p, PacketInfo& info) noexcept {
 
   const std::uint8_t* tail = p.data + kTail;
   info.high_temperature = static_cast<std::uint8_t>(tail[kTailShutdown] & 1);  // SDK HasShutdown(): bit 0
-  info.motor_rpm = load_le16(tail + kTailMotorSpeed);
-  info.timestamp_us = load_le32(tail + kTailTimestamp);
-  info.return_mode = tail[kTailReturnMode];
-  info.factory_info = tail[kTailFactoryInfo];
-  if (info.flags & kFlagSequence) {
-    info.has_sequence = true;
-    info.sequence = load_le32(tail + kTailSequence);
-  }
+  detail::read_tail(tail, {kTailReturnMode, kTailMotorSpeed, kTailTimestamp, kTailFactoryInfo, kTailSequence},
+                    (info.flags & kFlagSequence) != 0, info);
 
   // Return mode: the modes nebula decodes for the QT64 (get_n_returns; its triple mode 0x3D
   // cannot fill 4 blocks). The SDK's tail names only 0x37, 0x38, 0x39, but the capture sends 0x3B
@@ -64,7 +58,8 @@ Error Decoder::validate_qt64(ByteView p, PacketInfo& info) noexcept {
   // Date & Time by the SDK's GetMicroLidarTimeU64 (year byte + 1900, + 100 below 70 as in
   // pandar_year; 0: Unix seconds); Timestamp: us within the second, which the SDK adds to the
   // whole seconds: 0..999999.
-  return detail::tail_time(detail::sdk_date_time(tail + kTailDateTime, detail::pandar_year), 999999, info);
+  const std::uint8_t* dt = tail + kTailDateTime;
+  return detail::tail_time(detail::calendar_or_unix(dt, detail::pandar_year(dt[0])), 999999, info);
 }
 
 void Decoder::decode_qt64(const std::uint8_t* p, const PacketInfo& info, Output& out) const noexcept {

@@ -6,3 +6,4 @@
 #include "hesai/tables/qt128_tables.h"
 #include "hesai/tables/qt64_tables.h"
 #include "hesai/tables/table_types.h"
+#include "hesai/tables/xt_tables.h"

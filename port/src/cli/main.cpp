@@ -16,6 +16,7 @@
 #include "hesai/pandar40_packet.h"
 #include "hesai/pandar64_packet.h"
 #include "hesai/qt128_packet.h"
+#include "hesai/xt_packet.h"
 #include "hesai_port/capture.h"
 #include "hesai_port/udp.h"
 #include "options.h"
@@ -372,6 +373,9 @@ bool renumber(std::vector<std::uint8_t>& p, std::uint32_t seq) {
   } else if (m == Model::qt128c2x && (p[qt128::kFlags] & qt128::kFlagSequence)) {
     store_le32(&p[qt128::Layout::from_header(p[qt128::kLaserNum], p[qt128::kFlags]).tail + qt128::kTailSequence], seq);
     return qt128::seal(p.data(), p.size()) == Error::ok;  // identify() checked the length
+  } else if ((m == Model::pandar_xt16 || m == Model::pandar_xt32 || m == Model::pandar_xt32m2x) &&
+             (p[xt::kFlags] & xt::kFlagSequence)) {
+    store_le32(&p[xt::tail_offset(p[xt::kLaserNum], p[xt::kBlockNum]) + xt::kTailSequence], seq);  // no CRC in 6.1
   } else {
     return false;
   }
