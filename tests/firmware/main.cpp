@@ -25,7 +25,9 @@
 #include "hesai/pandar40_packet.h"
 #include "hesai/pandar64_packet.h"
 #include "hesai/qt128_packet.h"
+#include "hesai/qt64_packet.h"
 #include "hesai/sha256.h"
+#include "hesai/xt_packet.h"
 #include "c_path.h"
 #include "semihost.h"
 
@@ -148,13 +150,14 @@ struct Expected {
 };
 
 hesai::PacketPoints points;
-// Four decoders fit the 64 KiB RAM region beside the stack: the Pandar40's is rebuilt as the
-// PandarQT64's once the Pandar40 packet is checked (real_packets()).
+// Four decoders fit the 64 KiB RAM region beside the points and the stack. The PandarQT64 and
+// PandarXT models borrow the Pandar40's (decoders[0]), rebuilt in place for each: guest().
 hesai::Decoder decoders[] = {hesai::Decoder(Model::pandar40), hesai::Decoder(Model::pandar40p),
                              hesai::Decoder(Model::pandar64), hesai::Decoder(Model::qt128c2x)};
-// The PandarXT models reuse the Pandar40's decoder once its packet is checked (decoders[0],
-// rebuilt for each): 64 KiB of RAM hold no fifth decoder beside the points and the stack.
-hesai::Decoder& xt_decoder = decoders[0];
+hesai::Decoder& guest(Model m) {
+  decoders[0].~Decoder();
+  return *::new (&decoders[0]) hesai::Decoder(m);
+}
 // The packet copied to an offset 0..3 from a 4-byte boundary.
 alignas(8) std::uint8_t shifted[1300];
 
@@ -241,9 +244,7 @@ void real_packets() {
   // QT128: distance 1 is a marker, not a point.
   check_packet("QT128C2X", decoders[3], bqt, nonzero_distances(bqt, 12 + 2, 514, 2, 128, 4, 2), qt, 2);
   const ByteView bqt64{kQt64, sizeof kQt64};
-  decoders[0].~Decoder();
-  ::new (&decoders[0]) hesai::Decoder(Model::pandar_qt64);
-  check_packet("PandarQT64", decoders[0], bqt64, nonzero_distances(bqt64, 12 + 2, 258, 4, 64, 4, 1), qt64, 2);
+  check_packet("PandarQT64", guest(Model::pandar_qt64), bqt64, nonzero_distances(bqt64, 12 + 2, 258, 4, 64, 4, 1), qt64, 2);
 
   // PandarXT16, XT32, XT32M2X (protocol 6.1, no CRC): each with its design tables, 4-byte units
   // after a 2-byte block azimuth, 12-byte header.
@@ -264,9 +265,7 @@ void real_packets() {
                         {"PandarXT32", Model::pandar_xt32, {kXt32, sizeof kXt32}, 8, 32, xt32},
                         {"PandarXT32M2X", Model::pandar_xt32m2x, {kXt32m2x, sizeof kXt32m2x}, 6, 32, xt32m2x}};
   for (const XtCase& c : xts) {
-    xt_decoder.~Decoder();
-    ::new (&xt_decoder) Decoder(c.model);
-    check_packet(c.name, xt_decoder, c.packet,
+    check_packet(c.name, guest(c.model), c.packet,
                  nonzero_distances(c.packet, 12 + 2, 2 + 4 * c.channels, c.blocks, c.channels, 4, 1), c.want, 2);
   }
 
@@ -404,9 +403,11 @@ void stack_use() {
   report_stack("Decoder::decode Pandar40P", stack_used([] { measured = decoders[1].decode({kPandar40P, sizeof kPandar40P}, info, points); }));
   report_stack("Decoder::decode Pandar64", stack_used([] { measured = decoders[2].decode({kPandar64, sizeof kPandar64}, info, points); }));
   report_stack("Decoder::decode QT128C2X", stack_used([&] { measured = decoders[3].decode(bqt, info, points); }));
+  guest(Model::pandar_qt64);
   report_stack("Decoder::decode PandarQT64", stack_used([] { measured = decoders[0].decode({kQt64, sizeof kQt64}, info, points); }));
   report_stack("Decoder::validate QT128C2X", stack_used([&] { measured = decoders[3].validate(bqt, info); }));
-  report_stack("Decoder::decode PandarXT32M2X", stack_used([] { measured = xt_decoder.decode({kXt32m2x, sizeof kXt32m2x}, info, points); }));
+  guest(Model::pandar_xt32m2x);
+  report_stack("Decoder::decode PandarXT32M2X", stack_used([] { measured = decoders[0].decode({kXt32m2x, sizeof kXt32m2x}, info, points); }));
   report_stack("crc32_mpeg2 (1095 B)", stack_used([] { (void)crc32_mpeg2({data, sizeof data}); }));
 #if HESAI_SIGNATURE
   report_stack("sha256 (1095 B)", stack_used([] { sha256({data, sizeof data}, out); }));
@@ -497,6 +498,9 @@ ByteView with_rpm(Model m, const std::uint8_t* p, std::size_t n, std::uint16_t r
   std::size_t at = 0;
   if (m == Model::pandar64) at = hesai::pandar64::kMotorSpeed;
   else if (m == Model::qt128c2x) at = hesai::qt128::Layout::from_header(p[hesai::qt128::kLaserNum], p[hesai::qt128::kFlags]).tail + hesai::qt128::kTailMotorSpeed;
+  else if (m == Model::pandar_qt64) at = hesai::qt64::kTail + hesai::qt64::kTailMotorSpeed;
+  else if (m == Model::pandar_xt16 || m == Model::pandar_xt32 || m == Model::pandar_xt32m2x)
+    at = n - hesai::xt::kTailBytes + hesai::xt::kTailMotorSpeed;
   else at = hesai::pandar40::kMotorSpeed;
   hesai::store_le16(into + at, rpm);
   if (m == Model::qt128c2x) check(hesai::qt128::seal(into, n) == Error::ok, "re-seal");
@@ -512,16 +516,24 @@ void instruction_counts() {
   print("instructions per packet (qemu -icount shift=7 and SysTick, checked on 1 and 1000 nops):\n");
   struct Subject {
     const char* name;
-    hesai::Decoder* decoder;
+    Model model;
     ByteView packet;
   };
-  const Subject subjects[] = {{"Pandar40", &decoders[0], {kPandar40P, 1256}},
-                              {"Pandar40P", &decoders[1], {kPandar40P, sizeof kPandar40P}},
-                              {"Pandar64", &decoders[2], {kPandar64, sizeof kPandar64}},
-                              {"QT128C2X", &decoders[3], {kQt128, sizeof kQt128}}};
+  const Subject subjects[] = {{"Pandar40", Model::pandar40, {kPandar40P, 1256}},
+                              {"Pandar40P", Model::pandar40p, {kPandar40P, sizeof kPandar40P}},
+                              {"Pandar64", Model::pandar64, {kPandar64, sizeof kPandar64}},
+                              {"QT128C2X", Model::qt128c2x, {kQt128, sizeof kQt128}},
+                              {"PandarQT64", Model::pandar_qt64, {kQt64, sizeof kQt64}},
+                              {"PandarXT16", Model::pandar_xt16, {kXt16, sizeof kXt16}},
+                              {"PandarXT32", Model::pandar_xt32, {kXt32, sizeof kXt32}},
+                              {"PandarXT32M2X", Model::pandar_xt32m2x, {kXt32m2x, sizeof kXt32m2x}}};
   static hesai::PacketInfo info;
   for (const Subject& s : subjects) {
-    subject = s.decoder;
+    // decoders[1..3] are the Pandar40P, Pandar64 and QT128's own; every other model borrows decoders[0].
+    subject = s.model == Model::pandar40p ? &decoders[1]
+              : s.model == Model::pandar64 ? &decoders[2]
+              : s.model == Model::qt128c2x ? &decoders[3]
+                                           : &guest(s.model);
     packet = s.packet;
     check(subject->decode(packet, info, points) == Error::ok, s.name);  // the spin-rate cache warm
     count(s.name, "validate", [] { subject_error = subject->validate(packet, subject_info); });

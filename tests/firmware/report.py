@@ -39,19 +39,31 @@ INSTRUCTION_BUDGETS = {
         'Pandar40P': {'validate': 2000, 'decode': 56000, 'decode_rpm_change': 61000},
         'Pandar64': {'validate': 2000, 'decode': 53000, 'decode_rpm_change': 60000},
         'QT128C2X': {'validate': 16000, 'decode': 50000, 'decode_rpm_change': 77000, 'signature': 97000},
+        'PandarQT64': {'validate': 2000, 'decode': 36000, 'decode_rpm_change': 43000},
+        'PandarXT16': {'validate': 2000, 'decode': 21000, 'decode_rpm_change': 22000},
+        'PandarXT32': {'validate': 2000, 'decode': 37000, 'decode_rpm_change': 40000},
+        'PandarXT32M2X': {'validate': 2000, 'decode': 28000, 'decode_rpm_change': 32000},
     },
     'cortex-m0plus': {
         'Pandar40': {'validate': 2000, 'decode': 762000, 'decode_rpm_change': 868000},
         'Pandar40P': {'validate': 3000, 'decode': 762000, 'decode_rpm_change': 869000},
         'Pandar64': {'validate': 3000, 'decode': 662000, 'decode_rpm_change': 832000},
         'QT128C2X': {'validate': 25000, 'decode': 474000, 'decode_rpm_change': 1104000, 'signature': 161000},
+        'PandarQT64': {'validate': 3000, 'decode': 463000, 'decode_rpm_change': 633000},
+        'PandarXT16': {'validate': 3000, 'decode': 264000, 'decode_rpm_change': 304000},
+        'PandarXT32': {'validate': 3000, 'decode': 479000, 'decode_rpm_change': 557000},
+        'PandarXT32M2X': {'validate': 3000, 'decode': 333000, 'decode_rpm_change': 411000},
     },
 }
 # Packets per second at 600 rpm in dual return, the bundled captures' mode (packets per rotation
 # counted between azimuth wraps in data/*.pcap, and the pcap timestamps agree): Pandar40/40P 10
 # blocks = 5 azimuths of 0.2 degrees per packet, 360 per rotation; Pandar64 6 blocks = 3 azimuths,
-# 600 per rotation; QT128C2X 2 blocks = 1 azimuth of 0.4 degrees, 900 per rotation. rpm / 60 x that.
-PACKETS_PER_ROTATION = {'Pandar40': 360, 'Pandar40P': 360, 'Pandar64': 600, 'QT128C2X': 900}
+# 600 per rotation; QT128C2X 2 blocks = 1 azimuth of 0.4 degrees, 900 per rotation; PandarQT64 4
+# blocks = 2 azimuths of 0.6 degrees, 300; PandarXT16/XT32 8 blocks = 4 azimuths of 0.18 degrees,
+# 500; PandarXT32M2X 6 blocks = 3 azimuths of 0.18 degrees, 666.7 (its capture has gaps; the other
+# captures count 300 and 500 between wraps). rpm / 60 x that.
+PACKETS_PER_ROTATION = {'Pandar40': 360, 'Pandar40P': 360, 'Pandar64': 600, 'QT128C2X': 900, 'PandarQT64': 300,
+                        'PandarXT16': 500, 'PandarXT32': 500, 'PandarXT32M2X': 360 / 0.54}
 RPM = 600
 CLOCKS = (('Cortex-M4F at 168 MHz', 168e6), ('Cortex-M7 at 400 MHz', 400e6))
 # Double-precision soft-float: __aeabi_dadd, __aeabi_d2f, ..., and the conversions to double
