@@ -15,6 +15,9 @@ headers (the IPv4 header length read from the packet), then the point-cloud layo
   PandarQT64 (point cloud protocol 3.1; no manual here: the vendor SDK's udp_protocol_v3_1.h):
     12-byte header, 4 blocks of 258 bytes, each azimuth u16, 64 x {distance u16, reflectivity u8,
     confidence u8}; payload 1072 (1068 without the UDP sequence).
+  PandarXT16 / XT32 / XT32M2X (point cloud protocol 6.1; no manual here: the vendor SDK's
+    udp_protocol_v6_1.h): 12-byte header, 8 / 8 / 6 blocks of 2 + 16 / 32 / 32 x 4 bytes, each
+    azimuth u16, then {distance u16, reflectivity u8, confidence u8}; payload 568 / 1080 / 820.
 A point is a distance that is not 0 (no return); for the QT128 not 1 either (the Chinese QT128C2X
 manual, Section 3.1.2, notes on the Distance field: 1 is a reserved marker, not a measurement).
 
@@ -65,10 +68,14 @@ MODELS = {
     "pandar64": ((1194, 1198), 8, 6, 194, 2, 64, 3, 1),
     "qt128c2x": (None, 12, 2, 514, 2, 128, 4, 2),
     "pandar_qt64": ((1068, 1072), 12, 4, 258, 2, 64, 4, 1),
+    "pandar_xt16": ((568,), 12, 8, 66, 2, 16, 4, 1),
+    "pandar_xt32": ((1080,), 12, 8, 130, 2, 32, 4, 1),
+    "pandar_xt32m2x": ((820,), 12, 6, 130, 2, 32, 4, 1),
 }
 # The bundled capture of each model.
 CAPTURES = {"pandar40p": "pandar40p_dual.pcap", "pandar64": "pandar64_dual.pcap", "qt128c2x": "qt128c2x_dual.pcap",
-            "pandar_qt64": "pandar_qt64.pcap"}
+            "pandar_qt64": "pandar_qt64.pcap", "pandar_xt16": "pandar_xt16.pcap", "pandar_xt32": "pandar_xt32.pcap",
+            "pandar_xt32m2x": "pandar_xt32m2x.pcap"}
 
 
 def count(path, model):
@@ -92,7 +99,7 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--data", default=os.path.join(here, "..", "..", "data"), help="folder of the captures")
     ap.add_argument("--check", metavar="FILE", action="append",
-                    help="a test file whose totals must match (test_golden.cpp, test_qt64.cpp); repeatable")
+                    help="a test file whose totals must match (test_golden.cpp, test_qt64.cpp, test_xt.cpp); repeatable")
     args = ap.parse_args()
 
     counted = {}
