@@ -148,7 +148,15 @@ const std::vector<Bytes>& rpm_changing(hesai::Model model) {
   }
 }
 
-enum class Stage { validate, decode, decode_nofiretime, decode_signed, decode_rpm_changes };
+enum class Stage {
+  validate,
+  decode,
+  decode_nofiretime,
+  decode_signed,
+  decode_rpm_changes,
+  decode_columns,
+  decode_columns_portable
+};
 
 void finish_counters(benchmark::State& state, std::uint64_t bytes, std::uint64_t points) {
   state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations()));
@@ -172,6 +180,9 @@ void BM_Decoder(benchmark::State& state, hesai::Model model, Stage stage) {
   }
   // Every packet must pass, or the benchmark would time the error path.
   static hesai::PacketPoints out;
+  static hesai::PacketColumns<hesai::kMaxPointsPerPacket> columns;
+  const hesai::DecodePath path =
+      stage == Stage::decode_columns_portable ? hesai::DecodePath::portable : hesai::DecodePath::best;
   for (const Bytes& p : packets) {
     hesai::PacketInfo info;
     if (decoder.decode({p.data(), p.size()}, info, out) != hesai::Error::ok) {
@@ -188,6 +199,9 @@ void BM_Decoder(benchmark::State& state, hesai::Model model, Stage stage) {
     hesai::Error e;
     if (stage == Stage::validate) {
       e = decoder.validate({p.data(), p.size()}, info);
+    } else if (stage == Stage::decode_columns || stage == Stage::decode_columns_portable) {
+      e = decoder.decode({p.data(), p.size()}, info, columns, path);
+      points += columns.count;
     } else {
       e = decoder.decode({p.data(), p.size()}, info, out);
       points += out.count;
@@ -401,6 +415,9 @@ void register_all() {
                                  Stage::decode_nofiretime);
     benchmark::RegisterBenchmark(("BM_" + n + "_decode_rpm_changes").c_str(), BM_Decoder, s.model,
                                  Stage::decode_rpm_changes);
+    benchmark::RegisterBenchmark(("BM_" + n + "_decode_columns").c_str(), BM_Decoder, s.model, Stage::decode_columns);
+    benchmark::RegisterBenchmark(("BM_" + n + "_decode_columns_portable").c_str(), BM_Decoder, s.model,
+                                 Stage::decode_columns_portable);
   }
   benchmark::RegisterBenchmark("BM_QT128C2X_decode_signed", BM_Decoder, hesai::Model::qt128c2x, Stage::decode_signed);
 
@@ -436,6 +453,7 @@ int main(int argc, char** argv) {
   if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
   benchmark::AddCustomContext("crc32_hardware", hesai::crc32_hardware_available() ? "yes" : "no");
   benchmark::AddCustomContext("sha256_hardware", hesai::sha256_hardware_available() ? "yes" : "no");
+  benchmark::AddCustomContext("decode_simd", hesai::decode_simd_available() ? "yes" : "no");
   register_all();
   benchmark::RunSpecifiedBenchmarks();
   benchmark::Shutdown();

@@ -61,6 +61,28 @@ inline Xyz unit_xyz(const BlockConstants& k, float r, std::size_t ch) noexcept {
           r * (k.cos_a * k.dir_cos[ch] - k.sin_a * k.dir_sin[ch]), r * k.sin_el[ch]};
 }
 
+// Units [first, unit_count) of a block as columns at out[n...]; returns n advanced by the points
+// kept. k and the columns by value: locals whose address does not escape, so that the stores
+// through the byte columns (which may alias anything in memory) leave them in registers.
+template <std::size_t kUnitBytes>
+inline std::size_t write_columns(const BlockConstants k, const std::uint8_t* units, std::size_t first,
+                                 std::size_t unit_count, const std::uint8_t* channel_of, const PointColumns out,
+                                 std::size_t n) noexcept {
+  for_each_unit<kUnitBytes>(units, first, unit_count, channel_of, [&](const std::uint8_t* p, std::size_t ch) {
+    const std::uint16_t raw = load_le16(p);
+    const Xyz v = unit_xyz(k, static_cast<float>(raw) * k.unit_m, ch);
+    out.x[n] = v.x;
+    out.y[n] = v.y;
+    out.z[n] = v.z;
+    out.time_ns[n] = k.offset_ns + k.fire_ns[ch];
+    out.intensity[n] = p[2];
+    out.channel[n] = static_cast<std::uint8_t>(ch + 1);
+    out.return_index[n] = k.return_index;
+    n += static_cast<std::size_t>(raw >= k.min_distance);
+  });
+  return n;
+}
+
 }  // namespace detail
 
 // Optimising for size (-Os, the firmware builds), every sensor calls one shared copy per unit
@@ -90,30 +112,17 @@ HESAI_NOINLINE_FOR_SIZE void Decoder::emit_block(const std::uint8_t* units, std:
   k.dir_sin = spin_.dir_sin[loop].data();
   k.sin_el = geo_.sin_el.data();
   k.fire_ns = geo_.fire_ns[loop].data();
-  std::size_t n = out.count;
 
   if (out.points == nullptr) {
-    const PointColumns& c = out.columns;
-    std::size_t first = 0;
+    std::size_t first = 0;  // whole vectors by the vector code, where there is one
     if (channel_of == nullptr && out.path == DecodePath::best)
-      first = detail::columns_simd(k, units, unit_count, kUnitBytes, c, n);  // whole vectors; 0 without SIMD
-    detail::for_each_unit<kUnitBytes>(units, first, unit_count, channel_of, [&](const std::uint8_t* p, std::size_t ch) {
-      const std::uint16_t raw = load_le16(p);
-      const detail::Xyz v = detail::unit_xyz(k, static_cast<float>(raw) * k.unit_m, ch);
-      c.x[n] = v.x;
-      c.y[n] = v.y;
-      c.z[n] = v.z;
-      c.time_ns[n] = k.offset_ns + k.fire_ns[ch];
-      c.intensity[n] = p[2];
-      c.channel[n] = static_cast<std::uint8_t>(ch + 1);
-      c.return_index[n] = k.return_index;
-      n += static_cast<std::size_t>(raw >= k.min_distance);
-    });
-    out.count = n;
+      first = detail::columns_simd(k, units, unit_count, kUnitBytes, out.columns, out.count);
+    out.count = detail::write_columns<kUnitBytes>(k, units, first, unit_count, channel_of, out.columns, out.count);
     return;
   }
 
   Point* const pts = out.points;
+  std::size_t n = out.count;
   const float block_deg = static_cast<float>(block_azimuth) * 0.01f;
   const std::int64_t block_time_ns = info.time_ns + block_offset_ns;
   const std::uint8_t block_index = static_cast<std::uint8_t>(block);
