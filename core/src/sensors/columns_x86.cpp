@@ -88,6 +88,18 @@ HESAI_AVX2_TARGET std::size_t columns_avx2(const BlockConstants& k, const std::u
   const __m128i ret = _mm_set1_epi8(static_cast<char>(k.return_index));
   __m128i channel = _mm_setr_epi8(1, 2, 3, 4, 5, 6, 7, 8, 0, 0, 0, 0, 0, 0, 0, 0);
   const __m128i eight = _mm_set1_epi8(8);
+  // The columns in locals: stores through the byte columns may alias anything in memory.
+  float* const x_out = out.x;
+  float* const y_out = out.y;
+  float* const z_out = out.z;
+  std::int32_t* const time_out = out.time_ns;
+  std::uint8_t* const intensity_out = out.intensity;
+  std::uint8_t* const channel_out = out.channel;
+  std::uint8_t* const return_out = out.return_index;
+  const float* const dir_cos = k.dir_cos;
+  const float* const dir_sin = k.dir_sin;
+  const float* const sin_el = k.sin_el;
+  const std::int32_t* const fire_ns = k.fire_ns;
   std::size_t n = count;
   std::size_t j = 0;
   for (; j + 8 <= unit_count; j += 8) {
@@ -99,23 +111,23 @@ HESAI_AVX2_TARGET std::size_t columns_avx2(const BlockConstants& k, const std::u
     const __m128i intensity = _mm_or_si128(_mm_shuffle_epi8(a, lo_intensity), _mm_shuffle_epi8(b, hi_intensity));
     // The scalar loop's operations in its order (block_points.h, unit_xyz).
     const __m256 r = _mm256_mul_ps(_mm256_cvtepi32_ps(raw), unit_m);
-    const __m256 dc = _mm256_loadu_ps(k.dir_cos + j);
-    const __m256 ds = _mm256_loadu_ps(k.dir_sin + j);
+    const __m256 dc = _mm256_loadu_ps(dir_cos + j);
+    const __m256 ds = _mm256_loadu_ps(dir_sin + j);
     const __m256 x = _mm256_mul_ps(r, _mm256_add_ps(_mm256_mul_ps(sin_a, dc), _mm256_mul_ps(cos_a, ds)));
     const __m256 y = _mm256_mul_ps(r, _mm256_sub_ps(_mm256_mul_ps(cos_a, dc), _mm256_mul_ps(sin_a, ds)));
-    const __m256 z = _mm256_mul_ps(r, _mm256_loadu_ps(k.sin_el + j));
-    const __m256i t = _mm256_add_epi32(offset, _mm256_loadu_si256(reinterpret_cast<const __m256i*>(k.fire_ns + j)));
+    const __m256 z = _mm256_mul_ps(r, _mm256_loadu_ps(sin_el + j));
+    const __m256i t = _mm256_add_epi32(offset, _mm256_loadu_si256(reinterpret_cast<const __m256i*>(fire_ns + j)));
     // Keep the lanes with a valid distance, packed to the front.
     const unsigned keep = static_cast<unsigned>(_mm256_movemask_ps(_mm256_castsi256_ps(_mm256_cmpgt_epi32(raw, below))));
     const __m128i order = _mm_cvtsi64_si128(static_cast<long long>(kCompress[keep]));
     const __m256i perm = _mm256_cvtepu8_epi32(order);
-    _mm256_storeu_ps(out.x + n, _mm256_permutevar8x32_ps(x, perm));
-    _mm256_storeu_ps(out.y + n, _mm256_permutevar8x32_ps(y, perm));
-    _mm256_storeu_ps(out.z + n, _mm256_permutevar8x32_ps(z, perm));
-    _mm256_storeu_si256(reinterpret_cast<__m256i*>(out.time_ns + n), _mm256_permutevar8x32_epi32(t, perm));
-    _mm_storel_epi64(reinterpret_cast<__m128i*>(out.intensity + n), _mm_shuffle_epi8(intensity, order));
-    _mm_storel_epi64(reinterpret_cast<__m128i*>(out.channel + n), _mm_shuffle_epi8(channel, order));
-    _mm_storel_epi64(reinterpret_cast<__m128i*>(out.return_index + n), ret);
+    _mm256_storeu_ps(x_out + n, _mm256_permutevar8x32_ps(x, perm));
+    _mm256_storeu_ps(y_out + n, _mm256_permutevar8x32_ps(y, perm));
+    _mm256_storeu_ps(z_out + n, _mm256_permutevar8x32_ps(z, perm));
+    _mm256_storeu_si256(reinterpret_cast<__m256i*>(time_out + n), _mm256_permutevar8x32_epi32(t, perm));
+    _mm_storel_epi64(reinterpret_cast<__m128i*>(intensity_out + n), _mm_shuffle_epi8(intensity, order));
+    _mm_storel_epi64(reinterpret_cast<__m128i*>(channel_out + n), _mm_shuffle_epi8(channel, order));
+    _mm_storel_epi64(reinterpret_cast<__m128i*>(return_out + n), ret);
     channel = _mm_add_epi8(channel, eight);
     n += static_cast<std::size_t>(_mm_popcnt_u32(keep));
   }
