@@ -8,7 +8,6 @@
 #include <cpuid.h>
 #include <immintrin.h>
 
-#include <array>
 #include <atomic>
 
 #define HESAI_AVX2_TARGET __attribute__((target("avx2,popcnt")))
@@ -32,45 +31,6 @@ bool cpu_has_avx2() noexcept {
   if (__get_cpuid_count(7, 0, &eax, &ebx, &ecx, &edx) == 0) return false;
   return (ebx & (1u << 5)) != 0;
 }
-
-// For each 8-bit mask of kept lanes, the indices of the kept lanes, lowest first, one byte each
-// (the rest 0): the permutation that packs them to the front (2 KiB).
-constexpr std::array<std::uint64_t, 256> compress_table() {
-  std::array<std::uint64_t, 256> t{};
-  for (std::size_t m = 0; m < 256; ++m) {
-    std::uint64_t v = 0;
-    unsigned k = 0;
-    for (unsigned lane = 0; lane < 8; ++lane)
-      if (m & (1u << lane)) v |= static_cast<std::uint64_t>(lane) << (8 * k++);
-    t[m] = v;
-  }
-  return t;
-}
-constexpr std::array<std::uint64_t, 256> kCompress = compress_table();
-
-// Byte shuffles of one 16-byte load holding four units (the first at byte `first`, `stride`
-// bytes apart): each unit's distance (little-endian 16 bits) into a 32-bit lane, and its intensity
-// byte into byte `to` + i. -1 clears.
-struct UnitShuffle {
-  std::int8_t distance[16], intensity[16];
-};
-constexpr UnitShuffle unit_shuffle(int first, int stride, int to) {
-  UnitShuffle u{};
-  for (int i = 0; i < 16; ++i) u.distance[i] = u.intensity[i] = -1;
-  for (int i = 0; i < 4; ++i) {
-    const int at = first + i * stride;
-    u.distance[4 * i] = static_cast<std::int8_t>(at);
-    u.distance[4 * i + 1] = static_cast<std::int8_t>(at + 1);
-    u.intensity[to + i] = static_cast<std::int8_t>(at + 2);
-  }
-  return u;
-}
-// [unit_bytes == 4][half]: units 0..3 from the 16 bytes at the first unit, 4..7 from the 16 bytes
-// at kSecond[unit_bytes == 4]: 3-byte units 4..7 start at byte 12, read from byte 8 so as not to
-// read past unit 7.
-constexpr UnitShuffle kShuffle[2][2] = {{unit_shuffle(0, 3, 0), unit_shuffle(4, 3, 4)},
-                                        {unit_shuffle(0, 4, 0), unit_shuffle(0, 4, 4)}};
-constexpr std::size_t kSecond[2] = {8, 16};
 
 HESAI_AVX2_TARGET inline __m128i load16(const std::int8_t* p) noexcept {
   return _mm_loadu_si128(reinterpret_cast<const __m128i*>(p));
