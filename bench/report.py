@@ -71,9 +71,9 @@ def main():
     if not rows:
         print('report.py: no benchmark results in %s' % sys.argv[1])
         return 1
-    print('host: %s CPUs at %s MHz, crc32_hardware=%s, sha256_hardware=%s' % (
+    print('host: %s CPUs at %s MHz, crc32_hardware=%s, sha256_hardware=%s, decode_simd=%s' % (
         context.get('num_cpus', '?'), context.get('mhz_per_cpu', '?'),
-        context.get('crc32_hardware', '?'), context.get('sha256_hardware', '?')))
+        context.get('crc32_hardware', '?'), context.get('sha256_hardware', '?'), context.get('decode_simd', '?')))
     print('%-40s %12s %14s %14s %20s' % ('benchmark', 'ns/packet', 'points/s', 'bytes/s', 'time / baseline'))
     for name, b in rows.items():
         if b is None:
@@ -124,19 +124,29 @@ def main():
     w = get('BM_CRC32_hardware/65536')
     target('CRC hardware >= 10 GB/s (64 KiB)', w, w and w['bytes_per_second'] >= 10e9,
            w and '%.2f GB/s' % (w['bytes_per_second'] / 1e9))
+    # Issue #13: each output within a small factor of what writing it alone costs, every sensor.
+    sensors = ('Pandar40', 'Pandar40P', 'Pandar64', 'QT128C2X', 'PandarQT64', 'PandarXT16', 'PandarXT32', 'PandarXT32M2X')
+    for sensor in sensors:
+        c, wx = get('BM_%s_decode_columns' % sensor), get('BM_Baseline_write_xyzt_%s' % sensor)
+        target('%s columns <= 2 x write_xyzt' % sensor, c and wx, c and wx and ns(c) <= 2 * ns(wx),
+               c and wx and '%.2f x (%.0f vs %.0f ns)' % (ns(c) / ns(wx), ns(c), ns(wx)))
+        d, wp = get('BM_%s_decode' % sensor), get('BM_Baseline_write_points_%s' % sensor)
+        target('%s Points <= 1.5 x write_points' % sensor, d and wp, d and wp and ns(d) <= 1.5 * ns(wp),
+               d and wp and '%.2f x (%.0f vs %.0f ns)' % (ns(d) / ns(wp), ns(d), ns(wp)))
     # What the output alone costs: writing the same number of 40-byte Points, or of the smallest
     # possible x, y, z, time records (16 bytes), computing nothing; with validation beside it.
     floors = []
-    for sensor in ('Pandar40', 'Pandar40P', 'Pandar64', 'QT128C2X', 'PandarQT64', 'PandarXT16', 'PandarXT32', 'PandarXT32M2X'):
+    for sensor in sensors:
         dec, val = get('BM_%s_decode' % sensor), get('BM_%s_validate' % sensor)
+        col = get('BM_%s_decode_columns' % sensor)
         wp, wx = get('BM_Baseline_write_points_%s' % sensor), get('BM_Baseline_write_xyzt_%s' % sensor)
         if dec and val and wp and wx:
-            floors.append('%-13s %8.1f %10.1f %13.1f %13.1f %22.1f' % (
-                sensor, ns(dec), ns(val), ns(wp), ns(wx), ns(val) + ns(wx)))
+            floors.append('%-13s %8.1f %8s %10.1f %13.1f %13.1f %22.1f' % (
+                sensor, ns(dec), '%.1f' % ns(col) if col else '-', ns(val), ns(wp), ns(wx), ns(val) + ns(wx)))
     if floors:
         print()
         print('output floor, ns per packet (BM_Baseline_write_points_<sensor>, BM_Baseline_write_xyzt_<sensor>):')
-        print('%-13s %8s %10s %13s %13s %22s' % ('sensor', 'decode', 'validate', 'write Points', 'write x,y,z,t',
+        print('%-13s %8s %8s %10s %13s %13s %22s' % ('sensor', 'decode', 'columns', 'validate', 'write Points', 'write x,y,z,t',
                                                  'validate + write x,y,z,t'))
         for line in floors:
             print(line)

@@ -9,6 +9,8 @@
 #include <vector>
 
 #include "hesai/decoder.h"
+#include "hesai/calibration.h"
+#include "packet_builder.h"
 #include "test_support.h"
 
 using namespace hesai;
@@ -57,18 +59,25 @@ void each_packet(const Capture& cap, Setup setup, DecodePath path, Check check) 
   EXPECT_GT(points, 0u) << cap.file;
 }
 
+// Every column of every point equals the Point's field (time: from the packet time).
+void expect_equal(const PacketPoints& pts, const PacketInfo& info, const PacketColumns<kMaxPointsPerPacket>& c,
+                  const std::string& what) {
+  ASSERT_EQ(c.count, pts.count) << what;
+  for (std::size_t i = 0; i < pts.count; ++i) {
+    const Point& q = pts.points[i];
+    ASSERT_EQ(c.x[i], q.x) << what << " point " << i;
+    ASSERT_EQ(c.y[i], q.y) << what << " point " << i;
+    ASSERT_EQ(c.z[i], q.z) << what << " point " << i;
+    ASSERT_EQ(info.time_ns + c.time_ns[i], q.time_ns) << what << " point " << i;
+    ASSERT_EQ(c.intensity[i], q.intensity) << what << " point " << i;
+    ASSERT_EQ(c.channel[i], q.channel) << what << " point " << i;
+    ASSERT_EQ(c.return_index[i], q.return_index) << what << " point " << i;
+  }
+}
+
 void expect_same_points(const Capture& cap, void (*setup)(Decoder&), DecodePath path) {
   each_packet(cap, setup, path, [&](const PacketPoints& pts, const PacketInfo& info, const auto& c) {
-    for (std::size_t i = 0; i < pts.count; ++i) {
-      const Point& q = pts.points[i];
-      ASSERT_EQ(c.x[i], q.x) << cap.file << " point " << i;
-      ASSERT_EQ(c.y[i], q.y) << cap.file << " point " << i;
-      ASSERT_EQ(c.z[i], q.z) << cap.file << " point " << i;
-      ASSERT_EQ(info.time_ns + c.time_ns[i], q.time_ns) << cap.file << " point " << i;
-      ASSERT_EQ(c.intensity[i], q.intensity) << cap.file << " point " << i;
-      ASSERT_EQ(c.channel[i], q.channel) << cap.file << " point " << i;
-      ASSERT_EQ(c.return_index[i], q.return_index) << cap.file << " point " << i;
-    }
+    expect_equal(pts, info, c, cap.file);
   });
 }
 
@@ -115,6 +124,37 @@ TEST(Columns, VectorPathWithinOneMillionthOfScalar) {
     }
     EXPECT_GT(points, 0u) << cap.file;
   }
+}
+
+// The QT128 settings the captures do not show: 3-byte units (no confidence) and customised
+// channels (the channel map: the scalar loop on every path), rebuilt from the capture's packets.
+TEST(Columns, Qt128ThreeByteUnitsAndCustomisedChannels) {
+  const auto qt = pcap_payloads("qt128c2x_dual.pcap");
+  const auto config_text = read_file(data_path("calibration/qt128c2x_channel_config.csv"));
+  static ChannelConfig config;
+  ASSERT_EQ(parse_channel_config_csv(view(config_text), config).error, Error::ok);
+  Decoder by_point(Model::qt128c2x), by_column(Model::qt128c2x);
+  ASSERT_EQ(by_point.set_channel_config(config), Error::ok);
+  ASSERT_EQ(by_column.set_channel_config(config), Error::ok);
+  static PacketPoints pts;
+  static Columns cols;
+  std::size_t points = 0;
+  for (std::size_t i = 0; i < 64; ++i) {
+    const auto& p = qt[i];
+    std::vector<std::size_t> keep;
+    for (std::size_t j = 0; j < config.laser_num; ++j) keep.push_back(config.channel[(p[1066] & 1) ? 0 : 1][j] - 1u);
+    for (const auto& v : {qt128_rebuild(p, 128, 0x0D, {first_units(128), first_units(128)}),
+                          qt128_rebuild(p, static_cast<std::uint8_t>(config.laser_num), 0x4D, {keep, keep})}) {
+      for (const DecodePath path : {DecodePath::best, DecodePath::portable}) {
+        PacketInfo info;
+        ASSERT_EQ(by_point.decode(view(v), info, pts), Error::ok);
+        ASSERT_EQ(by_column.decode(view(v), info, cols.c, path), Error::ok);
+        expect_equal(pts, info, cols.c, "packet " + std::to_string(i));
+        points += pts.count;
+      }
+    }
+  }
+  EXPECT_GT(points, 0u);
 }
 
 // Storage sized per model: PacketColumns<max_points(model)> suffices; one element less is refused

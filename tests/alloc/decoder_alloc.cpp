@@ -15,8 +15,9 @@ void decode_all_without_allocating(const char* capture, Model model) {
   const auto packets = hesai_test::pcap_payloads(capture);  // reading the file may allocate
   ASSERT_FALSE(packets.empty());
   static PacketPoints pts;
+  static PacketColumns<kMaxPointsPerPacket> columns;
   PacketInfo info;
-  std::size_t points = 0;
+  std::size_t points = 0, column_points = 0;
   Error worst = Error::ok;
   const std::size_t n = hesai_test::allocations_during([&] {
     Decoder dec(model);
@@ -24,10 +25,17 @@ void decode_all_without_allocating(const char* capture, Model model) {
       const Error e = dec.decode(ByteView{p.data(), p.size()}, info, pts);
       if (e != Error::ok) worst = e;
       points += pts.count;
+      // The columnar output, on the vector path and the portable one.
+      for (const DecodePath path : {DecodePath::best, DecodePath::portable}) {
+        const Error c = dec.decode(ByteView{p.data(), p.size()}, info, columns, path);
+        if (c != Error::ok) worst = c;
+        column_points += columns.count;
+      }
     }
   });
   EXPECT_EQ(worst, Error::ok);
   EXPECT_GT(points, 0u);
+  EXPECT_EQ(column_points, 2 * points);
   EXPECT_EQ(n, 0u) << capture;
 }
 
