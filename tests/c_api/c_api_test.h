@@ -36,6 +36,9 @@ size_t c_layout(size_t* out, size_t room);
  * - qt128: a real unsigned QT128 packet; qt128_signed: the same signed with `key`, the session
  *   key of secret "0123456789abcdef", lidar random 00..1f and client random 20..3f. */
 int c_check_errors(const uint8_t* qt128, size_t size);
+/* - hesai_decoder_decode_columns on `qt128`: the points of hesai_decoder_decode, element by
+ *   element; capacity and NULL checks. */
+int c_check_columns(const uint8_t* qt128, size_t size);
 int c_check_keys(const uint8_t* qt128, const uint8_t* qt128_signed, size_t size, const uint8_t key[32]);
 /* - pandar40: a Pandar40 packet (1256 bytes) whose timestamp is below 1 s into the hour. */
 int c_check_pandar40_gps(const uint8_t* pandar40, size_t size);

@@ -258,6 +258,11 @@ TEST(CApi, Errors) {
   EXPECT_EQ(c_check_errors(qt.data(), qt.size()), 0);
 }
 
+TEST(CApi, Columns) {
+  const auto qt = pcap_payloads("qt128c2x_dual.pcap").at(5);
+  EXPECT_EQ(c_check_columns(qt.data(), qt.size()), 0);
+}
+
 TEST(CApi, SessionKeys) {
   // tests/test_hkdf.cpp's fixed vector (computed with Python's hmac module and with OpenSSL):
   // secret "0123456789abcdef", lidar random 00..1f, client random 20..3f. The C side derives it.

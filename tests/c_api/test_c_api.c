@@ -401,3 +401,38 @@ int c_check_sensor_settings(const uint8_t* qt128_custom, size_t size, const uint
   }
   return take_failures();
 }
+
+int c_check_columns(const uint8_t* qt128, size_t size) {
+  static float x[256], y[256], z[256];
+  static int32_t t[256];
+  static uint8_t intensity[256], channel[256], ret[256];
+  hesai_point_columns columns = {x, y, z, t, intensity, channel, ret, 256};
+  hesai_packet_info info, info_points;
+  size_t count = 99, want = 0, i;
+
+  EXPECT_ERROR(hesai_decoder_init(&decoder, HESAI_MODEL_qt128c2x), "ok");
+  EXPECT_ERROR(hesai_decoder_decode(&decoder, qt128, size, &info_points, points, 256, &want), "ok");
+  EXPECT_ERROR(hesai_decoder_decode_columns(&decoder, qt128, size, &info, &columns, &count), "ok");
+  EXPECT(count == want && want > 0);
+  for (i = 0; i < count && i < want; ++i) {
+    EXPECT(x[i] == points[i].x && y[i] == points[i].y && z[i] == points[i].z);
+    EXPECT(info.time_ns + t[i] == points[i].time_ns);
+    EXPECT(intensity[i] == points[i].intensity && channel[i] == points[i].channel &&
+           ret[i] == points[i].return_index);
+  }
+
+  /* Room for one point less than the QT128's 2 x 128; a missing column; missing arguments. */
+  columns.capacity = 255;
+  count = 99;
+  EXPECT_ERROR(hesai_decoder_decode_columns(&decoder, qt128, size, &info, &columns, &count), "buffer_too_small");
+  EXPECT(count == 0);
+  columns.capacity = 256;
+  columns.z = NULL;
+  EXPECT_ERROR(hesai_decoder_decode_columns(&decoder, qt128, size, &info, &columns, &count), "invalid_argument");
+  columns.z = z;
+  EXPECT_ERROR(hesai_decoder_decode_columns(&decoder, qt128, size, &info, NULL, &count), "invalid_argument");
+  EXPECT_ERROR(hesai_decoder_decode_columns(&decoder, qt128, size, &info, &columns, NULL), "invalid_argument");
+  EXPECT_ERROR(hesai_decoder_decode_columns(NULL, qt128, size, &info, &columns, &count), "invalid_argument");
+  EXPECT_ERROR(hesai_decoder_decode_columns(&decoder, qt128, size, NULL, &columns, &count), "ok"); /* info optional */
+  return take_failures();
+}

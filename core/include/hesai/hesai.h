@@ -134,6 +134,20 @@ typedef struct hesai_point {
   uint8_t block;        /* 0-based block index in the packet */
 } hesai_point;
 
+/* Caller-owned columns for one packet's points (hesai::PointColumns): element i of every array is
+ * the point hesai_decoder_decode writes at points[i] for the same packet. Each pointer addresses
+ * `capacity` elements. */
+typedef struct hesai_point_columns {
+  float* x;               /* metres */
+  float* y;               /* metres */
+  float* z;               /* metres */
+  int32_t* time_ns;       /* firing time, ns from the packet time (hesai_packet_info.time_ns) */
+  uint8_t* intensity;     /* as hesai_point.intensity */
+  uint8_t* channel;       /* as hesai_point.channel (1-based) */
+  uint8_t* return_index;  /* as hesai_point.return_index */
+  size_t capacity;
+} hesai_point_columns;
+
 /* A tail's date-time, UTC. */
 typedef struct hesai_date_time {
   int32_t year; /* full year, e.g. 2024 */
@@ -281,6 +295,14 @@ hesai_error hesai_decoder_validate(hesai_decoder* decoder, const uint8_t* payloa
  * may be NULL. */
 hesai_error hesai_decoder_decode(hesai_decoder* decoder, const uint8_t* payload, size_t size, hesai_packet_info* info,
                                  hesai_point* points, size_t capacity, size_t* count) HESAI_NOEXCEPT;
+
+/* hesai_decoder_decode into columns: the same points in the same order, on the vector path the
+ * CPU has (x86-64 AVX2, AArch64 NEON) or the scalar one. columns->capacity below
+ * hesai_model_max_points() of the decoder's model: buffer_too_small before the packet is read;
+ * a NULL column, columns or count: invalid_argument. *count is 0 on any error; `info` may be NULL. */
+hesai_error hesai_decoder_decode_columns(hesai_decoder* decoder, const uint8_t* payload, size_t size,
+                                         hesai_packet_info* info, const hesai_point_columns* columns,
+                                         size_t* count) HESAI_NOEXCEPT;
 
 #ifdef __cplusplus
 }

@@ -353,4 +353,19 @@ hesai_error hesai_decoder_decode(hesai_decoder* decoder, const std::uint8_t* pay
   return c_error(e);
 }
 
+hesai_error hesai_decoder_decode_columns(hesai_decoder* decoder, const std::uint8_t* payload, std::size_t size,
+                                         hesai_packet_info* info, const hesai_point_columns* columns,
+                                         std::size_t* count) noexcept {
+  if (count != nullptr) *count = 0;
+  if (decoder == nullptr || columns == nullptr || count == nullptr || !bytes_ok(payload, size))
+    return HESAI_ERROR_invalid_argument;
+  const hesai::PointColumns c{columns->x,         columns->y,       columns->z,
+                              columns->time_ns,   columns->intensity, columns->channel,
+                              columns->return_index, columns->capacity};
+  hesai::PacketInfo i;
+  const Error e = decoder_in(decoder).decode(ByteView{payload, size}, i, c, *count);
+  if (info != nullptr) copy_info(i, *info);
+  return c_error(e);
+}
+
 }  // extern "C"
