@@ -157,6 +157,47 @@ TEST(Columns, Qt128ThreeByteUnitsAndCustomisedChannels) {
   EXPECT_GT(points, 0u);
 }
 
+// Points by the vector path (AVX2 on x86-64) and by the portable one: every field of every point.
+void expect_same_point_fields(const PacketPoints& a, const PacketPoints& b, const std::string& what) {
+  ASSERT_EQ(a.count, b.count) << what;
+  for (std::size_t i = 0; i < a.count; ++i) {
+    const Point& p = a.points[i];
+    const Point& q = b.points[i];
+    ASSERT_TRUE(p.x == q.x && p.y == q.y && p.z == q.z && p.distance_m == q.distance_m) << what << " point " << i;
+    ASSERT_TRUE(p.azimuth_deg == q.azimuth_deg && p.elevation_deg == q.elevation_deg) << what << " point " << i;
+    ASSERT_EQ(p.time_ns, q.time_ns) << what << " point " << i;
+    ASSERT_TRUE(p.intensity == q.intensity && p.channel == q.channel && p.return_index == q.return_index &&
+                p.confidence == q.confidence && p.block == q.block)
+        << what << " point " << i;
+  }
+}
+
+TEST(Columns, PointsVectorPathEqualsScalarOnEveryCapture) {
+  static PacketPoints a, b;
+  for (const Capture& cap : kCaptures) {
+    Decoder dec(cap.model);
+    std::size_t points = 0;
+    for (const auto& p : pcap_payloads(cap.file)) {
+      PacketInfo info;
+      ASSERT_EQ(dec.decode(view(p), info, a, DecodePath::portable), Error::ok);
+      ASSERT_EQ(dec.decode(view(p), info, b, DecodePath::best), Error::ok);
+      expect_same_point_fields(a, b, cap.file);
+      points += a.count;
+    }
+    EXPECT_GT(points, 0u) << cap.file;
+  }
+  // QT128 3-byte units (no confidence byte) and customised channels.
+  const auto qt = pcap_payloads("qt128c2x_dual.pcap");
+  Decoder dec(Model::qt128c2x);
+  for (std::size_t i = 0; i < 64; ++i) {
+    const auto v = qt128_rebuild(qt[i], 128, 0x0D, {first_units(128), first_units(128)});
+    PacketInfo info;
+    ASSERT_EQ(dec.decode(view(v), info, a, DecodePath::portable), Error::ok);
+    ASSERT_EQ(dec.decode(view(v), info, b, DecodePath::best), Error::ok);
+    expect_same_point_fields(a, b, "3-byte units, packet " + std::to_string(i));
+  }
+}
+
 // Storage sized per model: PacketColumns<max_points(model)> suffices; one element less is refused
 // before the packet is read, and so is a missing column.
 TEST(Columns, CallerStorageSizedForTheModel) {

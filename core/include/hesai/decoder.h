@@ -164,9 +164,10 @@ enum class Reflectivity : std::uint8_t {
   nonlinear,  ///< Pandar64 set to "Nonlinear Mapping": the byte mapped by the manual's Appendix D to a percentage
 };
 
-/// Which per-point code a columnar decode runs: the best the CPU has (x86-64: AVX2 when CPUID
-/// reports it, chosen at run time; AArch64: NEON), or the portable scalar code every target has
-/// (the only one on Cortex-M). Both give the same points (tests/test_columns.cpp).
+/// Which per-point code decode() runs: the best the CPU has (x86-64: AVX2 for Points and columns
+/// when CPUID reports it, chosen at run time; AArch64: NEON for columns), or the portable scalar
+/// code every target has (the only one on Cortex-M). Both give the same points: the same float
+/// operations in the same order (tests/test_columns.cpp).
 enum class DecodePath : std::uint8_t { best, portable };
 /// Whether DecodePath::best runs vector code on this CPU.
 bool decode_simd_available() noexcept;
@@ -232,13 +233,16 @@ class Decoder {
 
   /// Runs every check (length, header, flags, CRCs, signature, fields) and fills `info`.
   [[nodiscard]] Error validate(ByteView payload, PacketInfo& info) noexcept;
-  /// validate(), then the points: distance 0 yields no point. On error out.count is 0.
-  [[nodiscard]] Error decode(ByteView payload, PacketInfo& info, PacketPoints& out) noexcept;
+  /// validate(), then the points: distance 0 yields no point. On error out.count is 0. `path`: the
+  /// vector code the CPU has, or the portable scalar code (see DecodePath).
+  [[nodiscard]] Error decode(ByteView payload, PacketInfo& info, PacketPoints& out,
+                             DecodePath path = DecodePath::best) noexcept;
   /// decode() into caller-owned storage for `capacity` points, sized for this decoder's model
   /// (max_points(model()): 400, 384 or 256). Error::buffer_too_small, before the packet is read,
   /// when capacity is below that. `count` gets the number of points, 0 on error; the entries from
   /// `count` up to max_points(model()) may be overwritten too.
-  [[nodiscard]] Error decode(ByteView payload, PacketInfo& info, Point* points, std::size_t capacity, std::size_t& count) noexcept;
+  [[nodiscard]] Error decode(ByteView payload, PacketInfo& info, Point* points, std::size_t capacity, std::size_t& count,
+                             DecodePath path = DecodePath::best) noexcept;
   /// decode() into columns (point.h): the same points, in the same order, as the Point forms.
   /// Error::buffer_too_small when out.capacity is below max_points(model()), Error::invalid_argument
   /// when a column is null; both before the packet is read. `count` gets the number of points, 0 on

@@ -23,7 +23,7 @@ namespace hesai {
 struct Decoder::Output {
   Point* points = nullptr;
   PointColumns columns;
-  DecodePath path = DecodePath::best;  // columns only
+  DecodePath path = DecodePath::best;
   std::size_t count = 0;
 
   // Replaces the intensity of points [first, count) by table[intensity].
@@ -83,6 +83,40 @@ inline std::size_t write_columns(const BlockConstants k, const std::uint8_t* uni
   return n;
 }
 
+// The same as Points (k by value for the same reason).
+template <std::size_t kUnitBytes>
+inline std::size_t write_points(const BlockConstants k, const std::uint8_t* units, std::size_t first,
+                                std::size_t unit_count, const std::uint8_t* channel_of, Point* const out,
+                                std::size_t n) noexcept {
+  for_each_unit<kUnitBytes>(units, first, unit_count, channel_of, [&](const std::uint8_t* p, std::size_t ch) {
+    const std::uint16_t raw = load_le16(p);
+    const float r = static_cast<float>(raw) * k.unit_m;
+    const Xyz v = unit_xyz(k, r, ch);
+    Point& o = out[n];
+    o.x = v.x;
+    o.y = v.y;
+    o.z = v.z;
+    o.distance_m = r;
+    // Both terms lie in [0, 360): one exact subtraction brings the sum into range.
+    float az = k.block_deg + k.azimuth_deg[ch];
+    if (az >= 360.0f) az -= 360.0f;
+    o.azimuth_deg = az;
+    o.elevation_deg = k.elevation_deg[ch];
+    o.time_ns = k.block_time_ns + k.fire_ns[ch];
+    o.intensity = p[2];
+    o.channel = static_cast<std::uint8_t>(ch + 1);
+    o.return_index = k.return_index;
+    if constexpr (kUnitBytes == 4) {
+      o.confidence = p[3];
+    } else {
+      o.confidence = 0;
+    }
+    o.block = k.block;
+    n += static_cast<std::size_t>(raw >= k.min_distance);
+  });
+  return n;
+}
+
 }  // namespace detail
 
 // Optimising for size (-Os, the firmware builds), every sensor calls one shared copy per unit
@@ -90,8 +124,9 @@ inline std::size_t write_columns(const BlockConstants k, const std::uint8_t* uni
 // Optimising for speed it is inlined, where the constant channel count and the absent map of the
 // Pandars make a shorter loop (8% fewer instructions per Pandar64 packet under callgrind).
 //
-// Every unit's point is written at index n and kept (n advanced) only when its distance is
-// valid: no branch to mispredict. n <= the units before this one, so the writes stay below
+// Points or columns: whole vectors of units by the vector code where there is one (and the units
+// need no channel map), the rest by the scalar loops above. Every unit's point is written at
+// index n and kept (n advanced) only when its distance is valid: no branch to mispredict. n <= the units before this one, so the writes stay below
 // blocks x channels = max_points(model_), the capacity decode() checked.
 template <std::size_t kUnitBytes>
 HESAI_NOINLINE_FOR_SIZE void Decoder::emit_block(const std::uint8_t* units, std::size_t unit_count,
@@ -121,40 +156,16 @@ HESAI_NOINLINE_FOR_SIZE void Decoder::emit_block(const std::uint8_t* units, std:
     return;
   }
 
-  Point* const pts = out.points;
-  std::size_t n = out.count;
-  const float block_deg = static_cast<float>(block_azimuth) * 0.01f;
-  const std::int64_t block_time_ns = info.time_ns + block_offset_ns;
-  const std::uint8_t block_index = static_cast<std::uint8_t>(block);
-  const float* const azimuth_deg = spin_.azimuth_deg[loop].data();
-  const float* const elevation_deg = geo_.elevation_deg.data();
-  detail::for_each_unit<kUnitBytes>(units, 0, unit_count, channel_of, [&](const std::uint8_t* p, std::size_t ch) {
-    const std::uint16_t raw = load_le16(p);
-    const float r = static_cast<float>(raw) * k.unit_m;
-    const detail::Xyz v = detail::unit_xyz(k, r, ch);
-    Point& o = pts[n];
-    o.x = v.x;
-    o.y = v.y;
-    o.z = v.z;
-    o.distance_m = r;
-    // Both terms lie in [0, 360): one exact subtraction brings the sum into range.
-    float az = block_deg + azimuth_deg[ch];
-    if (az >= 360.0f) az -= 360.0f;
-    o.azimuth_deg = az;
-    o.elevation_deg = elevation_deg[ch];
-    o.time_ns = block_time_ns + k.fire_ns[ch];
-    o.intensity = p[2];
-    o.channel = static_cast<std::uint8_t>(ch + 1);
-    o.return_index = k.return_index;
-    if constexpr (kUnitBytes == 4) {
-      o.confidence = p[3];
-    } else {
-      o.confidence = 0;
-    }
-    o.block = block_index;
-    n += static_cast<std::size_t>(raw >= k.min_distance);
-  });
-  out.count = n;
+  // The Points' own fields.
+  k.block_deg = static_cast<float>(block_azimuth) * 0.01f;
+  k.block_time_ns = info.time_ns + block_offset_ns;
+  k.block = static_cast<std::uint8_t>(block);
+  k.azimuth_deg = spin_.azimuth_deg[loop].data();
+  k.elevation_deg = geo_.elevation_deg.data();
+  std::size_t first = 0;
+  if (channel_of == nullptr && out.path == DecodePath::best)
+    first = detail::points_simd(k, units, unit_count, kUnitBytes, out.points, out.count);
+  out.count = detail::write_points<kUnitBytes>(k, units, first, unit_count, channel_of, out.points, out.count);
 }
 
 }  // namespace hesai

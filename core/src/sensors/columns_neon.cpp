@@ -105,6 +105,12 @@ std::size_t columns_simd(const BlockConstants& k, const std::uint8_t* units, std
   return j;
 }
 
+// Points: not vectorised on AArch64 yet (the scalar loop writes them).
+std::size_t points_simd(const BlockConstants&, const std::uint8_t*, std::size_t, std::size_t, Point*,
+                        std::size_t&) noexcept {
+  return 0;
+}
+
 }  // namespace hesai::detail
 
 #endif  // HESAI_COLUMNS_NEON

@@ -34,6 +34,12 @@ struct BlockConstants {
   const float* dir_sin = nullptr;
   const float* sin_el = nullptr;
   const std::int32_t* fire_ns = nullptr;
+  // Points only.
+  float block_deg = 0;               // block azimuth, degrees
+  std::int64_t block_time_ns = 0;    // block time
+  std::uint8_t block = 0;            // block index
+  const float* azimuth_deg = nullptr;    // [channel]: beam azimuth of the block's firing loop
+  const float* elevation_deg = nullptr;  // [channel]
 };
 
 #if defined(HESAI_COLUMNS_AVX2) || defined(HESAI_COLUMNS_NEON)
@@ -55,18 +61,19 @@ inline constexpr std::array<std::uint64_t, 256> kCompress = compress_table();
 
 // Byte shuffles of one 16-byte load holding four units (the first at byte `first`, `stride`
 // bytes apart): each unit's distance (little-endian 16 bits) into a 32-bit lane, and its intensity
-// byte into byte `to` + i. -1 clears.
+// byte (and a 4-byte unit's confidence byte) into byte `to` + i. -1 clears.
 struct UnitShuffle {
-  std::int8_t distance[16], intensity[16];
+  std::int8_t distance[16], intensity[16], confidence[16];  // confidence: 4-byte units only
 };
 constexpr UnitShuffle unit_shuffle(int first, int stride, int to) {
   UnitShuffle u{};
-  for (int i = 0; i < 16; ++i) u.distance[i] = u.intensity[i] = -1;
+  for (int i = 0; i < 16; ++i) u.distance[i] = u.intensity[i] = u.confidence[i] = -1;
   for (int i = 0; i < 4; ++i) {
     const int at = first + i * stride;
     u.distance[4 * i] = static_cast<std::int8_t>(at);
     u.distance[4 * i + 1] = static_cast<std::int8_t>(at + 1);
     u.intensity[to + i] = static_cast<std::int8_t>(at + 2);
+    if (stride == 4) u.confidence[to + i] = static_cast<std::int8_t>(at + 3);
   }
   return u;
 }
@@ -84,11 +91,18 @@ inline constexpr std::size_t kSecond[2] = {8, 16};
 
 std::size_t columns_simd(const BlockConstants& k, const std::uint8_t* units, std::size_t unit_count,
                          std::size_t unit_bytes, const PointColumns& out, std::size_t& count) noexcept;
+// The same as Points at out[count...] (x86-64 only so far: 0 on AArch64).
+std::size_t points_simd(const BlockConstants& k, const std::uint8_t* units, std::size_t unit_count,
+                        std::size_t unit_bytes, Point* out, std::size_t& count) noexcept;
 /// Whether columns_simd() runs vector code on this CPU.
 bool columns_simd_available() noexcept;
 #else
 inline std::size_t columns_simd(const BlockConstants&, const std::uint8_t*, std::size_t, std::size_t,
                                 const PointColumns&, std::size_t&) noexcept {
+  return 0;
+}
+inline std::size_t points_simd(const BlockConstants&, const std::uint8_t*, std::size_t, std::size_t, Point*,
+                               std::size_t&) noexcept {
   return 0;
 }
 inline bool columns_simd_available() noexcept { return false; }

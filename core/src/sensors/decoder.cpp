@@ -343,16 +343,17 @@ Error Decoder::validate(ByteView payload, PacketInfo& info) noexcept {
   return Error::unsupported_model;
 }
 
-Error Decoder::decode(ByteView payload, PacketInfo& info, PacketPoints& out) noexcept {
-  return decode(payload, info, out.points.data(), out.points.size(), out.count);
+Error Decoder::decode(ByteView payload, PacketInfo& info, PacketPoints& out, DecodePath path) noexcept {
+  return decode(payload, info, out.points.data(), out.points.size(), out.count, path);
 }
 
-Error Decoder::decode(ByteView payload, PacketInfo& info, Point* points, std::size_t capacity,
-                      std::size_t& count) noexcept {
+Error Decoder::decode(ByteView payload, PacketInfo& info, Point* points, std::size_t capacity, std::size_t& count,
+                      DecodePath path) noexcept {
   count = 0;
   if (capacity < max_points(model_)) return Error::buffer_too_small;
   Output out;
   out.points = points;
+  out.path = path;
   const Error e = decode_into(payload, info, out);
   count = out.count;
   return e;
