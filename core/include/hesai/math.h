@@ -1,6 +1,8 @@
 // Sine and cosine without the C library: the core runs where there is no libm.
 #pragma once
 
+#include <array>
+#include <cstddef>
 #include <cstdint>
 
 namespace hesai {
@@ -56,17 +58,33 @@ struct SinCosF {
   float cos;
 };
 
+namespace detail {
+// sin of 0, 1, ..., 90 degrees, rounded to float (364 bytes), computed at compile time.
+constexpr std::array<float, 91> sin_whole_degrees() {
+  std::array<float, 91> t{};
+  for (std::size_t d = 0; d <= 90; ++d) t[d] = static_cast<float>(sin_cos_deg(static_cast<double>(d)).sin);
+  return t;
+}
+inline constexpr std::array<float, 91> kSinWholeDegrees = sin_whole_degrees();
+}  // namespace detail
+
 /// sin and cos of an angle in hundredths of a degree (a block azimuth as sent), in single
-/// precision only (no double arithmetic: a Cortex-M4F's FPU has none), within 2 float ulps of the
-/// exact values. The reduction to [-45, 45] degrees is exact, in integers.
+/// precision only (no double arithmetic: a Cortex-M4F's FPU has none), within 3e-7 of the exact
+/// values: the whole degrees' sine and cosine from a table, the hundredths (below 0.0173 rad) by
+/// a short series (first omitted terms below 2e-11), joined by the angle-sum identities. A short
+/// dependent chain: it runs once per block.
 constexpr SinCosF sin_cos_centideg(std::uint16_t centideg) {
-  const int q = (centideg + 4500) / 9000;  // quadrant: centideg = 9000 q + r, r in [-4500, 4500)
-  const float x = static_cast<float>(centideg - 9000 * q) * static_cast<float>(kPi / 18000.0);
-  const float x2 = x * x;
-  // Taylor series on |x| <= pi/4; the first omitted terms are below 3e-10.
-  const float s = x * (1.0f - x2 * (1.0f / 6) * (1.0f - x2 * (1.0f / 20) * (1.0f - x2 * (1.0f / 42) * (1.0f - x2 * (1.0f / 72)))));
-  const float c = 1.0f - x2 * 0.5f * (1.0f - x2 * (1.0f / 12) * (1.0f - x2 * (1.0f / 30) * (1.0f - x2 * (1.0f / 56) * (1.0f - x2 * (1.0f / 90)))));
-  switch (q & 3) {
+  const unsigned deg = centideg / 100u;
+  const float f = static_cast<float>(centideg % 100u) * static_cast<float>(kPi / 18000.0);
+  const float f2 = f * f;
+  const float sin_f = f - f * f2 * (1.0f / 6);
+  const float cos_f = 1.0f - f2 * 0.5f + f2 * f2 * (1.0f / 24);
+  const unsigned d = deg % 90u;  // deg = 90 q + d
+  const float sin_d = detail::kSinWholeDegrees[d];
+  const float cos_d = detail::kSinWholeDegrees[90 - d];
+  const float s = sin_d * cos_f + cos_d * sin_f;
+  const float c = cos_d * cos_f - sin_d * sin_f;
+  switch ((deg / 90u) & 3u) {
     case 0: return {s, c};
     case 1: return {c, -s};
     case 2: return {-s, -c};

@@ -104,8 +104,8 @@ static_assert(offsetof(Point, y) == 4 && offsetof(Point, z) == 8 && offsetof(Poi
               offsetof(Point, return_index) == 34 && offsetof(Point, confidence) == 35 && offsetof(Point, block) == 36 &&
               sizeof(Point) == 40, "points_avx2 writes this layout");
 
-// Eight units a step, as columns_avx2; then each point's 40 bytes in four stores (x, y, z and
-// distance; azimuth and elevation; time; the bytes) instead of twelve, from the eight lanes
+// Eight units a step, as columns_avx2; then each point's 40 bytes in two stores (x, y, z,
+// distance, azimuth, elevation and time; the bytes) instead of twelve, from the eight lanes
 // transposed.
 HESAI_AVX2_TARGET std::size_t points_avx2(const BlockConstants& k, const std::uint8_t* units, std::size_t unit_count,
                                           std::size_t unit_bytes, Point* out, std::size_t& count) noexcept {
@@ -171,18 +171,19 @@ HESAI_AVX2_TARGET std::size_t points_avx2(const BlockConstants& k, const std::ui
     const __m128i bytes[4] = {_mm_unpacklo_epi32(icrc_lo, block), _mm_unpackhi_epi32(icrc_lo, block),
                               _mm_unpacklo_epi32(icrc_hi, block), _mm_unpackhi_epi32(icrc_hi, block)};
     for (unsigned q = 0; q < 4; ++q) {
+      // Bytes 16..31 of points 2q and 2q + 1: azimuth, elevation, time.
+      const __m128i aet[2] = {_mm_unpacklo_epi64(_mm_castps_si128(ae[q]), t[q]),
+                              _mm_unpackhi_epi64(_mm_castps_si128(ae[q]), t[q])};
       for (unsigned h = 0; h < 2; ++h) {
         const unsigned i = 2 * q + h;
         std::uint8_t* o = base + n * sizeof(Point);
         const __m256 v = xyzr[i % 4];
-        _mm_storeu_ps(reinterpret_cast<float*>(o), i < 4 ? _mm256_castps256_ps128(v) : _mm256_extractf128_ps(v, 1));
+        const __m128 xyz_distance = i < 4 ? _mm256_castps256_ps128(v) : _mm256_extractf128_ps(v, 1);
+        _mm256_storeu_ps(reinterpret_cast<float*>(o),
+                         _mm256_insertf128_ps(_mm256_castps128_ps256(xyz_distance), _mm_castsi128_ps(aet[h]), 1));
         if (h == 0) {
-          _mm_storel_pi(reinterpret_cast<__m64*>(o + 16), ae[q]);
-          _mm_storel_epi64(reinterpret_cast<__m128i*>(o + 24), t[q]);
           _mm_storel_epi64(reinterpret_cast<__m128i*>(o + 32), bytes[q]);
         } else {
-          _mm_storeh_pi(reinterpret_cast<__m64*>(o + 16), ae[q]);
-          _mm_storeh_pd(reinterpret_cast<double*>(o + 24), _mm_castsi128_pd(t[q]));
           _mm_storeh_pd(reinterpret_cast<double*>(o + 32), _mm_castsi128_pd(bytes[q]));
         }
         n += (keep >> i) & 1u;
