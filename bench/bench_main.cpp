@@ -238,10 +238,13 @@ struct XyztArrays {
   std::int32_t t[hesai::kMaxPointsPerPacket];
 };
 
+enum class Floor { points, xyzt, columns };
+
 /// The output floor: writing as many 40-byte Points as decode() yields for the same packets
 /// (each field stored, none computed), i.e. what the output format alone costs. `xyzt`: the
-/// 16-byte minimum above instead of hesai::Point.
-void BM_WritePoints(benchmark::State& state, hesai::Model model, bool xyzt) {
+/// 16-byte minimum above instead of hesai::Point; `columns`: the seven columns of
+/// hesai::PointColumns (x, y, z, time, intensity, channel, return: 15 bytes a point).
+void BM_WritePoints(benchmark::State& state, hesai::Model model, Floor floor) {
   const std::vector<Bytes>& packets = sensor(model).packets;
   hesai::Decoder decoder(model);
   static hesai::PacketPoints out;
@@ -259,7 +262,20 @@ void BM_WritePoints(benchmark::State& state, hesai::Model model, bool xyzt) {
   for (auto _ : state) {
     const std::size_t n = counts[i];
     const float f = static_cast<float>(i);
-    if (xyzt) {
+    if (floor == Floor::columns) {
+      static hesai::PacketColumns<hesai::kMaxPointsPerPacket> c;
+      for (std::size_t k = 0; k < n; ++k) {
+        c.x[k] = f;
+        c.y[k] = f;
+        c.z[k] = f;
+        c.time_ns[k] = static_cast<std::int32_t>(k);
+        c.intensity[k] = static_cast<std::uint8_t>(k);
+        c.channel[k] = static_cast<std::uint8_t>(k);
+        c.return_index[k] = 0;
+      }
+      c.count = n;
+      benchmark::DoNotOptimize(c);
+    } else if (floor == Floor::xyzt) {
       static XyztArrays soa;
       for (std::size_t k = 0; k < n; ++k) {
         soa.x[k] = f;
@@ -407,8 +423,9 @@ void register_all() {
   for (const NamedModel& s : kSensors) {
     const std::string n = s.name;
     benchmark::RegisterBenchmark(("BM_Baseline_copy_" + n).c_str(), BM_Copy, s.model);
-    benchmark::RegisterBenchmark(("BM_Baseline_write_points_" + n).c_str(), BM_WritePoints, s.model, false);
-    benchmark::RegisterBenchmark(("BM_Baseline_write_xyzt_" + n).c_str(), BM_WritePoints, s.model, true);
+    benchmark::RegisterBenchmark(("BM_Baseline_write_points_" + n).c_str(), BM_WritePoints, s.model, Floor::points);
+    benchmark::RegisterBenchmark(("BM_Baseline_write_xyzt_" + n).c_str(), BM_WritePoints, s.model, Floor::xyzt);
+    benchmark::RegisterBenchmark(("BM_Baseline_write_columns_" + n).c_str(), BM_WritePoints, s.model, Floor::columns);
     benchmark::RegisterBenchmark(("BM_" + n + "_validate").c_str(), BM_Decoder, s.model, Stage::validate);
     benchmark::RegisterBenchmark(("BM_" + n + "_decode").c_str(), BM_Decoder, s.model, Stage::decode);
     benchmark::RegisterBenchmark(("BM_" + n + "_decode_nofiretime").c_str(), BM_Decoder, s.model,

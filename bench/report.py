@@ -128,8 +128,10 @@ def main():
     sensors = ('Pandar40', 'Pandar40P', 'Pandar64', 'QT128C2X', 'PandarQT64', 'PandarXT16', 'PandarXT32', 'PandarXT32M2X')
     for sensor in sensors:
         c, wx = get('BM_%s_decode_columns' % sensor), get('BM_Baseline_write_xyzt_%s' % sensor)
+        wc = get('BM_Baseline_write_columns_%s' % sensor)
         target('%s columns <= 2 x write_xyzt' % sensor, c and wx, c and wx and ns(c) <= 2 * ns(wx),
-               c and wx and '%.2f x (%.0f vs %.0f ns)' % (ns(c) / ns(wx), ns(c), ns(wx)))
+               c and wx and '%.2f x (%.0f vs %.0f ns)%s' % (ns(c) / ns(wx), ns(c), ns(wx),
+                                                            '; %.2f x write_columns' % (ns(c) / ns(wc)) if wc else ''))
         d, wp = get('BM_%s_decode' % sensor), get('BM_Baseline_write_points_%s' % sensor)
         target('%s Points <= 1.5 x write_points' % sensor, d and wp, d and wp and ns(d) <= 1.5 * ns(wp),
                d and wp and '%.2f x (%.0f vs %.0f ns)' % (ns(d) / ns(wp), ns(d), ns(wp)))
