@@ -243,7 +243,7 @@ enum class Floor { points, xyzt, columns };
 /// The output floor: writing as many 40-byte Points as decode() yields for the same packets
 /// (each field stored, none computed), i.e. what the output format alone costs. `xyzt`: the
 /// 16-byte minimum above instead of hesai::Point; `columns`: the seven columns of
-/// hesai::PointColumns (x, y, z, time, intensity, channel, return: 15 bytes a point).
+/// hesai::PointColumns (x, y, z, time, intensity, channel, return: 19 bytes a point).
 void BM_WritePoints(benchmark::State& state, hesai::Model model, Floor floor) {
   const std::vector<Bytes>& packets = sensor(model).packets;
   hesai::Decoder decoder(model);

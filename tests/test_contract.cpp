@@ -20,6 +20,7 @@ using namespace hesai;
 
 static_assert(sizeof(Decoder) == (HESAI_SIGNATURE ? 7168 : 6944), "decoder.h: Memory");
 static_assert(sizeof(PacketPoints) == 16008 && sizeof(Point) == 40, "decoder.h: Memory");
+static_assert(sizeof(PacketColumns<256>) == 19 * 256 + sizeof(std::size_t) && sizeof(PacketColumns<400>) == 19 * 400 + sizeof(std::size_t), "point.h: PacketColumns");
 static_assert(sizeof(PacketInfo) == 88, "decoder.h: Memory");
 static_assert(sizeof(AngleCorrection) == 2056 && sizeof(FiretimeCorrection) == 2312, "decoder.h, calibration.h");
 static_assert(sizeof(ChannelConfig) == 326, "calibration.h: Contract");

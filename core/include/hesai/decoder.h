@@ -36,13 +36,14 @@
 //   channels of a few multiplications, no trigonometric call.
 // - Stack: under 1 KiB per call on Cortex-M (README, "Bare metal": measured and from the call graph).
 //
-// Memory (the caller owns every object; the core has no static RAM but the two CPUID bytes on
+// Memory (the caller owns every object; the core has no static RAM but the three CPUID bytes on
 // x86-64; sizes checked by static_assert in tests/test_contract.cpp on every CI target, 32- and
 // 64-bit, and in the firmware image):
 // - Decoder: 7 168 bytes (6 944 with HESAI_SIGNATURE 0): per-channel geometry and the per-rate
 //   cache for 128 channels, the QT128 channel configuration (256 bytes), the HMAC key states (224
 //   bytes), the GPS time base.
-// - PacketPoints: 16 008 bytes (400 points of 40 bytes); PacketInfo: 88 bytes.
+// - PacketPoints: 16 008 bytes (400 points of 40 bytes); PacketColumns<N>: 19 N + a size_t;
+//   PacketInfo: 88 bytes.
 // - Calibration input: AngleCorrection 2 056 bytes, FiretimeCorrection 2 312 bytes (only while
 //   parsing and set_angles()/set_firetimes(); the decoder keeps what it needs).
 #pragma once

@@ -38,7 +38,7 @@ struct PacketPoints {
 };
 
 /// Caller-owned columns for one packet's points: the compact form firmware, GPUs and point-cloud
-/// messages consume (15 bytes a point instead of a Point's 40). Column i of every array is the
+/// messages consume (19 bytes a point instead of a Point's 40). Column i of every array is the
 /// same point as PacketPoints::points[i] of a decode of the same packet (the same order and count:
 /// distance 0 yields no point); the fields a Point adds derive from these and the PacketInfo:
 /// distance = |(x, y, z)|, block = by count per block, time_ns = info.time_ns + time_ns[i].
@@ -56,7 +56,7 @@ struct PointColumns {
 };
 
 /// Columns with storage for N points inside: PacketColumns<max_points(Model::qt128c2x)> holds a
-/// QT128 packet in 3 840 bytes (PacketPoints: 16 008). `count` is set by Decoder::decode.
+/// QT128 packet in 4 872 bytes on 64-bit targets (PacketPoints: 16 008). `count` is set by Decoder::decode.
 template <std::size_t N>
 struct PacketColumns {
   std::array<float, N> x, y, z;
