@@ -38,7 +38,7 @@ inline void store_packed(std::uint8_t* to, uint8x16_t lanes, unsigned keep) noex
 bool columns_simd_available() noexcept { return true; }
 
 std::size_t columns_simd(const BlockConstants& k, const std::uint8_t* units, std::size_t unit_count,
-                         std::size_t unit_bytes, const PointColumns& out, std::size_t& count) noexcept {
+                         std::size_t unit_bytes, const PointColumns out, std::size_t& count) noexcept {
   const std::size_t wide = unit_bytes == 4 ? 1 : 0;
   const std::size_t second = kSecond[wide];
   const uint8x16_t lo_distance = load_shuffle(kShuffle[wide][0].distance);
@@ -54,15 +54,7 @@ std::size_t columns_simd(const BlockConstants& k, const std::uint8_t* units, std
   const std::uint8_t first_channels[8] = {1, 2, 3, 4, 5, 6, 7, 8};
   uint8x8_t channel = vld1_u8(first_channels);
   const uint8x8_t eight = vdup_n_u8(8);
-  // The columns in locals: stores through the byte columns may alias anything in memory.
-  float* const x_out = out.x;
-  float* const y_out = out.y;
-  float* const z_out = out.z;
-  std::int32_t* const time_out = out.time_ns;
-  std::uint8_t* const intensity_out = out.intensity;
-  std::uint8_t* const channel_out = out.channel;
-  std::uint8_t* const return_out = out.return_index;
-  const float* const dir_cos = k.dir_cos;
+  const float* const dir_cos = k.dir_cos;  // in registers: k may be aliased by the byte stores
   const float* const dir_sin = k.dir_sin;
   const float* const sin_el = k.sin_el;
   const std::int32_t* const fire_ns = k.fire_ns;
@@ -79,9 +71,9 @@ std::size_t columns_simd(const BlockConstants& k, const std::uint8_t* units, std
     for (std::size_t h = 0; h < 2; ++h) keep[h] = vaddvq_u32(vandq_u32(vcgeq_u32(raw[h], min_distance), lane_bits));
     // The bytes of all eight at once, packed by the 8-lane table.
     const uint8x8_t order = vcreate_u8(kCompress[keep[0] | keep[1] << 4]);
-    vst1_u8(intensity_out + n, vtbl1_u8(intensity, order));
-    vst1_u8(channel_out + n, vtbl1_u8(channel, order));
-    vst1_u8(return_out + n, ret);
+    vst1_u8(out.intensity + n, vtbl1_u8(intensity, order));
+    vst1_u8(out.channel + n, vtbl1_u8(channel, order));
+    vst1_u8(out.return_index + n, ret);
     channel = vadd_u8(channel, eight);
     // The floats four at a time: the scalar loop's operations in its order (block_points.h,
     // unit_xyz), no fused multiply-add.
@@ -94,10 +86,10 @@ std::size_t columns_simd(const BlockConstants& k, const std::uint8_t* units, std
       const float32x4_t y = vmulq_f32(r, vsubq_f32(vmulq_f32(cos_a, dc), vmulq_f32(sin_a, ds)));
       const float32x4_t z = vmulq_f32(r, vld1q_f32(sin_el + c));
       const int32x4_t t = vaddq_s32(offset, vld1q_s32(fire_ns + c));
-      store_packed(reinterpret_cast<std::uint8_t*>(x_out + n), vreinterpretq_u8_f32(x), keep[h]);
-      store_packed(reinterpret_cast<std::uint8_t*>(y_out + n), vreinterpretq_u8_f32(y), keep[h]);
-      store_packed(reinterpret_cast<std::uint8_t*>(z_out + n), vreinterpretq_u8_f32(z), keep[h]);
-      store_packed(reinterpret_cast<std::uint8_t*>(time_out + n), vreinterpretq_u8_s32(t), keep[h]);
+      store_packed(reinterpret_cast<std::uint8_t*>(out.x + n), vreinterpretq_u8_f32(x), keep[h]);
+      store_packed(reinterpret_cast<std::uint8_t*>(out.y + n), vreinterpretq_u8_f32(y), keep[h]);
+      store_packed(reinterpret_cast<std::uint8_t*>(out.z + n), vreinterpretq_u8_f32(z), keep[h]);
+      store_packed(reinterpret_cast<std::uint8_t*>(out.time_ns + n), vreinterpretq_u8_s32(t), keep[h]);
       n += static_cast<std::size_t>(__builtin_popcount(keep[h]));
     }
   }

@@ -89,16 +89,18 @@ inline constexpr std::size_t kSecond[2] = {8, 16};
 // lacks the instructions). Writes whole vectors: up to 7 entries past the new count, all below
 // the block's own units, so below max_points.
 
+// `out` by value: stores through its byte columns may alias anything in memory but not a local
+// copy, whose pointers then stay in registers.
 std::size_t columns_simd(const BlockConstants& k, const std::uint8_t* units, std::size_t unit_count,
-                         std::size_t unit_bytes, const PointColumns& out, std::size_t& count) noexcept;
+                         std::size_t unit_bytes, PointColumns out, std::size_t& count) noexcept;
 // The same as Points at out[count...] (x86-64 only so far: 0 on AArch64).
 std::size_t points_simd(const BlockConstants& k, const std::uint8_t* units, std::size_t unit_count,
                         std::size_t unit_bytes, Point* out, std::size_t& count) noexcept;
 /// Whether columns_simd() runs vector code on this CPU.
 bool columns_simd_available() noexcept;
 #else
-inline std::size_t columns_simd(const BlockConstants&, const std::uint8_t*, std::size_t, std::size_t,
-                                const PointColumns&, std::size_t&) noexcept {
+inline std::size_t columns_simd(const BlockConstants&, const std::uint8_t*, std::size_t, std::size_t, PointColumns,
+                                std::size_t&) noexcept {
   return 0;
 }
 inline std::size_t points_simd(const BlockConstants&, const std::uint8_t*, std::size_t, std::size_t, Point*,
