@@ -141,7 +141,7 @@ HESAI_NOINLINE_FOR_SIZE void Decoder::emit_block(const std::uint8_t* units, std:
   k.unit_m = static_cast<float>(info.dis_unit_mm) * 0.001f;
   k.min_distance = model_ == Model::qt128c2x ? 2 : 1;  // QT128 reserves distance 1 as a marker
   // The blocks of one firing (2 in dual return, 3 in triple) come together: the k-th is return k.
-  k.return_index = info.returns > 1 ? static_cast<std::uint8_t>(block % info.returns) : 0;
+  k.return_index = static_cast<std::uint8_t>(info.returns > 1 ? block % info.returns : 0);
   k.offset_ns = block_offset_ns;
   k.dir_cos = spin_.dir_cos[loop].data();
   k.dir_sin = spin_.dir_sin[loop].data();
