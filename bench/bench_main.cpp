@@ -20,6 +20,8 @@
 #include "hesai/pandar40_packet.h"
 #include "hesai/pandar64_packet.h"
 #include "hesai/qt128_packet.h"
+#include "hesai/qt64_packet.h"
+#include "hesai/xt_packet.h"
 #include "hesai/sha256.h"
 
 #ifdef HESAI_BENCH_OPENSSL
@@ -115,37 +117,38 @@ const std::vector<Bytes>& signed_qt128() {
 /// between 598 and 602 and change speed 11-12 times each), so that every decode() rebuilds the
 /// cache. CRCs re-sealed where the model has them (QT128C2X).
 const std::vector<Bytes>& rpm_changing(hesai::Model model) {
-  auto make = [](hesai::Model m) {
-    std::vector<Bytes> out = sensor(m).packets;
-    for (std::size_t i = 0; i < out.size(); ++i) {
-      Bytes& p = out[i];
-      const std::uint16_t rpm = i % 2 == 0 ? 598 : 602;
-      std::size_t at = 0;
-      switch (m) {
-        case hesai::Model::pandar40:
-        case hesai::Model::pandar40p: at = hesai::pandar40::kMotorSpeed; break;
-        case hesai::Model::pandar64: at = hesai::pandar64::kMotorSpeed; break;
-        default:
-          at = hesai::qt128::Layout::from_header(p[hesai::qt128::kLaserNum], p[hesai::qt128::kFlags]).tail +
+  // The motor speed field of each layout.
+  auto speed_at = [](hesai::Model m, const Bytes& p) -> std::size_t {
+    switch (m) {
+      case hesai::Model::pandar40:
+      case hesai::Model::pandar40p: return hesai::pandar40::kMotorSpeed;
+      case hesai::Model::pandar64: return hesai::pandar64::kMotorSpeed;
+      case hesai::Model::qt128c2x:
+        return hesai::qt128::Layout::from_header(p[hesai::qt128::kLaserNum], p[hesai::qt128::kFlags]).tail +
                hesai::qt128::kTailMotorSpeed;
-      }
-      hesai::store_le16(&p[at], rpm);
-      if (m == hesai::Model::qt128c2x && hesai::qt128::seal(p.data(), p.size()) != hesai::Error::ok) {
-        std::fprintf(stderr, "hesai_bench: cannot re-seal a QT128 packet\n");
-        std::exit(1);
-      }
+      case hesai::Model::pandar_qt64: return hesai::qt64::kTail + hesai::qt64::kTailMotorSpeed;
+      case hesai::Model::pandar_xt16:
+      case hesai::Model::pandar_xt32:
+      case hesai::Model::pandar_xt32m2x: return p.size() - hesai::xt::kTailBytes + hesai::xt::kTailMotorSpeed;
+      case hesai::Model::unknown: break;
     }
-    if (out.size() % 2 != 0) out.pop_back();  // round robin: the last packet's rate differs from the first's
-    return out;
+    std::fprintf(stderr, "hesai_bench: no motor speed field for this model\n");
+    std::exit(1);
   };
-  static const std::vector<Bytes> p40 = make(hesai::Model::pandar40), p40p = make(hesai::Model::pandar40p),
-                                  p64 = make(hesai::Model::pandar64), qt = make(hesai::Model::qt128c2x);
-  switch (model) {
-    case hesai::Model::pandar40: return p40;
-    case hesai::Model::pandar40p: return p40p;
-    case hesai::Model::pandar64: return p64;
-    default: return qt;
+  static std::vector<Bytes> made[hesai::kModelCount];
+  std::vector<Bytes>& out = made[static_cast<std::size_t>(model)];
+  if (!out.empty()) return out;
+  out = sensor(model).packets;
+  for (std::size_t i = 0; i < out.size(); ++i) {
+    Bytes& p = out[i];
+    hesai::store_le16(&p[speed_at(model, p)], i % 2 == 0 ? 598 : 602);
+    if (model == hesai::Model::qt128c2x && hesai::qt128::seal(p.data(), p.size()) != hesai::Error::ok) {
+      std::fprintf(stderr, "hesai_bench: cannot re-seal a QT128 packet\n");
+      std::exit(1);
+    }
   }
+  if (out.size() % 2 != 0) out.pop_back();  // round robin: the last packet's rate differs from the first's
+  return out;
 }
 
 enum class Stage {
