@@ -27,7 +27,7 @@ static_assert(sizeof(ChannelConfig) == 326, "calibration.h: Contract");
 static_assert(sizeof(HmacSha256Key) == 224 && sizeof(HmacSha256) == 120, "hmac.h: Contract");
 static_assert(sizeof(Sha256) == 112, "sha256.h: Contract");
 static_assert(sizeof(Crc32Mpeg2) == 4, "crc32.h: Contract");
-static_assert(sizeof(FrameAssembler) == 408, "frame.h: Contract");
+static_assert(sizeof(FrameAssembler) == 400, "frame.h: Contract");
 static_assert(sizeof(SequenceTracker) == 576, "sequence.h: Contract");
 static_assert(sizeof(GpsPacket) == 112, "gps.h");
 static_assert(sizeof(SafetyMonitor) == 136, "safety.h: Cost");

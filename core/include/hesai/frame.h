@@ -1,7 +1,7 @@
 // Frame assembly: which rotation each point belongs to, from its own azimuth, and when a
 // rotation is complete.
 //
-// Contract: a FrameAssembler (408 bytes) follows one packet stream, in one thread; constant work
+// Contract: a FrameAssembler (400 bytes) follows one packet stream, in one thread; constant work
 // per block and per point, no heap.
 #pragma once
 
@@ -138,6 +138,8 @@ class FrameAssembler {
 
   FrameInfo& slot(std::uint64_t id) noexcept { return slots_[id % kSlots]; }
   std::int32_t forward(std::uint16_t from, std::uint16_t to) const noexcept;
+  // Forward distance from block_id_'s cut to the reference azimuth, 0..35999.
+  std::int32_t ref_pos() const noexcept { return forward(cut_cdeg_, ref_cdeg_); }
   void start_stream(std::uint16_t azimuth_cdeg) noexcept;
   void open_next(bool at_cut) noexcept;
   bool close_through(std::uint64_t id, bool at_cut) noexcept;
@@ -159,8 +161,7 @@ class FrameAssembler {
   float ahead_cdeg_ = 0;               // and ahead of it
   float fov_start_ = 0;
   float fov_end_ = 360;
-  std::int32_t ref_pos_ = 0;           // forward distance from block_id_'s cut to the reference, 0..35999
-  std::int32_t block_pos_ = 0;         // the same for the last block (below ref_pos_ after a step back)
+  std::int32_t block_pos_ = 0;         // forward distance from block_id_'s cut to the last block (below ref_pos() after a step back)
   std::uint16_t cut_cdeg_ = 0;
   std::uint16_t ref_cdeg_ = 0;         // furthest block azimuth reached
   std::uint16_t block_cdeg_ = 0;       // last block azimuth

@@ -19,7 +19,7 @@ Error FrameAssembler::set_cut_deg(float degrees) noexcept {
   std::int32_t cdeg = static_cast<std::int32_t>(degrees * 100.0f + 0.5f);
   if (cdeg >= kTurn) cdeg = 0;  // 359.996 and above round to 360.00, which is 0
   cut_cdeg_ = static_cast<std::uint16_t>(cdeg);
-  ref_pos_ = block_pos_ = forward(cut_cdeg_, ref_cdeg_);  // the stream goes on from the new cut
+  block_pos_ = ref_pos();  // the stream goes on from the new cut
   return Error::ok;
 }
 
@@ -27,7 +27,7 @@ void FrameAssembler::set_rotation(Rotation rotation) noexcept {
   if (rotation == rotation_) return;
   rotation_ = rotation;
   update_reach();
-  ref_pos_ = block_pos_ = forward(cut_cdeg_, ref_cdeg_);  // the stream goes on in the new direction
+  block_pos_ = ref_pos();  // the stream goes on in the new direction
 }
 
 Error FrameAssembler::set_beam_spread(AzimuthSpread spread) noexcept {
@@ -112,16 +112,16 @@ void FrameAssembler::count_packet(std::uint64_t id) noexcept {
 
 void FrameAssembler::start_stream(std::uint16_t azimuth_cdeg) noexcept {
   ref_cdeg_ = azimuth_cdeg;
-  ref_pos_ = block_pos_ = forward(cut_cdeg_, azimuth_cdeg);
+  block_pos_ = ref_pos();
   // Points of the first blocks can lie behind the cut: the rotation before opens first.
-  if (static_cast<float>(ref_pos_) < behind_cdeg_) open_next(false);
+  if (static_cast<float>(block_pos_) < behind_cdeg_) open_next(false);
   // A frame's start is whole when the stream began at least the spread ahead before its cut:
   // the block's own frame only when it lies on the cut and no point lies ahead of its block.
   const std::uint64_t own = next_id_;
-  if (ref_pos_ == 0 && ahead_cdeg_ <= 0.0f) {
+  if (block_pos_ == 0 && ahead_cdeg_ <= 0.0f) {
     complete_from_ = own;
   } else {
-    complete_from_ = static_cast<float>(kTurn - ref_pos_) >= ahead_cdeg_ ? own + 1 : own + 2;
+    complete_from_ = static_cast<float>(kTurn - block_pos_) >= ahead_cdeg_ ? own + 1 : own + 2;
   }
   open_next(own >= complete_from_);
   block_id_ = own;
@@ -138,20 +138,19 @@ bool FrameAssembler::block(std::uint16_t azimuth_cdeg) noexcept {
   } else {
     const std::int32_t move = forward(ref_cdeg_, azimuth_cdeg);
     if (move != 0 && (after_gap || move < kHalfTurn)) {
+      const bool past_cut = ref_pos() + move >= kTurn;
       ref_cdeg_ = azimuth_cdeg;
-      ref_pos_ += move;
-      if (ref_pos_ >= kTurn) {  // past the cut: the reference enters the next rotation
-        ref_pos_ -= kTurn;
+      if (past_cut) {  // the reference enters the next rotation
         if (after_gap) slot(block_id_).loss = true;  // the gap straddles the cut
         closed = close_through(block_id_ - 1, true);
         ++block_id_;
         if (block_id_ == next_id_) open_next(block_id_ >= complete_from_);
       }
+      block_pos_ = ref_pos();
       // Past the end of the frame before by the spread behind: no later point can reach it.
-      if (static_cast<float>(ref_pos_) >= behind_cdeg_) closed = close_through(block_id_ - 1, true) || closed;
-      block_pos_ = ref_pos_;
+      if (static_cast<float>(block_pos_) >= behind_cdeg_) closed = close_through(block_id_ - 1, true) || closed;
     } else {
-      block_pos_ = ref_pos_ - (move == 0 ? 0 : kTurn - move);  // the same azimuth, or a step back
+      block_pos_ = ref_pos() - (move == 0 ? 0 : kTurn - move);  // the same azimuth, or a step back
     }
   }
   block_cdeg_ = azimuth_cdeg;
@@ -219,7 +218,7 @@ void FrameAssembler::reset() noexcept {
   // The slots need no clearing: open_next() clears each before use.
   next_id_ = first_open_ = oldest_ = 1;
   block_id_ = complete_from_ = packet_index_ = pending_lost_ = pending_points_ = dropped_ = 0;
-  ref_pos_ = block_pos_ = 0;
+  block_pos_ = 0;
   ref_cdeg_ = block_cdeg_ = 0;
   in_packet_ = packet_started_ = false;
 }
