@@ -280,7 +280,8 @@ class Decoder {
   void set_channel_angle(std::size_t ch, double elevation_deg, double azimuth_deg) noexcept;
   void set_channel_firetime(std::size_t ch, double loop1_us, double loop2_us) noexcept;
   template <std::size_t N>
-  void set_design_tables(const std::array<float, N>& elevation_deg, const std::array<float, N>& firetime_us) noexcept;
+  void set_design_tables(const std::array<float, N>& elevation_deg, const float* azimuth_deg,
+                         const std::array<float, N>& firetime_us) noexcept;
   void update_spin(std::uint16_t rpm) noexcept;
   [[nodiscard]] Error validate_pandar40(ByteView p, PacketInfo& info) noexcept;
   [[nodiscard]] Error validate_pandar64(ByteView p, PacketInfo& info) noexcept;

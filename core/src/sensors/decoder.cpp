@@ -92,23 +92,26 @@ Decoder::Decoder(Model model) noexcept : model_(model) {
       }
       break;
     case Model::pandar_qt64:
-      for (std::size_t i = 0; i < tables::qt64_channel_count; ++i) {
-        set_channel_angle(i, tables::qt64_elevation_deg[i], tables::qt64_azimuth_deg[i]);
-        set_channel_firetime(i, tables::qt64_firetime_us[i], tables::qt64_firetime_us[i]);
-      }
+      set_design_tables(tables::qt64_elevation_deg, tables::qt64_azimuth_deg.data(), tables::qt64_firetime_us);
       break;
-    case Model::pandar_xt16: set_design_tables(tables::xt16_elevation_deg, tables::xt16_firetime_us); break;
-    case Model::pandar_xt32: set_design_tables(tables::xt32_elevation_deg, tables::xt32_firetime_us); break;
-    case Model::pandar_xt32m2x: set_design_tables(tables::xt32m2x_elevation_deg, tables::xt32m2x_firetime_us); break;
+    // Every design azimuth offset of the XT family is 0 (xt_tables.h).
+    case Model::pandar_xt16: set_design_tables(tables::xt16_elevation_deg, nullptr, tables::xt16_firetime_us); break;
+    case Model::pandar_xt32: set_design_tables(tables::xt32_elevation_deg, nullptr, tables::xt32_firetime_us); break;
+    case Model::pandar_xt32m2x:
+      set_design_tables(tables::xt32m2x_elevation_deg, nullptr, tables::xt32m2x_firetime_us);
+      break;
     case Model::unknown: break;
   }
 }
 
 template <std::size_t N>
-void Decoder::set_design_tables(const std::array<float, N>& elevation_deg, const std::array<float, N>& firetime_us) noexcept {
-  // Tables of elevations with every azimuth offset 0 and one firing sequence (the XT family).
+void Decoder::set_design_tables(const std::array<float, N>& elevation_deg, const float* azimuth_deg,
+                                const std::array<float, N>& firetime_us) noexcept {
+  // The float design tables of the models without a manual here (PandarQT64, PandarXT): one
+  // firing sequence; azimuth_deg nullptr when every azimuth offset is 0.
   for (std::size_t i = 0; i < N; ++i) {
-    set_channel_angle(i, static_cast<double>(elevation_deg[i]), 0.0);
+    set_channel_angle(i, static_cast<double>(elevation_deg[i]),
+                      azimuth_deg != nullptr ? static_cast<double>(azimuth_deg[i]) : 0.0);
     set_channel_firetime(i, static_cast<double>(firetime_us[i]), static_cast<double>(firetime_us[i]));
   }
 }
