@@ -133,6 +133,12 @@ hesai_error set_from_csv(hesai_decoder* decoder, const std::uint8_t* text, std::
   return c_error((d.*apply)(parsed));
 }
 
+// parse_channel_config_csv in set_from_csv's form: the file states its own LaserNum, so the
+// decoder's channel count is not an input.
+hesai::ParseResult parse_channel_config(ByteView text, std::size_t, hesai::ChannelConfig& out) noexcept {
+  return hesai::parse_channel_config_csv(text, out);
+}
+
 void copy_info(const hesai::PacketInfo& i, hesai_packet_info& o) noexcept {
   o.time_ns = i.time_ns;
   o.date_time.year = i.date_time.year;
@@ -275,15 +281,8 @@ hesai_error hesai_decoder_set_rotation(hesai_decoder* decoder, int rotation) noe
 
 hesai_error hesai_decoder_set_channel_config_csv(hesai_decoder* decoder, const std::uint8_t* text, std::size_t size,
                                                  hesai_calibration_scratch* scratch, std::uint32_t* line) noexcept {
-  if (line != nullptr) *line = 0;
-  if (decoder == nullptr || scratch == nullptr || !bytes_ok(text, size)) return HESAI_ERROR_invalid_argument;
-  auto& config = fresh_in<hesai::ChannelConfig>(scratch);
-  const hesai::ParseResult r = hesai::parse_channel_config_csv(ByteView{text, size}, config);
-  if (r.error != Error::ok) {
-    if (line != nullptr) *line = r.line;
-    return c_error(r.error);
-  }
-  return c_error(decoder_in(decoder).set_channel_config(config));
+  return set_from_csv<hesai::ChannelConfig>(decoder, text, size, scratch, line, parse_channel_config,
+                                            &Decoder::set_channel_config);
 }
 
 hesai_error hesai_decoder_clear_channel_config(hesai_decoder* decoder) noexcept {
