@@ -541,6 +541,10 @@ TEST(XtRules, FieldChecks) {
   p[kXt32Tail + 9] = 1;
   ASSERT_EQ(validate(Model::pandar_xt32, p, info), Error::ok);
   EXPECT_EQ(info.high_temperature, 1);
+  // Only bit 0 is the flag (SDK udp_protocol_v6_1.h, HsLidarXTV1Tail::kShutdown = 0x01).
+  p[kXt32Tail + 9] = 0xFE;
+  ASSERT_EQ(validate(Model::pandar_xt32, p, info), Error::ok);
+  EXPECT_EQ(info.high_temperature, 0);
 }
 
 TEST(XtRules, YearZeroMeansUnixSecondsBigEndian) {

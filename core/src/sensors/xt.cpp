@@ -72,7 +72,7 @@ Error Decoder::validate_xt(ByteView p, PacketInfo& info) noexcept {
   if (info.dis_unit_mm == 0) return Error::bad_header;
 
   const std::uint8_t* tail = p.data + tail_offset(lasers, info.blocks);
-  info.high_temperature = tail[kTailShutdown];
+  info.high_temperature = static_cast<std::uint8_t>(tail[kTailShutdown] & 1);  // SDK HasShutdown(): bit 0, as 3.1
   detail::read_tail(tail, {kTailReturnMode, kTailMotorSpeed, kTailTimestamp, kTailFactoryInfo, kTailSequence},
                     (info.flags & kFlagSequence) != 0, info);
   // The returns per firing follow the tail's return mode, not the header's echo num (the XT32M2X
