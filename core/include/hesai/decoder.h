@@ -36,7 +36,7 @@
 //   channels of a few multiplications, no trigonometric call.
 // - Stack: under 1 KiB per call on Cortex-M (README, "Bare metal": measured and from the call graph).
 //
-// Memory (the caller owns every object; the core has no static RAM but the three CPUID bytes on
+// Memory (the caller owns every object; the core has no static RAM but the one CPUID byte on
 // x86-64; sizes checked by static_assert in tests/test_contract.cpp on every CI target, 32- and
 // 64-bit, and in the firmware image):
 // - Decoder: 7 168 bytes (6 944 with HESAI_SIGNATURE 0): per-channel geometry and the per-rate

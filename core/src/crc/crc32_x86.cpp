@@ -5,28 +5,14 @@
 
 #if defined(HESAI_CRC32_FOLD_X86)
 
-#include <cpuid.h>
 #include <immintrin.h>
 
-#include <atomic>
+#include "../base/cpu_x86.h"
 
 #define HESAI_CLMUL_TARGET __attribute__((target("pclmul,sse4.1,ssse3")))
 
 namespace hesai::crc32_fold {
 namespace {
-
-// 0: not asked yet, 1: absent, 2: present. Relaxed: every thread computes the same answer.
-std::atomic<std::uint8_t> g_clmul{0};
-
-bool cpu_has_clmul() noexcept {
-  unsigned eax = 0, ebx = 0, ecx = 0, edx = 0;
-  if (__get_cpuid(1, &eax, &ebx, &ecx, &edx) == 0) return false;
-  constexpr unsigned kPclmulqdq = 1u << 1;  // CPUID.01H:ECX bits (Intel SDM vol. 2A, table 3-10)
-  constexpr unsigned kSsse3 = 1u << 9;
-  constexpr unsigned kSse41 = 1u << 19;
-  constexpr unsigned kNeed = kPclmulqdq | kSsse3 | kSse41;
-  return (ecx & kNeed) == kNeed;
-}
 
 constexpr long long as_ll(std::uint64_t v) noexcept { return static_cast<long long>(v); }
 
@@ -58,14 +44,7 @@ HESAI_CLMUL_TARGET inline std::uint32_t reduce(__m128i r) noexcept {
 
 }  // namespace
 
-bool fold_available() noexcept {
-  std::uint8_t state = g_clmul.load(std::memory_order_relaxed);
-  if (state == 0) {
-    state = cpu_has_clmul() ? 2 : 1;
-    g_clmul.store(state, std::memory_order_relaxed);
-  }
-  return state == 2;
-}
+bool fold_available() noexcept { return detail::x86_has(detail::X86Feature::clmul); }
 
 HESAI_CLMUL_TARGET std::uint32_t fold_blocks(std::uint32_t crc, const std::uint8_t* p, std::size_t n) noexcept {
   HESAI_ASSERT(n >= kMinBytes);

@@ -9,9 +9,9 @@
 
 #if defined(__x86_64__) && HESAI_GNU
 #define HESAI_SHA256_X86 1
-#include <atomic>
-#include <cpuid.h>
 #include <immintrin.h>
+
+#include "../base/cpu_x86.h"
 #elif (defined(__ARM_FEATURE_SHA2) || defined(__ARM_FEATURE_CRYPTO)) && !defined(__ARM_BIG_ENDIAN)
 #define HESAI_SHA256_ARM 1
 #include <arm_neon.h>
@@ -91,18 +91,6 @@ void compress_portable(std::uint32_t state[8], const std::uint8_t* p, std::size_
 }
 
 #if defined(HESAI_SHA256_X86)
-
-// 0: not yet asked, 1: no SHA-NI, 2: SHA-NI. Racing first calls all store the same answer.
-std::atomic<std::uint8_t> g_x86_sha{0};
-
-bool cpu_has_sha_ni() noexcept {
-  unsigned a = 0, b = 0, c = 0, d = 0;
-  if (!__get_cpuid(1, &a, &b, &c, &d)) return false;
-  const bool ssse3 = (c >> 9) & 1u, sse41 = (c >> 19) & 1u;  // CPUID.1:ECX
-  if (!__get_cpuid_count(7, 0, &a, &b, &c, &d)) return false;
-  const bool sha = (b >> 29) & 1u;  // CPUID.(7,0):EBX
-  return ssse3 && sse41 && sha;
-}
 
 #define HESAI_SHA_NI __attribute__((target("sha,sse4.1,ssse3")))
 
@@ -220,12 +208,7 @@ Sha256Path usable(Sha256Path path) noexcept {
 
 bool sha256_hardware_available() noexcept {
 #if defined(HESAI_SHA256_X86)
-  std::uint8_t known = g_x86_sha.load(std::memory_order_relaxed);
-  if (known == 0) {
-    known = cpu_has_sha_ni() ? 2 : 1;
-    g_x86_sha.store(known, std::memory_order_relaxed);
-  }
-  return known == 2;
+  return detail::x86_has(detail::X86Feature::sha_ni);
 #elif defined(HESAI_SHA256_ARM)
   return true;
 #else

@@ -5,33 +5,16 @@
 
 #if defined(HESAI_COLUMNS_AVX2)
 
-#include <cpuid.h>
 #include <immintrin.h>
 
-#include <atomic>
 #include <cstddef>
+
+#include "../base/cpu_x86.h"
 
 #define HESAI_AVX2_TARGET __attribute__((target("avx2,popcnt")))
 
 namespace hesai::detail {
 namespace {
-
-// 0: not asked yet, 1: absent, 2: present. Relaxed: every thread computes the same answer.
-std::atomic<std::uint8_t> g_avx2{0};
-
-bool cpu_has_avx2() noexcept {
-  unsigned eax = 0, ebx = 0, ecx = 0, edx = 0;
-  if (__get_cpuid(1, &eax, &ebx, &ecx, &edx) == 0) return false;
-  // CPUID.01H:ECX (Intel SDM vol. 2A, table 3-10): OSXSAVE (27) and AVX (28); XCR0 bits 1 and 2:
-  // the OS saves the SSE and AVX state; CPUID.(EAX=07H, ECX=0):EBX bit 5: AVX2. POPCNT: ECX bit 23.
-  constexpr unsigned kNeed = (1u << 23) | (1u << 27) | (1u << 28);
-  if ((ecx & kNeed) != kNeed) return false;
-  unsigned xcr0_lo = 0, xcr0_hi = 0;
-  __asm__("xgetbv" : "=a"(xcr0_lo), "=d"(xcr0_hi) : "c"(0));
-  if ((xcr0_lo & 6u) != 6u) return false;
-  if (__get_cpuid_count(7, 0, &eax, &ebx, &ecx, &edx) == 0) return false;
-  return (ebx & (1u << 5)) != 0;
-}
 
 HESAI_AVX2_TARGET inline __m128i load16(const std::int8_t* p) noexcept {
   return _mm_loadu_si128(reinterpret_cast<const __m128i*>(p));
@@ -201,14 +184,7 @@ HESAI_AVX2_TARGET std::size_t points_avx2(const BlockConstants& k, const std::ui
 
 }  // namespace
 
-bool columns_simd_available() noexcept {
-  std::uint8_t state = g_avx2.load(std::memory_order_relaxed);
-  if (state == 0) {
-    state = cpu_has_avx2() ? 2 : 1;
-    g_avx2.store(state, std::memory_order_relaxed);
-  }
-  return state == 2;
-}
+bool columns_simd_available() noexcept { return x86_has(X86Feature::avx2); }
 
 std::size_t points_simd(const BlockConstants& k, const std::uint8_t* units, std::size_t unit_count,
                         std::size_t unit_bytes, Point* out, std::size_t& count) noexcept {
