@@ -292,7 +292,9 @@ class Decoder {
   // out[count...], at most max_points(model_) points in all.
   // Where a block walk writes: Points or columns, and the count so far (block_points.h).
   struct Output;
-  [[nodiscard]] Error decode_into(ByteView payload, PacketInfo& info, Output& out) noexcept;
+  // Both decode() forms: the capacity check, validate(), the walk into `out`; count 0 on error.
+  [[nodiscard]] Error decode_into(ByteView payload, PacketInfo& info, Output& out, std::size_t capacity,
+                                  std::size_t& count) noexcept;
   void decode_pandar40(const std::uint8_t* p, const PacketInfo& info, Output& out) const noexcept;
   void decode_pandar64(const std::uint8_t* p, const PacketInfo& info, Output& out) const noexcept;
   void decode_qt128(const std::uint8_t* p, const PacketInfo& info, Output& out) const noexcept;

@@ -352,34 +352,31 @@ Error Decoder::decode(ByteView payload, PacketInfo& info, PacketPoints& out, Dec
 
 Error Decoder::decode(ByteView payload, PacketInfo& info, Point* points, std::size_t capacity, std::size_t& count,
                       DecodePath path) noexcept {
-  count = 0;
-  if (capacity < max_points(model_)) return Error::buffer_too_small;
   Output out;
   out.points = points;
   out.path = path;
-  const Error e = decode_into(payload, info, out);
-  count = out.count;
-  return e;
+  return decode_into(payload, info, out, capacity, count);
 }
 
 Error Decoder::decode(ByteView payload, PacketInfo& info, const PointColumns& columns, std::size_t& count,
                       DecodePath path) noexcept {
-  count = 0;
-  if (columns.capacity < max_points(model_)) return Error::buffer_too_small;
   if (columns.x == nullptr || columns.y == nullptr || columns.z == nullptr || columns.time_ns == nullptr ||
-      columns.intensity == nullptr || columns.channel == nullptr || columns.return_index == nullptr)
+      columns.intensity == nullptr || columns.channel == nullptr || columns.return_index == nullptr) {
+    count = 0;
     return Error::invalid_argument;
+  }
   Output out;
   out.columns = columns;
   out.path = path;
-  const Error e = decode_into(payload, info, out);
-  count = out.count;
-  return e;
+  return decode_into(payload, info, out, columns.capacity, count);
 }
 
 bool decode_simd_available() noexcept { return detail::columns_simd_available(); }
 
-Error Decoder::decode_into(ByteView payload, PacketInfo& info, Output& out) noexcept {
+Error Decoder::decode_into(ByteView payload, PacketInfo& info, Output& out, std::size_t capacity,
+                           std::size_t& count) noexcept {
+  count = 0;
+  if (capacity < max_points(model_)) return Error::buffer_too_small;
   const Error e = validate(payload, info);
   if (e != Error::ok) return e;
   const std::uint16_t rpm = firetime_correction_ ? info.motor_rpm : 0;
@@ -395,6 +392,7 @@ Error Decoder::decode_into(ByteView payload, PacketInfo& info, Output& out) noex
     case Model::pandar_xt32m2x: decode_xt(payload.data, info, out); break;
     case Model::unknown: break;
   }
+  count = out.count;
   return Error::ok;
 }
 
