@@ -10,7 +10,11 @@ SECONDS_EACH=${1:-30}
 shift || true
 HARNESSES=("$@")
 if [ ${#HARNESSES[@]} -eq 0 ]; then
-  HARNESSES=(pandar40 pandar40p pandar64 qt128 gps angles_csv firetimes_csv channel_config_csv capture frames signature xt)
+  # Every harness there is: fuzz/fuzz_<name>.cpp (a list here lost fuzz_qt64 in a merge).
+  for f in fuzz/fuzz_*.cpp; do
+    h=${f#fuzz/fuzz_}
+    HARNESSES+=("${h%.cpp}")
+  done
 fi
 JOBS=${HESAI_JOBS:-2}
 cmake --preset fuzz >/dev/null
