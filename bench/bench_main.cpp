@@ -158,7 +158,8 @@ enum class Stage {
   decode_signed,
   decode_rpm_changes,
   decode_columns,
-  decode_columns_portable
+  decode_columns_portable,
+  decode_columns_avx2
 };
 
 void finish_counters(benchmark::State& state, std::uint64_t bytes, std::uint64_t points) {
@@ -184,8 +185,9 @@ void BM_Decoder(benchmark::State& state, hesai::Model model, Stage stage) {
   // Every packet must pass, or the benchmark would time the error path.
   static hesai::PacketPoints out;
   static hesai::PacketColumns<hesai::kMaxPointsPerPacket> columns;
-  const hesai::DecodePath path =
-      stage == Stage::decode_columns_portable ? hesai::DecodePath::portable : hesai::DecodePath::best;
+  const hesai::DecodePath path = stage == Stage::decode_columns_portable ? hesai::DecodePath::portable
+                                 : stage == Stage::decode_columns_avx2   ? hesai::DecodePath::avx2
+                                                                         : hesai::DecodePath::best;
   for (const Bytes& p : packets) {
     hesai::PacketInfo info;
     if (decoder.decode({p.data(), p.size()}, info, out) != hesai::Error::ok) {
@@ -202,7 +204,8 @@ void BM_Decoder(benchmark::State& state, hesai::Model model, Stage stage) {
     hesai::Error e;
     if (stage == Stage::validate) {
       e = decoder.validate({p.data(), p.size()}, info);
-    } else if (stage == Stage::decode_columns || stage == Stage::decode_columns_portable) {
+    } else if (stage == Stage::decode_columns || stage == Stage::decode_columns_portable ||
+               stage == Stage::decode_columns_avx2) {
       e = decoder.decode({p.data(), p.size()}, info, columns, path);
       points += columns.count;
     } else {
@@ -438,6 +441,8 @@ void register_all() {
     benchmark::RegisterBenchmark(("BM_" + n + "_decode_columns").c_str(), BM_Decoder, s.model, Stage::decode_columns);
     benchmark::RegisterBenchmark(("BM_" + n + "_decode_columns_portable").c_str(), BM_Decoder, s.model,
                                  Stage::decode_columns_portable);
+    benchmark::RegisterBenchmark(("BM_" + n + "_decode_columns_avx2").c_str(), BM_Decoder, s.model,
+                                 Stage::decode_columns_avx2);
   }
   benchmark::RegisterBenchmark("BM_QT128C2X_decode_signed", BM_Decoder, hesai::Model::qt128c2x, Stage::decode_signed);
 
@@ -473,7 +478,7 @@ int main(int argc, char** argv) {
   if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
   benchmark::AddCustomContext("crc32_hardware", hesai::crc32_hardware_available() ? "yes" : "no");
   benchmark::AddCustomContext("sha256_hardware", hesai::sha256_hardware_available() ? "yes" : "no");
-  benchmark::AddCustomContext("decode_simd", hesai::decode_simd_available() ? "yes" : "no");
+  benchmark::AddCustomContext("decode_simd", hesai::decode_simd_name());
   register_all();
   benchmark::RunSpecifiedBenchmarks();
   benchmark::Shutdown();

@@ -26,7 +26,7 @@ void decode_all_without_allocating(const char* capture, Model model) {
       if (e != Error::ok) worst = e;
       points += pts.count;
       // The columnar output, on the vector path and the portable one.
-      for (const DecodePath path : {DecodePath::best, DecodePath::portable}) {
+      for (const DecodePath path : {DecodePath::best, DecodePath::avx2, DecodePath::portable}) {
         const Error c = dec.decode(ByteView{p.data(), p.size()}, info, columns, path);
         if (c != Error::ok) worst = c;
         column_points += columns.count;
@@ -35,7 +35,7 @@ void decode_all_without_allocating(const char* capture, Model model) {
   });
   EXPECT_EQ(worst, Error::ok);
   EXPECT_GT(points, 0u);
-  EXPECT_EQ(column_points, 2 * points);
+  EXPECT_EQ(column_points, 3 * points);
   EXPECT_EQ(n, 0u) << capture;
 }
 

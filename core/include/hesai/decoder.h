@@ -165,13 +165,22 @@ enum class Reflectivity : std::uint8_t {
   nonlinear,  ///< Pandar64 set to "Nonlinear Mapping": the byte mapped by the manual's Appendix D to a percentage
 };
 
-/// Which per-point code decode() runs: the best the CPU has (x86-64: AVX2 for Points and columns
-/// when CPUID reports it, chosen at run time; AArch64: NEON for columns), or the portable scalar
-/// code every target has (the only one on Cortex-M). Both give the same points: the same float
-/// operations in the same order (tests/test_columns.cpp).
-enum class DecodePath : std::uint8_t { best, portable };
+/// Which per-point code decode() runs: the best the CPU has (x86-64, chosen at run time from
+/// CPUID: AVX-512 for columns and AVX2 for Points and columns, where present; AArch64: NEON for
+/// columns), the portable scalar code every target has (the only one on Cortex-M), or `avx2`: the
+/// AVX2 code even where AVX-512 is present, for tests and benchmarks (elsewhere the same as
+/// `best`). Every path gives the same points: the same float operations in the same order
+/// (tests/test_columns.cpp).
+enum class DecodePath : std::uint8_t { best, portable, avx2 };
 /// Whether DecodePath::best runs vector code on this CPU.
 bool decode_simd_available() noexcept;
+/// The vector code DecodePath::best runs on this CPU: "avx512" (columns; Points by AVX2),
+/// "avx2", "neon" (columns) or "none".
+const char* decode_simd_name() noexcept;
+
+namespace detail {
+struct BlockRef;  // one block of a packet, for the per-point code (core/src/sensors/columns_simd.h)
+}  // namespace detail
 
 /// Decoder state for one sensor: per-channel geometry from the built-in tables or a
 /// calibration file, the per-spin-rate point constants, the session key, the Pandar40 GPS
@@ -300,13 +309,13 @@ class Decoder {
   void decode_qt128(const std::uint8_t* p, const PacketInfo& info, Output& out) const noexcept;
   void decode_qt64(const std::uint8_t* p, const PacketInfo& info, Output& out) const noexcept;
   void decode_xt(const std::uint8_t* p, const PacketInfo& info, Output& out) const noexcept;
-  // The per-point arithmetic every sensor shares (core/src/sensors/block_points.h): unit_count
-  // units of kUnitBytes from `units`, unit j being the 0-based channel channel_of[j], or j without
-  // a map (nullptr); block_offset_ns: the block's time from the packet time t0.
+  // The per-point arithmetic every sensor shares (core/src/sensors/block_points.h): a sensor's
+  // walk describes each block of the packet as a detail::BlockRef (its units, the channel map of
+  // a customised QT128, the time from the packet time t0, the firing loop), block b being
+  // blocks[b]; each block holds unit_count units of kUnitBytes.
   template <std::size_t kUnitBytes>
-  void emit_block(const std::uint8_t* units, std::size_t unit_count, const std::uint8_t* channel_of,
-                  const PacketInfo& info, std::size_t block, std::int32_t block_offset_ns, std::size_t loop,
-                  Output& out) const noexcept;
+  void emit_blocks(const detail::BlockRef* blocks, std::size_t block_count, std::size_t unit_count, const PacketInfo& info,
+                   Output& out) const noexcept;
 
   Model model_;
   bool firetime_correction_ = true;

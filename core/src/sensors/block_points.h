@@ -1,6 +1,7 @@
-// The per-point arithmetic every sensor shares: one block's units to points (internal to the
-// core; each sensor's file walks its own block layout and calls Decoder::emit_block per block,
-// which writes Points or columns, whichever the caller of decode() asked for).
+// The per-point arithmetic every sensor shares: a packet's units to points (internal to the
+// core; each sensor's file walks its own block layout into BlockRefs and calls
+// Decoder::emit_blocks once per packet, which writes Points or columns, whichever the caller of
+// decode() asked for).
 // A unit is one channel's measurement; unit j is channel j, except in QT128 packets with
 // customised channels, where the channel configuration maps it.
 //
@@ -42,12 +43,11 @@ namespace detail {
 // induction variable walks every array (an identity map, or a test per unit, cost 21-28% more
 // instructions per packet under callgrind).
 template <std::size_t kUnitBytes, typename F>
-inline void for_each_unit(const std::uint8_t* units, std::size_t first, std::size_t unit_count,
-                          const std::uint8_t* channel_of, F&& f) {
+inline void for_each_unit(const std::uint8_t* units, std::size_t unit_count, const std::uint8_t* channel_of, F&& f) {
   if (channel_of != nullptr) {
-    for (std::size_t j = first; j < unit_count; ++j) f(units + j * kUnitBytes, std::size_t{channel_of[j]});
+    for (std::size_t j = 0; j < unit_count; ++j) f(units + j * kUnitBytes, std::size_t{channel_of[j]});
   } else {
-    for (std::size_t j = first; j < unit_count; ++j) f(units + j * kUnitBytes, j);
+    for (std::size_t j = 0; j < unit_count; ++j) f(units + j * kUnitBytes, j);
   }
 }
 
@@ -61,14 +61,13 @@ inline Xyz unit_xyz(const BlockConstants& k, float r, std::size_t ch) noexcept {
           r * (k.cos_a * k.dir_cos[ch] - k.sin_a * k.dir_sin[ch]), r * k.sin_el[ch]};
 }
 
-// Units [first, unit_count) of a block as columns at out[n...]; returns n advanced by the points
+// The units of a block as columns at out[n...]; returns n advanced by the points
 // kept. k and the columns by value: locals whose address does not escape, so that the stores
 // through the byte columns (which may alias anything in memory) leave them in registers.
 template <std::size_t kUnitBytes>
-inline std::size_t write_columns(const BlockConstants k, const std::uint8_t* units, std::size_t first,
-                                 std::size_t unit_count, const std::uint8_t* channel_of, const PointColumns out,
+inline std::size_t write_columns(const BlockConstants k, const std::uint8_t* units, std::size_t unit_count, const std::uint8_t* channel_of, const PointColumns out,
                                  std::size_t n) noexcept {
-  for_each_unit<kUnitBytes>(units, first, unit_count, channel_of, [&](const std::uint8_t* p, std::size_t ch) {
+  for_each_unit<kUnitBytes>(units, unit_count, channel_of, [&](const std::uint8_t* p, std::size_t ch) {
     const std::uint16_t raw = load_le16(p);
     const Xyz v = unit_xyz(k, static_cast<float>(raw) * k.unit_m, ch);
     out.x[n] = v.x;
@@ -85,10 +84,9 @@ inline std::size_t write_columns(const BlockConstants k, const std::uint8_t* uni
 
 // The same as Points (k by value for the same reason).
 template <std::size_t kUnitBytes>
-inline std::size_t write_points(const BlockConstants k, const std::uint8_t* units, std::size_t first,
-                                std::size_t unit_count, const std::uint8_t* channel_of, Point* const out,
+inline std::size_t write_points(const BlockConstants k, const std::uint8_t* units, std::size_t unit_count, const std::uint8_t* channel_of, Point* const out,
                                 std::size_t n) noexcept {
-  for_each_unit<kUnitBytes>(units, first, unit_count, channel_of, [&](const std::uint8_t* p, std::size_t ch) {
+  for_each_unit<kUnitBytes>(units, unit_count, channel_of, [&](const std::uint8_t* p, std::size_t ch) {
     const std::uint16_t raw = load_le16(p);
     const float r = static_cast<float>(raw) * k.unit_m;
     const Xyz v = unit_xyz(k, r, ch);
@@ -119,53 +117,77 @@ inline std::size_t write_points(const BlockConstants k, const std::uint8_t* unit
 
 }  // namespace detail
 
+
 // Optimising for size (-Os, the firmware builds), every sensor calls one shared copy per unit
 // size: inlined into each sensor's block walk it took 0.8 KB more flash on the Cortex-M0+.
 // Optimising for speed it is inlined, where the constant channel count and the absent map of the
 // Pandars make a shorter loop (8% fewer instructions per Pandar64 packet under callgrind).
 //
-// Points or columns: whole vectors of units by the vector code where there is one (and the units
-// need no channel map), the rest by the scalar loops above. Every unit's point is written at
-// index n and kept (n advanced) only when its distance is valid: no branch to mispredict. n <= the units before this one, so the writes stay below
-// blocks x channels = max_points(model_), the capacity decode() checked.
+// Points or columns: the whole packet by the vector code in one call where there is one (and the
+// units need no channel map), otherwise block by block by the scalar loops above. Every unit's
+// point is written at index n and kept (n advanced) only when its distance is valid: no branch to
+// mispredict. n <= the units before this one, so the writes stay below blocks x channels =
+// max_points(model_), the capacity decode() checked.
 template <std::size_t kUnitBytes>
-HESAI_NOINLINE_FOR_SIZE void Decoder::emit_block(const std::uint8_t* units, std::size_t unit_count,
-                                                 const std::uint8_t* channel_of, const PacketInfo& info,
-                                                 std::size_t block, std::int32_t block_offset_ns, std::size_t loop,
-                                                 Output& out) const noexcept {
-  const std::uint16_t block_azimuth = info.block_azimuth[block];
-  const SinCosF ab = sin_cos_centideg(block_azimuth);
-  detail::BlockConstants k;
-  k.sin_a = ab.sin;
-  k.cos_a = ab.cos;
-  k.unit_m = static_cast<float>(info.dis_unit_mm) * 0.001f;
-  k.min_distance = model_ == Model::qt128c2x ? 2 : 1;  // QT128 reserves distance 1 as a marker
-  // The blocks of one firing (2 in dual return, 3 in triple) come together: the k-th is return k.
-  k.return_index = static_cast<std::uint8_t>(info.returns > 1 ? block % info.returns : 0);
-  k.offset_ns = block_offset_ns;
-  k.dir_cos = spin_.dir_cos[loop].data();
-  k.dir_sin = spin_.dir_sin[loop].data();
-  k.sin_el = geo_.sin_el.data();
-  k.fire_ns = geo_.fire_ns[loop].data();
-
-  if (out.points == nullptr) {
-    std::size_t first = 0;  // whole vectors by the vector code, where there is one
-    if (channel_of == nullptr && out.path == DecodePath::best)
-      first = detail::columns_simd(k, units, unit_count, kUnitBytes, out.columns, out.count);
-    out.count = detail::write_columns<kUnitBytes>(k, units, first, unit_count, channel_of, out.columns, out.count);
-    return;
+HESAI_NOINLINE_FOR_SIZE void Decoder::emit_blocks(const detail::BlockRef* blocks, std::size_t block_count,
+                                                  std::size_t unit_count, const PacketInfo& info,
+                                                  Output& out) const noexcept {
+  const float unit_m = static_cast<float>(info.dis_unit_mm) * 0.001f;
+  const std::uint16_t min_distance = model_ == Model::qt128c2x ? 2 : 1;  // QT128 reserves distance 1 as a marker
+#if defined(HESAI_DECODE_SIMD)
+  if (out.path != DecodePath::portable && block_count <= detail::kMaxBlocks) {
+    detail::PacketConstants k;
+    k.blocks = block_count;
+    k.units = unit_count;
+    k.unit_bytes = kUnitBytes;
+    k.unit_m = unit_m;
+    k.min_distance = min_distance;
+    k.time_ns = info.time_ns;
+    k.sin_el = geo_.sin_el.data();
+    k.elevation_deg = geo_.elevation_deg.data();
+    for (std::size_t loop = 0; loop < 2; ++loop) {
+      k.dir_cos[loop] = spin_.dir_cos[loop].data();
+      k.dir_sin[loop] = spin_.dir_sin[loop].data();
+      k.azimuth_deg[loop] = spin_.azimuth_deg[loop].data();
+      k.fire_ns[loop] = geo_.fire_ns[loop].data();
+    }
+    k.block_azimuth = info.block_azimuth.data();
+    k.block = blocks;
+    k.returns = info.returns;
+    bool mapped = false;
+    for (std::size_t b = 0; b < block_count; ++b) mapped = mapped || blocks[b].channel_of != nullptr;
+    if (!mapped && (out.points != nullptr ? detail::points_simd(k, out.path, out.points, out.count)
+                                          : detail::columns_simd(k, out.path, out.columns, out.count)))
+      return;
   }
-
-  // The Points' own fields.
-  k.block_deg = static_cast<float>(block_azimuth) * 0.01f;
-  k.block_time_ns = info.time_ns + block_offset_ns;
-  k.block = static_cast<std::uint8_t>(block);
-  k.azimuth_deg = spin_.azimuth_deg[loop].data();
-  k.elevation_deg = geo_.elevation_deg.data();
-  std::size_t first = 0;
-  if (channel_of == nullptr && out.path == DecodePath::best)
-    first = detail::points_simd(k, units, unit_count, kUnitBytes, out.points, out.count);
-  out.count = detail::write_points<kUnitBytes>(k, units, first, unit_count, channel_of, out.points, out.count);
+#endif
+  for (std::size_t b = 0; b < block_count; ++b) {
+    const detail::BlockRef& r = blocks[b];
+    const std::uint16_t block_azimuth = info.block_azimuth[b];
+    const SinCosF ab = sin_cos_centideg(block_azimuth);
+    detail::BlockConstants k;
+    k.sin_a = ab.sin;
+    k.cos_a = ab.cos;
+    k.unit_m = unit_m;
+    k.min_distance = min_distance;
+    k.return_index = detail::return_index(info.returns, b);
+    k.offset_ns = r.offset_ns;
+    k.dir_cos = spin_.dir_cos[r.loop].data();
+    k.dir_sin = spin_.dir_sin[r.loop].data();
+    k.sin_el = geo_.sin_el.data();
+    k.fire_ns = geo_.fire_ns[r.loop].data();
+    if (out.points == nullptr) {
+      out.count = detail::write_columns<kUnitBytes>(k, r.units, unit_count, r.channel_of, out.columns, out.count);
+      continue;
+    }
+    // The Points' own fields.
+    k.block_deg = static_cast<float>(block_azimuth) * 0.01f;
+    k.block_time_ns = info.time_ns + r.offset_ns;
+    k.block = static_cast<std::uint8_t>(b);
+    k.azimuth_deg = spin_.azimuth_deg[r.loop].data();
+    k.elevation_deg = geo_.elevation_deg.data();
+    out.count = detail::write_points<kUnitBytes>(k, r.units, unit_count, r.channel_of, out.points, out.count);
+  }
 }
 
 }  // namespace hesai

@@ -1,6 +1,7 @@
-// The columnar decode with AVX2 on x86-64 (see columns_simd.h): eight units a step. Compiled with
-// a function-level target attribute, so that the library needs no -m flags; chosen at run time
-// from CPUID, as the CRC's PCLMULQDQ path is. Empty on other targets.
+// The decode's vector paths on x86-64 (see columns_simd.h): AVX-512 for columns, sixteen units a
+// step; AVX2 for columns and Points, eight units a step. Compiled with function-level target
+// attributes, so that the library needs no -m flags; chosen at run time from CPUID, as the CRC's
+// PCLMULQDQ path is. Empty on other targets.
 #include "columns_simd.h"
 
 #if defined(HESAI_COLUMNS_AVX2)
@@ -11,7 +12,15 @@
 
 #include "../base/cpu_x86.h"
 
+// GCC 12 warns inside its own AVX-512 headers at every use of an intrinsic that starts from an
+// undefined vector (GCC bug 105593, fixed in GCC 13): nothing here is uninitialised.
+#if defined(__GNUC__) && !defined(__clang__) && __GNUC__ < 13
+#pragma GCC diagnostic ignored "-Wuninitialized"
+#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
+#endif
+
 #define HESAI_AVX2_TARGET __attribute__((target("avx2,popcnt")))
+#define HESAI_AVX512_TARGET __attribute__((target("avx512f,avx512bw,avx512dq,avx512vl,avx2,popcnt")))
 
 namespace hesai::detail {
 namespace {
@@ -20,7 +29,7 @@ HESAI_AVX2_TARGET inline __m128i load16(const std::int8_t* p) noexcept {
   return _mm_loadu_si128(reinterpret_cast<const __m128i*>(p));
 }
 
-// Eight units of a block, as both paths read them: fields, position (the scalar loop's
+// Eight units of a block, as both AVX2 loops read them: fields, position (the scalar loop's
 // operations in its order, block_points.h unit_xyz) and which are kept.
 struct Eight {
   __m256i raw;
@@ -29,26 +38,30 @@ struct Eight {
   unsigned keep;                  // bit i: unit i has a valid distance
 };
 
-// The block's constants as vectors, and the step from units to Eight.
+// The packet's constants as vectors (set up once per packet), the block's (once per block), and
+// the step from units to Eight.
 class EightUnits {
  public:
-  HESAI_AVX2_TARGET EightUnits(const BlockConstants& k, std::size_t unit_bytes) noexcept
-      : unit_bytes_(unit_bytes),
-        second_(kSecond[unit_bytes == 4 ? 1 : 0]),
-        dir_cos_(k.dir_cos),
-        dir_sin_(k.dir_sin),
-        sin_el_(k.sin_el) {
-    const UnitShuffle& lo = kShuffle[unit_bytes == 4 ? 1 : 0][0];
-    const UnitShuffle& hi = kShuffle[unit_bytes == 4 ? 1 : 0][1];
+  HESAI_AVX2_TARGET explicit EightUnits(const PacketConstants& k) noexcept
+      : unit_bytes_(k.unit_bytes), second_(kSecond[k.unit_bytes == 4 ? 1 : 0]), sin_el_(k.sin_el) {
+    const UnitShuffle& lo = kShuffle[k.unit_bytes == 4 ? 1 : 0][0];
+    const UnitShuffle& hi = kShuffle[k.unit_bytes == 4 ? 1 : 0][1];
     lo_[0] = load16(lo.distance), lo_[1] = load16(lo.intensity), lo_[2] = load16(lo.confidence);
     hi_[0] = load16(hi.distance), hi_[1] = load16(hi.intensity), hi_[2] = load16(hi.confidence);
-    sin_a_ = _mm256_set1_ps(k.sin_a), cos_a_ = _mm256_set1_ps(k.cos_a), unit_m_ = _mm256_set1_ps(k.unit_m);
+    unit_m_ = _mm256_set1_ps(k.unit_m);
     below_ = _mm256_set1_epi32(k.min_distance - 1);
+    for (std::size_t loop = 0; loop < 2; ++loop) dir_cos_loop_[loop] = k.dir_cos[loop], dir_sin_loop_[loop] = k.dir_sin[loop];
   }
 
-  // Units j .. j + 7.
-  HESAI_AVX2_TARGET Eight at(const std::uint8_t* units, std::size_t j) const noexcept {
-    const std::uint8_t* p = units + j * unit_bytes_;
+  HESAI_AVX2_TARGET void start(const BlockRef& b, float sin_a, float cos_a) noexcept {
+    units_ = b.units;
+    sin_a_ = _mm256_set1_ps(sin_a), cos_a_ = _mm256_set1_ps(cos_a);
+    dir_cos_ = dir_cos_loop_[b.loop], dir_sin_ = dir_sin_loop_[b.loop];
+  }
+
+  // Units j .. j + 7 of the block.
+  HESAI_AVX2_TARGET Eight at(std::size_t j) const noexcept {
+    const std::uint8_t* p = units_ + j * unit_bytes_;
     const __m128i a = _mm_loadu_si128(reinterpret_cast<const __m128i*>(p));
     const __m128i b = _mm_loadu_si128(reinterpret_cast<const __m128i*>(p + second_));
     Eight e;
@@ -67,45 +80,53 @@ class EightUnits {
 
  private:
   std::size_t unit_bytes_, second_;
-  const float* dir_cos_;
-  const float* dir_sin_;
   const float* sin_el_;
+  const float* dir_cos_loop_[2];
+  const float* dir_sin_loop_[2];
   __m128i lo_[3], hi_[3];  // byte shuffles: distance, intensity, confidence
-  __m256 sin_a_, cos_a_, unit_m_;
+  __m256 unit_m_;
   __m256i below_;
+  // The block's.
+  const std::uint8_t* units_ = nullptr;
+  const float* dir_cos_ = nullptr;
+  const float* dir_sin_ = nullptr;
+  __m256 sin_a_, cos_a_;
 };
 
 // The channels 1..8 of the first eight units, as bytes.
 HESAI_AVX2_TARGET inline __m128i first_channels() noexcept { return _mm_setr_epi8(1, 2, 3, 4, 5, 6, 7, 8, 0, 0, 0, 0, 0, 0, 0, 0); }
 
 // `out` by value: stores through its byte columns may alias anything in memory but not a local.
-HESAI_AVX2_TARGET std::size_t columns_avx2(const BlockConstants& k, const std::uint8_t* units, std::size_t unit_count,
-                                           std::size_t unit_bytes, const PointColumns out, std::size_t& count) noexcept {
-  const EightUnits eight_units(k, unit_bytes);
-  const __m256i offset = _mm256_set1_epi32(k.offset_ns);
-  const std::int32_t* const fire_ns = k.fire_ns;
-  const __m128i ret = _mm_set1_epi8(static_cast<char>(k.return_index));
-  __m128i channel = first_channels();
+HESAI_AVX2_TARGET void columns_avx2(const PacketConstants& k, const PointColumns out, std::size_t& count) noexcept {
+  EightUnits eight_units(k);
+  const BlockSinCos sc = block_sin_cos(k);
+  const std::size_t blocks = k.blocks, units = k.units;
   std::size_t n = count;
-  std::size_t j = 0;
-  for (; j + 8 <= unit_count; j += 8) {
-    const Eight e = eight_units.at(units, j);
-    const __m256i t = _mm256_add_epi32(offset, _mm256_loadu_si256(reinterpret_cast<const __m256i*>(fire_ns + j)));
-    // Keep the lanes with a valid distance, packed to the front.
-    const __m128i order = _mm_cvtsi64_si128(static_cast<long long>(kCompress[e.keep]));
-    const __m256i perm = _mm256_cvtepu8_epi32(order);
-    _mm256_storeu_ps(out.x + n, _mm256_permutevar8x32_ps(e.x, perm));
-    _mm256_storeu_ps(out.y + n, _mm256_permutevar8x32_ps(e.y, perm));
-    _mm256_storeu_ps(out.z + n, _mm256_permutevar8x32_ps(e.z, perm));
-    _mm256_storeu_si256(reinterpret_cast<__m256i*>(out.time_ns + n), _mm256_permutevar8x32_epi32(t, perm));
-    _mm_storel_epi64(reinterpret_cast<__m128i*>(out.intensity + n), _mm_shuffle_epi8(e.intensity, order));
-    _mm_storel_epi64(reinterpret_cast<__m128i*>(out.channel + n), _mm_shuffle_epi8(channel, order));
-    _mm_storel_epi64(reinterpret_cast<__m128i*>(out.return_index + n), ret);
-    channel = _mm_add_epi8(channel, _mm_set1_epi8(8));
-    n += static_cast<std::size_t>(_mm_popcnt_u32(e.keep));
+  for (std::size_t b = 0; b < blocks; ++b) {
+    const BlockRef& kb = k.block[b];
+    eight_units.start(kb, sc.sin[b], sc.cos[b]);
+    const __m256i offset = _mm256_set1_epi32(kb.offset_ns);
+    const std::int32_t* const fire_ns = k.fire_ns[kb.loop];
+    const __m128i ret = _mm_set1_epi8(static_cast<char>(return_index(k.returns, b)));
+    __m128i channel = first_channels();
+    for (std::size_t j = 0; j < units; j += 8) {
+      const Eight e = eight_units.at(j);
+      const __m256i t = _mm256_add_epi32(offset, _mm256_loadu_si256(reinterpret_cast<const __m256i*>(fire_ns + j)));
+      // Keep the lanes with a valid distance, packed to the front.
+      const __m128i order = _mm_cvtsi64_si128(static_cast<long long>(kCompress[e.keep]));
+      const __m256i perm = _mm256_cvtepu8_epi32(order);
+      _mm256_storeu_ps(out.x + n, _mm256_permutevar8x32_ps(e.x, perm));
+      _mm256_storeu_ps(out.y + n, _mm256_permutevar8x32_ps(e.y, perm));
+      _mm256_storeu_ps(out.z + n, _mm256_permutevar8x32_ps(e.z, perm));
+      _mm256_storeu_si256(reinterpret_cast<__m256i*>(out.time_ns + n), _mm256_permutevar8x32_epi32(t, perm));
+      _mm_storel_epi64(reinterpret_cast<__m128i*>(out.intensity + n), _mm_shuffle_epi8(e.intensity, order));
+      _mm_storel_epi64(reinterpret_cast<__m128i*>(out.channel + n), _mm_shuffle_epi8(channel, order));
+      _mm_storel_epi64(reinterpret_cast<__m128i*>(out.return_index + n), ret);
+      channel = _mm_add_epi8(channel, _mm_set1_epi8(8));
+      n += static_cast<std::size_t>(_mm_popcnt_u32(e.keep));
+    }
   }
   count = n;
-  return j;
 }
 
 // The 8 bytes of a Point from `intensity` on: intensity, channel, return index, confidence, block,
@@ -119,83 +140,194 @@ static_assert(offsetof(Point, y) == 4 && offsetof(Point, z) == 8 && offsetof(Poi
 // Eight units a step, as columns_avx2; then each point's 40 bytes in two stores (x, y, z,
 // distance, azimuth, elevation and time; the bytes) instead of twelve, from the eight lanes
 // transposed.
-HESAI_AVX2_TARGET std::size_t points_avx2(const BlockConstants& k, const std::uint8_t* units, std::size_t unit_count,
-                                          std::size_t unit_bytes, Point* out, std::size_t& count) noexcept {
-  const EightUnits eight_units(k, unit_bytes);
-  const __m256 block_deg = _mm256_set1_ps(k.block_deg), full_turn = _mm256_set1_ps(360.0f);
-  const __m256i block_time = _mm256_set1_epi64x(static_cast<long long>(k.block_time_ns));
-  const __m128i ret = _mm_set1_epi8(static_cast<char>(k.return_index));
-  const __m128i block = _mm_set1_epi32(k.block);  // the block byte, then three zero bytes
-  __m128i channel = first_channels();
-  const float* const azimuth_deg = k.azimuth_deg;
+HESAI_AVX2_TARGET void points_avx2(const PacketConstants& k, Point* out, std::size_t& count) noexcept {
+  EightUnits eight_units(k);
+  const BlockSinCos sc = block_sin_cos(k);
+  const std::size_t blocks = k.blocks, units = k.units;
+  const __m256 full_turn = _mm256_set1_ps(360.0f);
   const float* const elevation_deg = k.elevation_deg;
-  const std::int32_t* const fire_ns = k.fire_ns;
   std::uint8_t* const base = reinterpret_cast<std::uint8_t*>(out);
   std::size_t n = count;
-  std::size_t j = 0;
-  for (; j + 8 <= unit_count; j += 8) {
-    const Eight e = eight_units.at(units, j);
-    // The scalar loop's operations in its order (block_points.h, write_points).
-    const __m256 sum = _mm256_add_ps(block_deg, _mm256_loadu_ps(azimuth_deg + j));
-    const __m256 az = _mm256_sub_ps(sum, _mm256_and_ps(_mm256_cmp_ps(sum, full_turn, _CMP_GE_OQ), full_turn));
-    const __m256 el = _mm256_loadu_ps(elevation_deg + j);
-    const __m256i fire = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(fire_ns + j));
-    const __m256i t_lo = _mm256_add_epi64(block_time, _mm256_cvtepi32_epi64(_mm256_castsi256_si128(fire)));
-    const __m256i t_hi = _mm256_add_epi64(block_time, _mm256_cvtepi32_epi64(_mm256_extracti128_si256(fire, 1)));
-    // x, y, z, distance of point i: 128-bit lane i / 4 of xyzr[i % 4].
-    const __m256 xy_lo = _mm256_unpacklo_ps(e.x, e.y), xy_hi = _mm256_unpackhi_ps(e.x, e.y);
-    const __m256 zr_lo = _mm256_unpacklo_ps(e.z, e.r), zr_hi = _mm256_unpackhi_ps(e.z, e.r);
-    const __m256 xyzr[4] = {_mm256_shuffle_ps(xy_lo, zr_lo, 0x44), _mm256_shuffle_ps(xy_lo, zr_lo, 0xEE),
-                            _mm256_shuffle_ps(xy_hi, zr_hi, 0x44), _mm256_shuffle_ps(xy_hi, zr_hi, 0xEE)};
-    // Azimuth, elevation of points 2q, 2q + 1: the halves of ae[q]; likewise time and the bytes.
-    const __m256 ae_lo = _mm256_unpacklo_ps(az, el), ae_hi = _mm256_unpackhi_ps(az, el);
-    const __m128 ae[4] = {_mm256_castps256_ps128(ae_lo), _mm256_castps256_ps128(ae_hi), _mm256_extractf128_ps(ae_lo, 1),
-                          _mm256_extractf128_ps(ae_hi, 1)};
-    const __m128i t[4] = {_mm256_castsi256_si128(t_lo), _mm256_extracti128_si256(t_lo, 1), _mm256_castsi256_si128(t_hi),
-                          _mm256_extracti128_si256(t_hi, 1)};
-    const __m128i ic = _mm_unpacklo_epi8(e.intensity, channel), rc = _mm_unpacklo_epi8(ret, e.confidence);
-    const __m128i icrc_lo = _mm_unpacklo_epi16(ic, rc), icrc_hi = _mm_unpackhi_epi16(ic, rc);
-    const __m128i bytes[4] = {_mm_unpacklo_epi32(icrc_lo, block), _mm_unpackhi_epi32(icrc_lo, block),
-                              _mm_unpacklo_epi32(icrc_hi, block), _mm_unpackhi_epi32(icrc_hi, block)};
-    for (unsigned q = 0; q < 4; ++q) {
-      // Bytes 16..31 of points 2q and 2q + 1: azimuth, elevation, time.
-      const __m128i aet[2] = {_mm_unpacklo_epi64(_mm_castps_si128(ae[q]), t[q]),
-                              _mm_unpackhi_epi64(_mm_castps_si128(ae[q]), t[q])};
-      for (unsigned h = 0; h < 2; ++h) {
-        const unsigned i = 2 * q + h;
-        std::uint8_t* o = base + n * sizeof(Point);
-        const __m256 v = xyzr[i % 4];
-        const __m128 xyz_distance = i < 4 ? _mm256_castps256_ps128(v) : _mm256_extractf128_ps(v, 1);
-        _mm256_storeu_ps(reinterpret_cast<float*>(o),
-                         _mm256_insertf128_ps(_mm256_castps128_ps256(xyz_distance), _mm_castsi128_ps(aet[h]), 1));
-        if (h == 0) {
-          _mm_storel_epi64(reinterpret_cast<__m128i*>(o + 32), bytes[q]);
-        } else {
-          _mm_storeh_pd(reinterpret_cast<double*>(o + 32), _mm_castsi128_pd(bytes[q]));
+  for (std::size_t b = 0; b < blocks; ++b) {
+    const BlockRef& kb = k.block[b];
+    eight_units.start(kb, sc.sin[b], sc.cos[b]);
+    const __m256 block_deg = _mm256_set1_ps(static_cast<float>(k.block_azimuth[b]) * 0.01f);
+    const __m256i block_time = _mm256_set1_epi64x(static_cast<long long>(k.time_ns + kb.offset_ns));
+    const __m128i ret = _mm_set1_epi8(static_cast<char>(return_index(k.returns, b)));
+    const __m128i block = _mm_set1_epi32(static_cast<int>(b));  // the block byte, then three zero bytes
+    const float* const azimuth_deg = k.azimuth_deg[kb.loop];
+    const std::int32_t* const fire_ns = k.fire_ns[kb.loop];
+    __m128i channel = first_channels();
+    for (std::size_t j = 0; j < units; j += 8) {
+      const Eight e = eight_units.at(j);
+      // The scalar loop's operations in its order (block_points.h, write_points).
+      const __m256 sum = _mm256_add_ps(block_deg, _mm256_loadu_ps(azimuth_deg + j));
+      const __m256 az = _mm256_sub_ps(sum, _mm256_and_ps(_mm256_cmp_ps(sum, full_turn, _CMP_GE_OQ), full_turn));
+      const __m256 el = _mm256_loadu_ps(elevation_deg + j);
+      const __m256i fire = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(fire_ns + j));
+      const __m256i t_lo = _mm256_add_epi64(block_time, _mm256_cvtepi32_epi64(_mm256_castsi256_si128(fire)));
+      const __m256i t_hi = _mm256_add_epi64(block_time, _mm256_cvtepi32_epi64(_mm256_extracti128_si256(fire, 1)));
+      // x, y, z, distance of point i: 128-bit lane i / 4 of xyzr[i % 4].
+      const __m256 xy_lo = _mm256_unpacklo_ps(e.x, e.y), xy_hi = _mm256_unpackhi_ps(e.x, e.y);
+      const __m256 zr_lo = _mm256_unpacklo_ps(e.z, e.r), zr_hi = _mm256_unpackhi_ps(e.z, e.r);
+      const __m256 xyzr[4] = {_mm256_shuffle_ps(xy_lo, zr_lo, 0x44), _mm256_shuffle_ps(xy_lo, zr_lo, 0xEE),
+                              _mm256_shuffle_ps(xy_hi, zr_hi, 0x44), _mm256_shuffle_ps(xy_hi, zr_hi, 0xEE)};
+      // Azimuth, elevation of points 2q, 2q + 1: the halves of ae[q]; likewise time and the bytes.
+      const __m256 ae_lo = _mm256_unpacklo_ps(az, el), ae_hi = _mm256_unpackhi_ps(az, el);
+      const __m128 ae[4] = {_mm256_castps256_ps128(ae_lo), _mm256_castps256_ps128(ae_hi),
+                            _mm256_extractf128_ps(ae_lo, 1), _mm256_extractf128_ps(ae_hi, 1)};
+      const __m128i t[4] = {_mm256_castsi256_si128(t_lo), _mm256_extracti128_si256(t_lo, 1),
+                            _mm256_castsi256_si128(t_hi), _mm256_extracti128_si256(t_hi, 1)};
+      const __m128i ic = _mm_unpacklo_epi8(e.intensity, channel), rc = _mm_unpacklo_epi8(ret, e.confidence);
+      const __m128i icrc_lo = _mm_unpacklo_epi16(ic, rc), icrc_hi = _mm_unpackhi_epi16(ic, rc);
+      const __m128i bytes[4] = {_mm_unpacklo_epi32(icrc_lo, block), _mm_unpackhi_epi32(icrc_lo, block),
+                                _mm_unpacklo_epi32(icrc_hi, block), _mm_unpackhi_epi32(icrc_hi, block)};
+      for (unsigned q = 0; q < 4; ++q) {
+        // Bytes 16..31 of points 2q and 2q + 1: azimuth, elevation, time.
+        const __m128i aet[2] = {_mm_unpacklo_epi64(_mm_castps_si128(ae[q]), t[q]),
+                                _mm_unpackhi_epi64(_mm_castps_si128(ae[q]), t[q])};
+        for (unsigned h = 0; h < 2; ++h) {
+          const unsigned i = 2 * q + h;
+          std::uint8_t* o = base + n * sizeof(Point);
+          const __m256 v = xyzr[i % 4];
+          const __m128 xyz_distance = i < 4 ? _mm256_castps256_ps128(v) : _mm256_extractf128_ps(v, 1);
+          _mm256_storeu_ps(reinterpret_cast<float*>(o),
+                           _mm256_insertf128_ps(_mm256_castps128_ps256(xyz_distance), _mm_castsi128_ps(aet[h]), 1));
+          if (h == 0) {
+            _mm_storel_epi64(reinterpret_cast<__m128i*>(o + 32), bytes[q]);
+          } else {
+            _mm_storeh_pd(reinterpret_cast<double*>(o + 32), _mm_castsi128_pd(bytes[q]));
+          }
+          n += (e.keep >> i) & 1u;
         }
-        n += (e.keep >> i) & 1u;
       }
+      channel = _mm_add_epi8(channel, _mm_set1_epi8(8));
     }
-    channel = _mm_add_epi8(channel, _mm_set1_epi8(8));
   }
   count = n;
-  return j;
+}
+
+// AVX-512: sixteen units a step, any number of units per block (the last step masked), compacted
+// by vcompressps/vpcompressd in registers (from memory it is slow on some CPUs).
+
+// The dword shuffle that puts 3-byte units 4L..4L + 3 at the start of 128-bit lane L (their 12
+// bytes start at dword 3L); 4-byte units are in place.
+HESAI_AVX512_TARGET inline __m512i three_byte_lanes() noexcept {
+  return _mm512_setr_epi32(0, 1, 2, 3, 3, 4, 5, 6, 6, 7, 8, 9, 9, 10, 11, 12);
+}
+
+// Within each 128-bit lane: units at bytes 0, s, 2s, 3s (s the unit size); the byte `field` of
+// unit i (and the next, `width` 2) zero-extended into dword i.
+template <std::size_t kUnitBytes>
+HESAI_AVX512_TARGET inline __m512i unit_field(std::size_t field, std::size_t width) noexcept {
+  alignas(16) std::int8_t s[16];
+  for (std::size_t i = 0; i < 16; ++i) s[i] = -1;
+  for (std::size_t i = 0; i < 4; ++i)
+    for (std::size_t b = 0; b < width; ++b) s[4 * i + b] = static_cast<std::int8_t>(i * kUnitBytes + field + b);
+  return _mm512_broadcast_i32x4(_mm_load_si128(reinterpret_cast<const __m128i*>(s)));
+}
+
+template <std::size_t kUnitBytes>
+HESAI_AVX512_TARGET void columns_avx512(const PacketConstants& k, const PointColumns out, std::size_t& count) noexcept {
+  const std::size_t blocks = k.blocks, units = k.units;
+  const __m512i distance = unit_field<kUnitBytes>(0, 2), intensity = unit_field<kUnitBytes>(2, 1);
+  const __m512i lanes_of_three = three_byte_lanes();
+  const __m512 unit_m = _mm512_set1_ps(k.unit_m);
+  const __m512i below = _mm512_set1_epi32(k.min_distance - 1);
+  const __m512i lane_index = _mm512_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15);
+  const __m512i one = _mm512_set1_epi32(1), sixteen = _mm512_set1_epi32(16 << 8);
+  const float* const sin_el = k.sin_el;
+  const BlockSinCos sc = block_sin_cos(k);
+  std::size_t n = count;
+  for (std::size_t b = 0; b < blocks; ++b) {
+    const BlockRef& kb = k.block[b];
+    const std::uint8_t* const block_units = kb.units;
+    const __m512 sin_a = _mm512_set1_ps(sc.sin[b]), cos_a = _mm512_set1_ps(sc.cos[b]);
+    const __m512i offset = _mm512_set1_epi32(kb.offset_ns);
+    const __m128i ret = _mm_set1_epi8(static_cast<char>(return_index(k.returns, b)));
+    const float* const dir_cos = k.dir_cos[kb.loop];
+    const float* const dir_sin = k.dir_sin[kb.loop];
+    const std::int32_t* const fire_ns = k.fire_ns[kb.loop];
+    __m512i channel = _mm512_slli_epi32(_mm512_add_epi32(lane_index, one), 8);  // channel j + 1 in byte 1
+    for (std::size_t j = 0; j < units; j += 16) {
+      // The step's lanes (all 16 but in a block's last step of fewer) and their bytes.
+      const std::size_t left = units - j;
+      const __mmask16 lanes = left >= 16 ? __mmask16{0xFFFF} : static_cast<__mmask16>((1u << left) - 1);
+      const std::size_t unit_span = (left >= 16 ? 16 : left) * kUnitBytes;
+      const __mmask64 byte_lanes = unit_span >= 64 ? ~__mmask64{0} : (__mmask64{1} << unit_span) - 1;
+      __m512i v = _mm512_maskz_loadu_epi8(byte_lanes, block_units + j * kUnitBytes);
+      if constexpr (kUnitBytes == 3) v = _mm512_permutexvar_epi32(lanes_of_three, v);
+      const __m512i raw = _mm512_shuffle_epi8(v, distance);
+      // The scalar loop's operations in its order (block_points.h, unit_xyz).
+      const __m512 r = _mm512_mul_ps(_mm512_cvtepi32_ps(raw), unit_m);
+      const __m512 dc = _mm512_maskz_loadu_ps(lanes, dir_cos + j);
+      const __m512 ds = _mm512_maskz_loadu_ps(lanes, dir_sin + j);
+      const __m512 x = _mm512_mul_ps(r, _mm512_add_ps(_mm512_mul_ps(sin_a, dc), _mm512_mul_ps(cos_a, ds)));
+      const __m512 y = _mm512_mul_ps(r, _mm512_sub_ps(_mm512_mul_ps(cos_a, dc), _mm512_mul_ps(sin_a, ds)));
+      const __m512 z = _mm512_mul_ps(r, _mm512_maskz_loadu_ps(lanes, sin_el + j));
+      const __m512i t = _mm512_add_epi32(offset, _mm512_maskz_loadu_epi32(lanes, fire_ns + j));
+      const __mmask16 keep = _mm512_mask_cmpgt_epi32_mask(lanes, raw, below);
+      // The kept lanes packed to the front, and only they stored: the rest of a full vector
+      // would reach past max_points in a block's last, partial step. One compression gives the
+      // permutation, which each column applies (a vpermd costs less than a vpcompressd).
+      const auto kept = static_cast<unsigned>(_mm_popcnt_u32(keep));
+      const auto stored = static_cast<__mmask16>((1u << kept) - 1);
+      const __m512i order = _mm512_maskz_compress_epi32(keep, lane_index);
+      _mm512_mask_storeu_ps(out.x + n, stored, _mm512_permutexvar_ps(order, x));
+      _mm512_mask_storeu_ps(out.y + n, stored, _mm512_permutexvar_ps(order, y));
+      _mm512_mask_storeu_ps(out.z + n, stored, _mm512_permutexvar_ps(order, z));
+      _mm512_mask_storeu_epi32(out.time_ns + n, stored, _mm512_permutexvar_epi32(order, t));
+      // Intensity in byte 0 and channel in byte 1 of each lane: one permutation for both.
+      const __m512i bytes = _mm512_permutexvar_epi32(order, _mm512_or_si512(_mm512_shuffle_epi8(v, intensity), channel));
+      _mm_mask_storeu_epi8(out.intensity + n, stored, _mm512_cvtepi32_epi8(bytes));
+      _mm_mask_storeu_epi8(out.channel + n, stored, _mm512_cvtepi32_epi8(_mm512_srli_epi32(bytes, 8)));
+      _mm_mask_storeu_epi8(out.return_index + n, stored, ret);
+      channel = _mm512_add_epi32(channel, sixteen);
+      n += kept;
+    }
+  }
+  count = n;
+}
+
+// Which vector code `path` runs on this CPU.
+enum class Isa { none, avx2, avx512 };
+Isa isa_for(DecodePath path) noexcept {
+  if (path == DecodePath::portable || !x86_has(X86Feature::avx2)) return Isa::none;
+  if (path == DecodePath::best && x86_has(X86Feature::avx512)) return Isa::avx512;
+  return Isa::avx2;
 }
 
 }  // namespace
 
 bool columns_simd_available() noexcept { return x86_has(X86Feature::avx2); }
-
-std::size_t points_simd(const BlockConstants& k, const std::uint8_t* units, std::size_t unit_count,
-                        std::size_t unit_bytes, Point* out, std::size_t& count) noexcept {
-  if (!columns_simd_available()) return 0;
-  return points_avx2(k, units, unit_count, unit_bytes, out, count);
+const char* columns_simd_name() noexcept {
+  switch (isa_for(DecodePath::best)) {
+    case Isa::avx512: return "avx512";
+    case Isa::avx2: return "avx2";
+    case Isa::none: break;
+  }
+  return "none";
 }
 
-std::size_t columns_simd(const BlockConstants& k, const std::uint8_t* units, std::size_t unit_count,
-                         std::size_t unit_bytes, const PointColumns out, std::size_t& count) noexcept {
-  if (!columns_simd_available()) return 0;
-  return columns_avx2(k, units, unit_count, unit_bytes, out, count);
+bool points_simd(const PacketConstants& k, DecodePath path, Point* out, std::size_t& count) noexcept {
+  if (isa_for(path) == Isa::none || k.units % 8 != 0) return false;
+  points_avx2(k, out, count);
+  return true;
+}
+
+bool columns_simd(const PacketConstants& k, DecodePath path, const PointColumns out, std::size_t& count) noexcept {
+  switch (isa_for(path)) {
+    case Isa::avx512:
+      if (k.unit_bytes == 4) columns_avx512<4>(k, out, count);
+      else columns_avx512<3>(k, out, count);
+      return true;
+    case Isa::avx2:
+      if (k.units % 8 != 0) return false;
+      columns_avx2(k, out, count);
+      return true;
+    case Isa::none: break;
+  }
+  return false;
 }
 
 }  // namespace hesai::detail

@@ -372,6 +372,7 @@ Error Decoder::decode(ByteView payload, PacketInfo& info, const PointColumns& co
 }
 
 bool decode_simd_available() noexcept { return detail::columns_simd_available(); }
+const char* decode_simd_name() noexcept { return detail::columns_simd_name(); }
 
 Error Decoder::decode_into(ByteView payload, PacketInfo& info, Output& out, std::size_t capacity,
                            std::size_t& count) noexcept {

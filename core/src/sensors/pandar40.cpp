@@ -79,9 +79,9 @@ Error Decoder::validate_pandar40(ByteView p, PacketInfo& info) noexcept {
 void Decoder::decode_pandar40(const std::uint8_t* p, const PacketInfo& info, Output& out) const noexcept {
   using namespace pandar40;
   const std::size_t dual = info.returns == 2 ? 1 : 0;
-  for (std::size_t b = 0; b < kBlocks; ++b)
-    emit_block<kPointBytes>(p + b * kBlockBytes + kBlockPoints, kChannels, nullptr, info, b,
-                            kBlockNs[dual][b], 0, out);
+  detail::BlockRef blocks[kBlocks];
+  for (std::size_t b = 0; b < kBlocks; ++b) blocks[b] = {p + b * kBlockBytes + kBlockPoints, nullptr, kBlockNs[dual][b], 0};
+  emit_blocks<kPointBytes>(blocks, kBlocks, kChannels, info, out);
 }
 
 }  // namespace hesai

@@ -68,9 +68,10 @@ void Decoder::decode_pandar64(const std::uint8_t* p, const PacketInfo& info, Out
   using namespace pandar64;
   const std::size_t dual = info.returns == 2 ? 1 : 0;
   const std::size_t first = out.count;
+  detail::BlockRef blocks[kBlocks];
   for (std::size_t b = 0; b < kBlocks; ++b)
-    emit_block<kPointBytes>(p + kBody + b * kBlockBytes + kBlockPoints, kChannels, nullptr, info, b,
-                            kBlockNs[dual][b], 0, out);
+    blocks[b] = {p + kBody + b * kBlockBytes + kBlockPoints, nullptr, kBlockNs[dual][b], 0};
+  emit_blocks<kPointBytes>(blocks, kBlocks, kChannels, info, out);
   if (reflectivity_ == Reflectivity::nonlinear) out.map_intensity(first, kNonlinearPercent.data());
 }
 

@@ -165,16 +165,16 @@ void Decoder::decode_qt128(const std::uint8_t* p, const PacketInfo& info, Output
   // in single return block 2 uses the other sequence, in dual return both blocks share one firing.
   // Customised channels: the configuration's column for that loop names each unit's channel.
   const std::size_t loop1 = (info.mode_flag & 1) ? 0 : 1;
+  detail::BlockRef blocks[kBlocks];
   for (std::size_t b = 0; b < kBlocks; ++b) {
     const std::size_t loop = (dual || b == 0) ? loop1 : 1 - loop1;
-    const std::uint8_t* units = p + kBody + b * layout.block + kBlockPoints;
-    const std::uint8_t* channel_of = custom ? custom_channel_[loop].data() : nullptr;
-    const std::int32_t t = kBlockNs[dual][b];
-    if (layout.unit == kUnitBytes + kConfidenceBytes)
-      emit_block<kUnitBytes + kConfidenceBytes>(units, layout.lasers, channel_of, info, b, t, loop, out);
-    else
-      emit_block<kUnitBytes>(units, layout.lasers, channel_of, info, b, t, loop, out);
+    blocks[b] = {p + kBody + b * layout.block + kBlockPoints, custom ? custom_channel_[loop].data() : nullptr,
+                 kBlockNs[dual][b], static_cast<std::uint8_t>(loop)};
   }
+  if (layout.unit == kUnitBytes + kConfidenceBytes)
+    emit_blocks<kUnitBytes + kConfidenceBytes>(blocks, kBlocks, layout.lasers, info, out);
+  else
+    emit_blocks<kUnitBytes>(blocks, kBlocks, layout.lasers, info, out);
 }
 
 namespace qt128 {

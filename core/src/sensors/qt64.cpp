@@ -67,9 +67,10 @@ void Decoder::decode_qt64(const std::uint8_t* p, const PacketInfo& info, Output&
   // One firing sequence (the vendor's firetime file has one column); in dual return the two
   // blocks of a firing share its start time (tables/qt64_tables.h).
   const std::size_t dual = info.returns == 2 ? 1 : 0;
+  detail::BlockRef blocks[kBlocks];
   for (std::size_t b = 0; b < kBlocks; ++b)
-    emit_block<kUnitBytes>(p + kBody + b * kBlockBytes + kBlockPoints, kChannels, nullptr, info, b,
-                           kBlockNs[dual][b], 0, out);
+    blocks[b] = {p + kBody + b * kBlockBytes + kBlockPoints, nullptr, kBlockNs[dual][b], 0};
+  emit_blocks<kUnitBytes>(blocks, kBlocks, kChannels, info, out);
 }
 
 }  // namespace hesai
