@@ -207,8 +207,7 @@ HESAI_AVX2_TARGET void points_avx2(const PacketConstants& k, Point* out, std::si
   count = n;
 }
 
-// AVX-512: sixteen units a step, any number of units per block (the last step masked), compacted
-// by vcompressps/vpcompressd in registers (from memory it is slow on some CPUs).
+// AVX-512: sixteen units a step, any number of units per block (the last step masked).
 
 // The dword shuffle that puts 3-byte units 4L..4L + 3 at the start of 128-bit lane L (their 12
 // bytes start at dword 3L); 4-byte units are in place.
@@ -216,74 +215,221 @@ HESAI_AVX512_TARGET inline __m512i three_byte_lanes() noexcept {
   return _mm512_setr_epi32(0, 1, 2, 3, 3, 4, 5, 6, 6, 7, 8, 9, 9, 10, 11, 12);
 }
 
-// Within each 128-bit lane: units at bytes 0, s, 2s, 3s (s the unit size); the byte `field` of
-// unit i (and the next, `width` 2) zero-extended into dword i.
+// Within each 128-bit lane: units at bytes 0, s, 2s, 3s (s the unit size); bytes `field` and
+// `field + 1` (width 2) or `field` alone of unit i into dword i, the rest 0; `top`, when not -1,
+// into byte 3 of the dword.
 template <std::size_t kUnitBytes>
-HESAI_AVX512_TARGET inline __m512i unit_field(std::size_t field, std::size_t width) noexcept {
+HESAI_AVX512_TARGET inline __m512i unit_field(int field, int width, int top = -1) noexcept {
   alignas(16) std::int8_t s[16];
-  for (std::size_t i = 0; i < 16; ++i) s[i] = -1;
-  for (std::size_t i = 0; i < 4; ++i)
-    for (std::size_t b = 0; b < width; ++b) s[4 * i + b] = static_cast<std::int8_t>(i * kUnitBytes + field + b);
+  for (int i = 0; i < 16; ++i) s[i] = -1;
+  for (int i = 0; i < 4; ++i) {
+    const int at = i * static_cast<int>(kUnitBytes);
+    for (int b = 0; b < width; ++b) s[4 * i + b] = static_cast<std::int8_t>(at + field + b);
+    if (top >= 0) s[4 * i + 3] = static_cast<std::int8_t>(at + top);
+  }
   return _mm512_broadcast_i32x4(_mm_load_si128(reinterpret_cast<const __m128i*>(s)));
 }
 
+// Sixteen units of a block, as both AVX-512 loops read them: the unit bytes (each unit's at the
+// start of dword i's 128-bit lane group), position (the scalar loop's operations in its order,
+// block_points.h unit_xyz), which lanes hold units and which are kept.
+struct Sixteen {
+  __m512i bytes, raw;
+  __m512 r, x, y, z;
+  __mmask16 lanes, keep;
+  std::size_t count;  // units in the step: 16 but in a block's last step of fewer
+};
+
+template <std::size_t kUnitBytes>
+class SixteenUnits {
+ public:
+  HESAI_AVX512_TARGET explicit SixteenUnits(const PacketConstants& k) noexcept
+      : units_(k.units),
+        sin_el_(k.sin_el),
+        distance_(unit_field<kUnitBytes>(0, 2)),
+        lanes_of_three_(three_byte_lanes()),
+        unit_m_(_mm512_set1_ps(k.unit_m)),
+        below_(_mm512_set1_epi32(k.min_distance - 1)) {
+    for (std::size_t loop = 0; loop < 2; ++loop) dir_cos_loop_[loop] = k.dir_cos[loop], dir_sin_loop_[loop] = k.dir_sin[loop];
+  }
+
+  HESAI_AVX512_TARGET void start(const BlockRef& b, float sin_a, float cos_a) noexcept {
+    block_units_ = b.units;
+    sin_a_ = _mm512_set1_ps(sin_a), cos_a_ = _mm512_set1_ps(cos_a);
+    dir_cos_ = dir_cos_loop_[b.loop], dir_sin_ = dir_sin_loop_[b.loop];
+  }
+
+  // Units j .. j + 15 of the block (those below its unit count).
+  HESAI_AVX512_TARGET Sixteen at(std::size_t j) const noexcept {
+    Sixteen s;
+    const std::size_t left = units_ - j;
+    s.count = left >= 16 ? 16 : left;
+    s.lanes = static_cast<__mmask16>((1u << s.count) - 1);
+    const std::size_t span = s.count * kUnitBytes;
+    const __mmask64 byte_lanes = span >= 64 ? ~__mmask64{0} : (__mmask64{1} << span) - 1;
+    s.bytes = _mm512_maskz_loadu_epi8(byte_lanes, block_units_ + j * kUnitBytes);
+    if constexpr (kUnitBytes == 3) s.bytes = _mm512_permutexvar_epi32(lanes_of_three_, s.bytes);
+    s.raw = _mm512_shuffle_epi8(s.bytes, distance_);
+    s.r = _mm512_mul_ps(_mm512_cvtepi32_ps(s.raw), unit_m_);
+    const __m512 dc = _mm512_maskz_loadu_ps(s.lanes, dir_cos_ + j);
+    const __m512 ds = _mm512_maskz_loadu_ps(s.lanes, dir_sin_ + j);
+    s.x = _mm512_mul_ps(s.r, _mm512_add_ps(_mm512_mul_ps(sin_a_, dc), _mm512_mul_ps(cos_a_, ds)));
+    s.y = _mm512_mul_ps(s.r, _mm512_sub_ps(_mm512_mul_ps(cos_a_, dc), _mm512_mul_ps(sin_a_, ds)));
+    s.z = _mm512_mul_ps(s.r, _mm512_maskz_loadu_ps(s.lanes, sin_el_ + j));
+    s.keep = _mm512_mask_cmpgt_epi32_mask(s.lanes, s.raw, below_);
+    return s;
+  }
+
+ private:
+  std::size_t units_;
+  const float* sin_el_;
+  const float* dir_cos_loop_[2];
+  const float* dir_sin_loop_[2];
+  __m512i distance_, lanes_of_three_;
+  __m512 unit_m_;
+  __m512i below_;
+  // The block's.
+  const std::uint8_t* block_units_ = nullptr;
+  const float* dir_cos_ = nullptr;
+  const float* dir_sin_ = nullptr;
+  __m512 sin_a_, cos_a_;
+};
+
+// 128-bit lane `lane` of v (a constant once the loops are unrolled).
+HESAI_AVX512_TARGET inline __m128i lane_of(__m512i v, unsigned lane) noexcept {
+  switch (lane) {
+    case 0: return _mm512_castsi512_si128(v);
+    case 1: return _mm512_extracti32x4_epi32(v, 1);
+    case 2: return _mm512_extracti32x4_epi32(v, 2);
+    default: return _mm512_extracti32x4_epi32(v, 3);
+  }
+}
+
+HESAI_AVX512_TARGET inline __m512i lane_indices() noexcept {
+  return _mm512_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15);
+}
+
+// The kept lanes packed to the front, and only they stored: the rest of a full vector would
+// reach past max_points in a block's last, partial step. One compression gives the permutation,
+// which each column applies (a vpermd costs less than a vpcompressd).
 template <std::size_t kUnitBytes>
 HESAI_AVX512_TARGET void columns_avx512(const PacketConstants& k, const PointColumns out, std::size_t& count) noexcept {
+  SixteenUnits<kUnitBytes> sixteen_units(k);
   const std::size_t blocks = k.blocks, units = k.units;
-  const __m512i distance = unit_field<kUnitBytes>(0, 2), intensity = unit_field<kUnitBytes>(2, 1);
-  const __m512i lanes_of_three = three_byte_lanes();
-  const __m512 unit_m = _mm512_set1_ps(k.unit_m);
-  const __m512i below = _mm512_set1_epi32(k.min_distance - 1);
-  const __m512i lane_index = _mm512_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15);
-  const __m512i one = _mm512_set1_epi32(1), sixteen = _mm512_set1_epi32(16 << 8);
-  const float* const sin_el = k.sin_el;
+  const __m512i intensity = unit_field<kUnitBytes>(2, 1);
+  const __m512i lane_index = lane_indices();
+  const __m512i next_channels = _mm512_set1_epi32(16 << 8);
   const BlockSinCos sc = block_sin_cos(k);
   std::size_t n = count;
   for (std::size_t b = 0; b < blocks; ++b) {
     const BlockRef& kb = k.block[b];
-    const std::uint8_t* const block_units = kb.units;
-    const __m512 sin_a = _mm512_set1_ps(sc.sin[b]), cos_a = _mm512_set1_ps(sc.cos[b]);
+    sixteen_units.start(kb, sc.sin[b], sc.cos[b]);
     const __m512i offset = _mm512_set1_epi32(kb.offset_ns);
     const __m128i ret = _mm_set1_epi8(static_cast<char>(return_index(k.returns, b)));
-    const float* const dir_cos = k.dir_cos[kb.loop];
-    const float* const dir_sin = k.dir_sin[kb.loop];
     const std::int32_t* const fire_ns = k.fire_ns[kb.loop];
-    __m512i channel = _mm512_slli_epi32(_mm512_add_epi32(lane_index, one), 8);  // channel j + 1 in byte 1
+    // Channel j + 1 in byte 1 of lane j, beside the intensity in byte 0.
+    __m512i channel = _mm512_slli_epi32(_mm512_add_epi32(lane_index, _mm512_set1_epi32(1)), 8);
     for (std::size_t j = 0; j < units; j += 16) {
-      // The step's lanes (all 16 but in a block's last step of fewer) and their bytes.
-      const std::size_t left = units - j;
-      const __mmask16 lanes = left >= 16 ? __mmask16{0xFFFF} : static_cast<__mmask16>((1u << left) - 1);
-      const std::size_t unit_span = (left >= 16 ? 16 : left) * kUnitBytes;
-      const __mmask64 byte_lanes = unit_span >= 64 ? ~__mmask64{0} : (__mmask64{1} << unit_span) - 1;
-      __m512i v = _mm512_maskz_loadu_epi8(byte_lanes, block_units + j * kUnitBytes);
-      if constexpr (kUnitBytes == 3) v = _mm512_permutexvar_epi32(lanes_of_three, v);
-      const __m512i raw = _mm512_shuffle_epi8(v, distance);
-      // The scalar loop's operations in its order (block_points.h, unit_xyz).
-      const __m512 r = _mm512_mul_ps(_mm512_cvtepi32_ps(raw), unit_m);
-      const __m512 dc = _mm512_maskz_loadu_ps(lanes, dir_cos + j);
-      const __m512 ds = _mm512_maskz_loadu_ps(lanes, dir_sin + j);
-      const __m512 x = _mm512_mul_ps(r, _mm512_add_ps(_mm512_mul_ps(sin_a, dc), _mm512_mul_ps(cos_a, ds)));
-      const __m512 y = _mm512_mul_ps(r, _mm512_sub_ps(_mm512_mul_ps(cos_a, dc), _mm512_mul_ps(sin_a, ds)));
-      const __m512 z = _mm512_mul_ps(r, _mm512_maskz_loadu_ps(lanes, sin_el + j));
-      const __m512i t = _mm512_add_epi32(offset, _mm512_maskz_loadu_epi32(lanes, fire_ns + j));
-      const __mmask16 keep = _mm512_mask_cmpgt_epi32_mask(lanes, raw, below);
-      // The kept lanes packed to the front, and only they stored: the rest of a full vector
-      // would reach past max_points in a block's last, partial step. One compression gives the
-      // permutation, which each column applies (a vpermd costs less than a vpcompressd).
-      const auto kept = static_cast<unsigned>(_mm_popcnt_u32(keep));
+      const Sixteen s = sixteen_units.at(j);
+      const __m512i t = _mm512_add_epi32(offset, _mm512_maskz_loadu_epi32(s.lanes, fire_ns + j));
+      const auto kept = static_cast<unsigned>(_mm_popcnt_u32(s.keep));
       const auto stored = static_cast<__mmask16>((1u << kept) - 1);
-      const __m512i order = _mm512_maskz_compress_epi32(keep, lane_index);
-      _mm512_mask_storeu_ps(out.x + n, stored, _mm512_permutexvar_ps(order, x));
-      _mm512_mask_storeu_ps(out.y + n, stored, _mm512_permutexvar_ps(order, y));
-      _mm512_mask_storeu_ps(out.z + n, stored, _mm512_permutexvar_ps(order, z));
+      const __m512i order = _mm512_maskz_compress_epi32(s.keep, lane_index);
+      _mm512_mask_storeu_ps(out.x + n, stored, _mm512_permutexvar_ps(order, s.x));
+      _mm512_mask_storeu_ps(out.y + n, stored, _mm512_permutexvar_ps(order, s.y));
+      _mm512_mask_storeu_ps(out.z + n, stored, _mm512_permutexvar_ps(order, s.z));
       _mm512_mask_storeu_epi32(out.time_ns + n, stored, _mm512_permutexvar_epi32(order, t));
-      // Intensity in byte 0 and channel in byte 1 of each lane: one permutation for both.
-      const __m512i bytes = _mm512_permutexvar_epi32(order, _mm512_or_si512(_mm512_shuffle_epi8(v, intensity), channel));
-      _mm_mask_storeu_epi8(out.intensity + n, stored, _mm512_cvtepi32_epi8(bytes));
-      _mm_mask_storeu_epi8(out.channel + n, stored, _mm512_cvtepi32_epi8(_mm512_srli_epi32(bytes, 8)));
+      // Intensity and channel: one permutation for both.
+      const __m512i ic = _mm512_permutexvar_epi32(order, _mm512_or_si512(_mm512_shuffle_epi8(s.bytes, intensity), channel));
+      _mm_mask_storeu_epi8(out.intensity + n, stored, _mm512_cvtepi32_epi8(ic));
+      _mm_mask_storeu_epi8(out.channel + n, stored, _mm512_cvtepi32_epi8(_mm512_srli_epi32(ic, 8)));
       _mm_mask_storeu_epi8(out.return_index + n, stored, ret);
-      channel = _mm512_add_epi32(channel, sixteen);
+      channel = _mm512_add_epi32(channel, next_channels);
       n += kept;
+    }
+  }
+  count = n;
+}
+
+// Points, sixteen units a step: each point's 40 bytes in two stores (x, y, z, distance, azimuth,
+// elevation, time; then the bytes), the eight fields of the first store transposed from the
+// sixteen lanes by 22 two-source permutations, where the AVX2 loop takes about 90 shuffles for
+// as many units.
+template <std::size_t kUnitBytes>
+HESAI_AVX512_TARGET void points_avx512(const PacketConstants& k, Point* out, std::size_t& count) noexcept {
+  SixteenUnits<kUnitBytes> sixteen_units(k);
+  const std::size_t blocks = k.blocks, units = k.units;
+  // Intensity in byte 0 and the confidence byte of a 4-byte unit in byte 3 of each lane.
+  const __m512i intensity_confidence = unit_field<kUnitBytes>(2, 1, kUnitBytes == 4 ? 3 : -1);
+  const __m512 full_turn = _mm512_set1_ps(360.0f);
+  const float* const elevation_deg = k.elevation_deg;
+  // Two-source permutations (indices 16.. and 8.. name the second source): dwords of units
+  // 0..7 (8..15) of a and b in pairs; qword pairs u of a and b for units 0..3 (4..7); the
+  // 128-bit halves of units 2m, 2m + 1 (m even, odd) side by side.
+  const __m512i pair_lo = _mm512_setr_epi32(0, 16, 1, 17, 2, 18, 3, 19, 4, 20, 5, 21, 6, 22, 7, 23);
+  const __m512i pair_hi = _mm512_setr_epi32(8, 24, 9, 25, 10, 26, 11, 27, 12, 28, 13, 29, 14, 30, 15, 31);
+  const __m512i quad_lo = _mm512_setr_epi64(0, 8, 1, 9, 2, 10, 3, 11);
+  const __m512i quad_hi = _mm512_setr_epi64(4, 12, 5, 13, 6, 14, 7, 15);
+  const __m512i rows_lo = _mm512_setr_epi64(0, 1, 8, 9, 2, 3, 10, 11);
+  const __m512i rows_hi = _mm512_setr_epi64(4, 5, 12, 13, 6, 7, 14, 15);
+  const BlockSinCos sc = block_sin_cos(k);
+  std::uint8_t* const base = reinterpret_cast<std::uint8_t*>(out);
+  std::size_t n = count;
+  for (std::size_t b = 0; b < blocks; ++b) {
+    const BlockRef& kb = k.block[b];
+    sixteen_units.start(kb, sc.sin[b], sc.cos[b]);
+    const __m512 block_deg = _mm512_set1_ps(static_cast<float>(k.block_azimuth[b]) * 0.01f);
+    const __m512i block_time = _mm512_set1_epi64(static_cast<long long>(k.time_ns + kb.offset_ns));
+    // Channel j + 1 in byte 1 and the return index in byte 2 of lane j; the block byte at byte 4
+    // of each unit's 8 trailing bytes.
+    __m512i channel_return =
+        _mm512_or_si512(_mm512_slli_epi32(_mm512_add_epi32(lane_indices(), _mm512_set1_epi32(1)), 8),
+                        _mm512_set1_epi32(static_cast<int>(return_index(k.returns, b)) << 16));
+    const __m512i block = _mm512_set1_epi64(static_cast<long long>(b) << 32);
+    const float* const azimuth_deg = k.azimuth_deg[kb.loop];
+    const std::int32_t* const fire_ns = k.fire_ns[kb.loop];
+    for (std::size_t j = 0; j < units; j += 16) {
+      const Sixteen s = sixteen_units.at(j);
+      // The scalar loop's operations in its order (block_points.h, write_points).
+      const __m512 sum = _mm512_add_ps(block_deg, _mm512_maskz_loadu_ps(s.lanes, azimuth_deg + j));
+      const __m512 az = _mm512_mask_sub_ps(sum, _mm512_cmp_ps_mask(sum, full_turn, _CMP_GE_OQ), sum, full_turn);
+      const __m512 el = _mm512_maskz_loadu_ps(s.lanes, elevation_deg + j);
+      const __m512i fire = _mm512_maskz_loadu_epi32(s.lanes, fire_ns + j);
+      const __m512i t[2] = {_mm512_add_epi64(block_time, _mm512_cvtepi32_epi64(_mm512_castsi512_si256(fire))),
+                            _mm512_add_epi64(block_time, _mm512_cvtepi32_epi64(_mm512_extracti64x4_epi64(fire, 1)))};
+      // The trailing 8 bytes of each point: intensity, channel, return index, confidence, block, 0.
+      const __m512i tail32 = _mm512_or_si512(_mm512_shuffle_epi8(s.bytes, intensity_confidence), channel_return);
+      const __m512i tail[2] = {_mm512_or_si512(_mm512_cvtepu32_epi64(_mm512_castsi512_si256(tail32)), block),
+                               _mm512_or_si512(_mm512_cvtepu32_epi64(_mm512_extracti64x4_epi64(tail32, 1)), block)};
+      channel_return = _mm512_add_epi32(channel_return, _mm512_set1_epi32(16 << 8));
+      for (unsigned h = 0; h < 2; ++h) {  // units 8h .. 8h + 7
+        const __m512i pair = h == 0 ? pair_lo : pair_hi;
+        const __m512d xy = _mm512_castps_pd(_mm512_permutex2var_ps(s.x, pair, s.y));
+        const __m512d zr = _mm512_castps_pd(_mm512_permutex2var_ps(s.z, pair, s.r));
+        const __m512d ae = _mm512_castps_pd(_mm512_permutex2var_ps(az, pair, el));
+        const __m512d td = _mm512_castsi512_pd(t[h]);
+        for (unsigned g = 0; g < 2; ++g) {  // units 8h + 4g .. + 3
+          const __m512i quad = g == 0 ? quad_lo : quad_hi;
+          const __m512d xyzr = _mm512_permutex2var_pd(xy, quad, zr);  // 16 bytes a unit
+          const __m512d aet = _mm512_permutex2var_pd(ae, quad, td);   // 16 bytes a unit
+          for (unsigned m = 0; m < 2; ++m) {  // units 8h + 4g + 2m, + 1
+            const __m512d rows = _mm512_permutex2var_pd(xyzr, m == 0 ? rows_lo : rows_hi, aet);
+            for (unsigned e = 0; e < 2; ++e) {
+              const unsigned i = 8 * h + 4 * g + 2 * m + e;
+              if (i >= s.count) break;
+              std::uint8_t* o = base + n * sizeof(Point);
+              _mm256_storeu_pd(reinterpret_cast<double*>(o), e == 0 ? _mm512_castpd512_pd256(rows) : _mm512_extractf64x4_pd(rows, 1));
+              const __m128i pair_tail = lane_of(tail[h], 2 * g + m);
+              if (e == 0) {
+                _mm_storel_epi64(reinterpret_cast<__m128i*>(o + 32), pair_tail);
+              } else {
+                _mm_storeh_pd(reinterpret_cast<double*>(o + 32), _mm_castsi128_pd(pair_tail));
+              }
+              n += (s.keep >> i) & 1u;
+            }
+          }
+        }
+      }
     }
   }
   count = n;
@@ -310,9 +456,18 @@ const char* columns_simd_name() noexcept {
 }
 
 bool points_simd(const PacketConstants& k, DecodePath path, Point* out, std::size_t& count) noexcept {
-  if (isa_for(path) == Isa::none || k.units % 8 != 0) return false;
-  points_avx2(k, out, count);
-  return true;
+  switch (isa_for(path)) {
+    case Isa::avx512:
+      if (k.unit_bytes == 4) points_avx512<4>(k, out, count);
+      else points_avx512<3>(k, out, count);
+      return true;
+    case Isa::avx2:
+      if (k.units % 8 != 0) return false;
+      points_avx2(k, out, count);
+      return true;
+    case Isa::none: break;
+  }
+  return false;
 }
 
 bool columns_simd(const PacketConstants& k, DecodePath path, const PointColumns out, std::size_t& count) noexcept {
