@@ -99,10 +99,13 @@ void Decoder::decode_xt(const std::uint8_t* p, const PacketInfo& info, Output& o
   // nebula's pandar_xt32m.hpp counts from 8 blocks for the XT32M2X in single and dual return
   // too, which would put its first firing on the previous packet's last one (150 us before t0
   // in dual); the SDK's header block count matches the capture's 150 us packet spacing.
+  // Counted down without a division per block: a firing every `returns` blocks.
   detail::BlockRef refs[8];  // 8 (XT16, XT32) or 6 (XT32M2X), as identify_xt accepts
+  auto firings_after = static_cast<std::int32_t>((blocks - 1) / info.returns);
+  std::size_t left_in_firing = (blocks - 1) % info.returns + 1;
   for (std::size_t b = 0; b < blocks; ++b) {
-    const auto firings_after = static_cast<std::int32_t>((blocks - 1 - b) / info.returns);
     refs[b] = {p + kBody + b * stride + kBlockPoints, nullptr, -kFiringPeriodNs * firings_after, 0};
+    if (--left_in_firing == 0) --firings_after, left_in_firing = info.returns;
   }
   emit_blocks<kUnitBytes>(refs, blocks, lasers, info, out);
 }
