@@ -3,8 +3,8 @@
 // decline (return false) and the scalar loops in block_points.h, which every target has, write
 // them. Each gives the scalar loop's values: the same float operations in the same order, no fused
 // multiply-add (tests/test_columns.cpp checks every point of every capture on every path).
-// - x86-64 (GNU compilers), chosen at run time from CPUID: AVX-512 for columns, AVX2 for columns
-//   and Points (columns_x86.cpp).
+// - x86-64 (GNU compilers), chosen at run time from CPUID: AVX-512 (F, BW, DQ, VL) where present,
+//   else AVX2, for columns and Points (columns_x86.cpp).
 // - AArch64 (GNU compilers, little-endian): NEON for columns, at compile time (columns_neon.cpp).
 // - Elsewhere (Cortex-M, ...): none; the scalar loops write every unit.
 #pragma once

@@ -1,5 +1,5 @@
-// The decode's vector paths on x86-64 (see columns_simd.h): AVX-512 for columns, sixteen units a
-// step; AVX2 for columns and Points, eight units a step. Compiled with function-level target
+// The decode's vector paths on x86-64 (see columns_simd.h), for columns and Points: AVX-512,
+// sixteen units a step, and AVX2, eight units a step. Compiled with function-level target
 // attributes, so that the library needs no -m flags; chosen at run time from CPUID, as the CRC's
 // PCLMULQDQ path is. Empty on other targets.
 #include "columns_simd.h"
