@@ -61,12 +61,11 @@ inline Xyz unit_xyz(const BlockConstants& k, float r, std::size_t ch) noexcept {
           r * (k.cos_a * k.dir_cos[ch] - k.sin_a * k.dir_sin[ch]), r * k.sin_el[ch]};
 }
 
-// The units of a block as columns at out[n...]; returns n advanced by the points
-// kept. k and the columns by value: locals whose address does not escape, so that the stores
+// The units of a block as columns at out[n...]; returns n advanced by the points kept. k and the columns by value: locals whose address does not escape, so that the stores
 // through the byte columns (which may alias anything in memory) leave them in registers.
 template <std::size_t kUnitBytes>
-inline std::size_t write_columns(const BlockConstants k, const std::uint8_t* units, std::size_t unit_count, const std::uint8_t* channel_of, const PointColumns out,
-                                 std::size_t n) noexcept {
+inline std::size_t write_columns(const BlockConstants k, const std::uint8_t* units, std::size_t unit_count,
+                                 const std::uint8_t* channel_of, const PointColumns out, std::size_t n) noexcept {
   for_each_unit<kUnitBytes>(units, unit_count, channel_of, [&](const std::uint8_t* p, std::size_t ch) {
     const std::uint16_t raw = load_le16(p);
     const Xyz v = unit_xyz(k, static_cast<float>(raw) * k.unit_m, ch);
@@ -84,8 +83,8 @@ inline std::size_t write_columns(const BlockConstants k, const std::uint8_t* uni
 
 // The same as Points (k by value for the same reason).
 template <std::size_t kUnitBytes>
-inline std::size_t write_points(const BlockConstants k, const std::uint8_t* units, std::size_t unit_count, const std::uint8_t* channel_of, Point* const out,
-                                std::size_t n) noexcept {
+inline std::size_t write_points(const BlockConstants k, const std::uint8_t* units, std::size_t unit_count,
+                                const std::uint8_t* channel_of, Point* const out, std::size_t n) noexcept {
   for_each_unit<kUnitBytes>(units, unit_count, channel_of, [&](const std::uint8_t* p, std::size_t ch) {
     const std::uint16_t raw = load_le16(p);
     const float r = static_cast<float>(raw) * k.unit_m;
@@ -116,7 +115,6 @@ inline std::size_t write_points(const BlockConstants k, const std::uint8_t* unit
 }
 
 }  // namespace detail
-
 
 // Optimising for size (-Os, the firmware builds), every sensor calls one shared copy per unit
 // size: inlined into each sensor's block walk it took 0.8 KB more flash on the Cortex-M0+.
