@@ -9,6 +9,7 @@
 #include <immintrin.h>
 
 #include <cstddef>
+#include <type_traits>
 
 #include "../base/cpu_x86.h"
 
@@ -259,12 +260,13 @@ class SixteenUnits {
     dir_cos_ = dir_cos_loop_[b.loop], dir_sin_ = dir_sin_loop_[b.loop];
   }
 
-  // Units j .. j + 15 of the block (those below its unit count).
+  // Units j .. j + 15 of the block: all sixteen (kFull), or those below its unit count.
+  template <bool kFull>
   HESAI_AVX512_TARGET Sixteen at(std::size_t j) const noexcept {
     Sixteen s;
     const std::size_t left = units_ - j;
-    s.count = left >= 16 ? 16 : left;
-    s.lanes = static_cast<__mmask16>((1u << s.count) - 1);
+    s.count = kFull ? 16 : left;
+    s.lanes = kFull ? __mmask16{0xFFFF} : static_cast<__mmask16>((1u << left) - 1);
     const std::size_t span = s.count * kUnitBytes;
     const __mmask64 byte_lanes = span >= 64 ? ~__mmask64{0} : (__mmask64{1} << span) - 1;
     s.bytes = _mm512_maskz_loadu_epi8(byte_lanes, block_units_ + j * kUnitBytes);
@@ -309,9 +311,8 @@ HESAI_AVX512_TARGET inline __m512i lane_indices() noexcept {
   return _mm512_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15);
 }
 
-// The kept lanes packed to the front, and only they stored: the rest of a full vector would
-// reach past max_points in a block's last, partial step. One compression gives the permutation,
-// which each column applies (a vpermd costs less than a vpcompressd).
+// The kept lanes packed to the front: one compression gives the permutation, which each column
+// applies (a vpermd costs less than a vpcompressd).
 template <std::size_t kUnitBytes>
 HESAI_AVX512_TARGET void columns_avx512(const PacketConstants& k, const PointColumns out, std::size_t& count) noexcept {
   SixteenUnits<kUnitBytes> sixteen_units(k);
@@ -329,24 +330,45 @@ HESAI_AVX512_TARGET void columns_avx512(const PacketConstants& k, const PointCol
     const std::int32_t* const fire_ns = k.fire_ns[kb.loop];
     // Channel j + 1 in byte 1 of lane j, beside the intensity in byte 0.
     __m512i channel = _mm512_slli_epi32(_mm512_add_epi32(lane_index, _mm512_set1_epi32(1)), 8);
-    for (std::size_t j = 0; j < units; j += 16) {
-      const Sixteen s = sixteen_units.at(j);
+    // A step of sixteen units (kFull) or the block's last, of fewer.
+    const auto step = [&](std::size_t j, auto full) HESAI_AVX512_TARGET {
+      constexpr bool kFull = decltype(full)::value;
+      const Sixteen s = sixteen_units.template at<kFull>(j);
       const __m512i t = _mm512_add_epi32(offset, _mm512_maskz_loadu_epi32(s.lanes, fire_ns + j));
-      const auto kept = static_cast<unsigned>(_mm_popcnt_u32(s.keep));
-      const auto stored = static_cast<__mmask16>((1u << kept) - 1);
       const __m512i order = _mm512_maskz_compress_epi32(s.keep, lane_index);
-      _mm512_mask_storeu_ps(out.x + n, stored, _mm512_permutexvar_ps(order, s.x));
-      _mm512_mask_storeu_ps(out.y + n, stored, _mm512_permutexvar_ps(order, s.y));
-      _mm512_mask_storeu_ps(out.z + n, stored, _mm512_permutexvar_ps(order, s.z));
-      _mm512_mask_storeu_epi32(out.time_ns + n, stored, _mm512_permutexvar_epi32(order, t));
       // Intensity and channel: one permutation for both.
       const __m512i ic = _mm512_permutexvar_epi32(order, _mm512_or_si512(_mm512_shuffle_epi8(s.bytes, intensity), channel));
-      _mm_mask_storeu_epi8(out.intensity + n, stored, _mm512_cvtepi32_epi8(ic));
-      _mm_mask_storeu_epi8(out.channel + n, stored, _mm512_cvtepi32_epi8(_mm512_srli_epi32(ic, 8)));
-      _mm_mask_storeu_epi8(out.return_index + n, stored, ret);
+      const __m512 x = _mm512_permutexvar_ps(order, s.x), y = _mm512_permutexvar_ps(order, s.y);
+      const __m512 z = _mm512_permutexvar_ps(order, s.z);
+      const __m512i time = _mm512_permutexvar_epi32(order, t);
+      const __m128i intensities = _mm512_cvtepi32_epi8(ic), channels = _mm512_cvtepi32_epi8(_mm512_srli_epi32(ic, 8));
+      const auto kept = static_cast<unsigned>(_mm_popcnt_u32(s.keep));
+      if constexpr (kFull) {
+        // Whole vectors: up to 15 entries past the new count, all below this step's units.
+        _mm512_storeu_ps(out.x + n, x);
+        _mm512_storeu_ps(out.y + n, y);
+        _mm512_storeu_ps(out.z + n, z);
+        _mm512_storeu_si512(out.time_ns + n, time);
+        _mm_storeu_si128(reinterpret_cast<__m128i*>(out.intensity + n), intensities);
+        _mm_storeu_si128(reinterpret_cast<__m128i*>(out.channel + n), channels);
+        _mm_storeu_si128(reinterpret_cast<__m128i*>(out.return_index + n), ret);
+      } else {
+        // Only the kept: the rest of a vector could reach past max_points.
+        const auto stored = static_cast<__mmask16>((1u << kept) - 1);
+        _mm512_mask_storeu_ps(out.x + n, stored, x);
+        _mm512_mask_storeu_ps(out.y + n, stored, y);
+        _mm512_mask_storeu_ps(out.z + n, stored, z);
+        _mm512_mask_storeu_epi32(out.time_ns + n, stored, time);
+        _mm_mask_storeu_epi8(out.intensity + n, stored, intensities);
+        _mm_mask_storeu_epi8(out.channel + n, stored, channels);
+        _mm_mask_storeu_epi8(out.return_index + n, stored, ret);
+      }
       channel = _mm512_add_epi32(channel, next_channels);
       n += kept;
-    }
+    };
+    std::size_t j = 0;
+    for (; j + 16 <= units; j += 16) step(j, std::true_type{});
+    if (j < units) step(j, std::false_type{});
   }
   count = n;
 }
@@ -388,8 +410,10 @@ HESAI_AVX512_TARGET void points_avx512(const PacketConstants& k, Point* out, std
     const __m512i block = _mm512_set1_epi64(static_cast<long long>(b) << 32);
     const float* const azimuth_deg = k.azimuth_deg[kb.loop];
     const std::int32_t* const fire_ns = k.fire_ns[kb.loop];
-    for (std::size_t j = 0; j < units; j += 16) {
-      const Sixteen s = sixteen_units.at(j);
+    // A step of sixteen units (kFull) or the block's last, of fewer.
+    const auto step = [&](std::size_t j, auto full) HESAI_AVX512_TARGET {
+      constexpr bool kFull = decltype(full)::value;
+      const Sixteen s = sixteen_units.template at<kFull>(j);
       // The scalar loop's operations in its order (block_points.h, write_points).
       const __m512 sum = _mm512_add_ps(block_deg, _mm512_maskz_loadu_ps(s.lanes, azimuth_deg + j));
       const __m512 az = _mm512_mask_sub_ps(sum, _mm512_cmp_ps_mask(sum, full_turn, _CMP_GE_OQ), sum, full_turn);
@@ -416,7 +440,7 @@ HESAI_AVX512_TARGET void points_avx512(const PacketConstants& k, Point* out, std
             const __m512d rows = _mm512_permutex2var_pd(xyzr, m == 0 ? rows_lo : rows_hi, aet);
             for (unsigned e = 0; e < 2; ++e) {
               const unsigned i = 8 * h + 4 * g + 2 * m + e;
-              if (i >= s.count) break;
+              if (!kFull && i >= s.count) break;
               std::uint8_t* o = base + n * sizeof(Point);
               _mm256_storeu_pd(reinterpret_cast<double*>(o), e == 0 ? _mm512_castpd512_pd256(rows) : _mm512_extractf64x4_pd(rows, 1));
               const __m128i pair_tail = lane_of(tail[h], 2 * g + m);
@@ -430,7 +454,10 @@ HESAI_AVX512_TARGET void points_avx512(const PacketConstants& k, Point* out, std
           }
         }
       }
-    }
+    };
+    std::size_t j = 0;
+    for (; j + 16 <= units; j += 16) step(j, std::true_type{});
+    if (j < units) step(j, std::false_type{});
   }
   count = n;
 }
