@@ -159,7 +159,9 @@ enum class Stage {
   decode_rpm_changes,
   decode_columns,
   decode_columns_portable,
-  decode_columns_avx2
+  decode_columns_avx2,
+  decode_portable,  // Points by the scalar loop
+  decode_avx2       // Points by the AVX2 code where AVX-512 is present
 };
 
 void finish_counters(benchmark::State& state, std::uint64_t bytes, std::uint64_t points) {
@@ -185,9 +187,10 @@ void BM_Decoder(benchmark::State& state, hesai::Model model, Stage stage) {
   // Every packet must pass, or the benchmark would time the error path.
   static hesai::PacketPoints out;
   static hesai::PacketColumns<hesai::kMaxPointsPerPacket> columns;
-  const hesai::DecodePath path = stage == Stage::decode_columns_portable ? hesai::DecodePath::portable
-                                 : stage == Stage::decode_columns_avx2   ? hesai::DecodePath::avx2
-                                                                         : hesai::DecodePath::best;
+  const hesai::DecodePath path =
+      stage == Stage::decode_columns_portable || stage == Stage::decode_portable ? hesai::DecodePath::portable
+      : stage == Stage::decode_columns_avx2 || stage == Stage::decode_avx2       ? hesai::DecodePath::avx2
+                                                                                 : hesai::DecodePath::best;
   for (const Bytes& p : packets) {
     hesai::PacketInfo info;
     if (decoder.decode({p.data(), p.size()}, info, out) != hesai::Error::ok) {
@@ -209,7 +212,7 @@ void BM_Decoder(benchmark::State& state, hesai::Model model, Stage stage) {
       e = decoder.decode({p.data(), p.size()}, info, columns, path);
       points += columns.count;
     } else {
-      e = decoder.decode({p.data(), p.size()}, info, out);
+      e = decoder.decode({p.data(), p.size()}, info, out, path);
       points += out.count;
     }
     benchmark::DoNotOptimize(e);
@@ -443,6 +446,8 @@ void register_all() {
                                  Stage::decode_columns_portable);
     benchmark::RegisterBenchmark(("BM_" + n + "_decode_columns_avx2").c_str(), BM_Decoder, s.model,
                                  Stage::decode_columns_avx2);
+    benchmark::RegisterBenchmark(("BM_" + n + "_decode_portable").c_str(), BM_Decoder, s.model, Stage::decode_portable);
+    benchmark::RegisterBenchmark(("BM_" + n + "_decode_avx2").c_str(), BM_Decoder, s.model, Stage::decode_avx2);
   }
   benchmark::RegisterBenchmark("BM_QT128C2X_decode_signed", BM_Decoder, hesai::Model::qt128c2x, Stage::decode_signed);
 

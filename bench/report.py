@@ -141,16 +141,18 @@ def main():
     for sensor in sensors:
         dec, val = get('BM_%s_decode' % sensor), get('BM_%s_validate' % sensor)
         col, col2 = get('BM_%s_decode_columns' % sensor), get('BM_%s_decode_columns_avx2' % sensor)
+        dec2 = get('BM_%s_decode_avx2' % sensor)
         wp, wx = get('BM_Baseline_write_points_%s' % sensor), get('BM_Baseline_write_xyzt_%s' % sensor)
         if dec and val and wp and wx:
-            floors.append('%-13s %8.1f %8s %13s %10.1f %13.1f %13.1f %22.1f' % (
-                sensor, ns(dec), '%.1f' % ns(col) if col else '-', '%.1f' % ns(col2) if col2 else '-', ns(val),
-                ns(wp), ns(wx), ns(val) + ns(wx)))
+            floors.append('%-13s %8.1f %11s %8s %13s %10.1f %13.1f %13.1f %22.1f' % (
+                sensor, ns(dec), '%.1f' % ns(dec2) if dec2 else '-', '%.1f' % ns(col) if col else '-',
+                '%.1f' % ns(col2) if col2 else '-', ns(val), ns(wp), ns(wx), ns(val) + ns(wx)))
     if floors:
         print()
         print('output floor, ns per packet (BM_Baseline_write_points_<sensor>, BM_Baseline_write_xyzt_<sensor>):')
-        print('%-13s %8s %8s %13s %10s %13s %13s %22s' % ('sensor', 'decode', 'columns', 'columns avx2', 'validate',
-                                                       'write Points', 'write x,y,z,t', 'validate + write x,y,z,t'))
+        print('%-13s %8s %11s %8s %13s %10s %13s %13s %22s' % (
+            'sensor', 'decode', 'decode avx2', 'columns', 'columns avx2', 'validate', 'write Points', 'write x,y,z,t',
+            'validate + write x,y,z,t'))
         for line in floors:
             print(line)
     print()
