@@ -1,6 +1,6 @@
 // The columnar output (PointColumns, PacketColumns<N>) against the Point output, and the vector
-// paths (AVX2 on x86-64, NEON on AArch64) against the portable scalar path: every point of every
-// bundled capture.
+// paths (AVX-512 and AVX2 on x86-64, NEON on AArch64) against the portable scalar path: every
+// point of every bundled capture.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -8,8 +8,13 @@
 #include <string>
 #include <vector>
 
-#include "hesai/decoder.h"
 #include "hesai/calibration.h"
+#include "hesai/decoder.h"
+#include "hesai/pandar40_packet.h"
+#include "hesai/pandar64_packet.h"
+#include "hesai/qt128_packet.h"
+#include "hesai/qt64_packet.h"
+#include "hesai/xt_packet.h"
 #include "packet_builder.h"
 #include "test_support.h"
 
@@ -261,3 +266,63 @@ TEST(Columns, ErrorGivesNoPoints) {
 }
 
 }  // namespace
+
+// The beam-direction cache rebuilt at a new spin rate (Decoder::update_spin) by each path's loop
+// (AVX-512, AVX2, scalar on x86-64) gives the same bits: three decoders, one per path, each
+// rebuilding on every packet (the motor speed rewritten to (97 i) mod 1501 rpm, every accepted
+// rate from 0 to 1500 in turn), both rotations, the design angles and random angle offsets
+// over the accepted range (-360..360 degrees, so that every azimuth wrap is taken): every field
+// of every point and the beam spread equal.
+TEST(Columns, SpinRebuildSameBitsOnEveryPath) {
+  // The motor speed field of each layout (the manuals' tail tables; the SDK's for QT64 and XT).
+  const auto speed_at = [](Model m, const std::vector<std::uint8_t>& p) -> std::size_t {
+    switch (m) {
+      case Model::pandar40:
+      case Model::pandar40p: return pandar40::kMotorSpeed;
+      case Model::pandar64: return pandar64::kMotorSpeed;
+      case Model::qt128c2x: return qt128::Layout::from_header(p[qt128::kLaserNum], p[qt128::kFlags]).tail + qt128::kTailMotorSpeed;
+      case Model::pandar_qt64: return qt64::kTail + qt64::kTailMotorSpeed;
+      default: return p.size() - xt::kTailBytes + xt::kTailMotorSpeed;
+    }
+  };
+  static PacketPoints a, b, c;
+  std::uint32_t seed = 12345;
+  const auto random = [&seed] {
+    seed = seed * 1664525u + 1013904223u;
+    return static_cast<double>(seed >> 8) / static_cast<double>(1u << 24);
+  };
+  for (const Capture& cap : kCaptures) {
+    auto packets = pcap_payloads(cap.file);
+    for (std::size_t i = 0; i < packets.size(); ++i) {
+      store_le16(&packets[i][speed_at(cap.model, packets[i])], static_cast<std::uint16_t>((97 * i) % 1501));
+      if (cap.model == Model::qt128c2x) qt128_seal(packets[i]);
+    }
+    for (const bool offsets : {false, true}) {
+      for (const Rotation rotation : {Rotation::clockwise, Rotation::counterclockwise}) {
+        Decoder scalar(cap.model), avx2(cap.model), best(cap.model);
+        if (offsets) {
+          static AngleCorrection angles;
+          angles.channels = static_cast<std::uint16_t>(channel_count(cap.model));
+          for (std::size_t ch = 0; ch < angles.channels; ++ch) {
+            angles.elevation_deg[ch] = -30 + 60 * random();
+            angles.azimuth_deg[ch] = -360 + 720 * random();
+          }
+          for (Decoder* d : {&scalar, &avx2, &best}) ASSERT_EQ(d->set_angles(angles), Error::ok);
+        }
+        for (Decoder* d : {&scalar, &avx2, &best}) d->set_rotation(rotation);
+        for (const auto& p : packets) {
+          PacketInfo info;
+          ASSERT_EQ(scalar.decode(view(p), info, a, DecodePath::portable), Error::ok);
+          ASSERT_EQ(avx2.decode(view(p), info, b, DecodePath::avx2), Error::ok);
+          ASSERT_EQ(best.decode(view(p), info, c, DecodePath::best), Error::ok);
+          expect_same_point_fields(a, b, std::string(cap.file) + " avx2");
+          expect_same_point_fields(a, c, std::string(cap.file) + " best");
+          const AzimuthSpread sa = scalar.beam_spread(), sb = avx2.beam_spread(), sc = best.beam_spread();
+          ASSERT_TRUE(sa.min_deg == sb.min_deg && sa.max_deg == sb.max_deg && sa.min_deg == sc.min_deg &&
+                      sa.max_deg == sc.max_deg)
+              << cap.file << " rpm " << info.motor_rpm;
+        }
+      }
+    }
+  }
+}

@@ -290,7 +290,8 @@ class Decoder {
   template <std::size_t N>
   void set_design_tables(const std::array<float, N>& elevation_deg, const float* azimuth_deg,
                          const std::array<float, N>& firetime_us) noexcept;
-  void update_spin(std::uint16_t rpm) noexcept;
+  // Rebuilds spin_ for `rpm` by the loop of `path` (every path gives the same bits).
+  void update_spin(std::uint16_t rpm, DecodePath path) noexcept;
   [[nodiscard]] Error validate_pandar40(ByteView p, PacketInfo& info) noexcept;
   [[nodiscard]] Error validate_pandar64(ByteView p, PacketInfo& info) noexcept;
   [[nodiscard]] Error validate_qt128(ByteView p, PacketInfo& info) noexcept;

@@ -18,6 +18,7 @@
 #include "../base/compiler.h"
 #include "block_points.h"
 #include "columns_simd.h"
+#include "../base/cpu_x86.h"
 #include "sensor_rules.h"
 
 namespace hesai {
@@ -225,8 +226,8 @@ HESAI_ALWAYS_INLINE inline void spin_loop(const std::int32_t* fire_ns, const flo
 
 #if defined(HESAI_COLUMNS_AVX2)
 // The same loop for AVX2 (8 channels a step, native blends and integer minima: a third of the
-// time of the SSE2 baseline per QT128 rebuild), where the columnar decode finds AVX2
-// (columns_simd_available(), from CPUID). No FMA: the same operations, so the same bits.
+// time of the SSE2 baseline per QT128 rebuild), where the decode finds AVX2 (from CPUID) and the
+// caller's DecodePath allows it. No FMA: the same operations, so the same bits.
 // __restrict: without it GCC 12 needs more run-time overlap checks than it allows and leaves the
 // loop scalar (the baseline, inlined into update_spin, sees the arrays as members of one object).
 __attribute__((target("avx2"))) void spin_loop_avx2(const std::int32_t* fire_ns, const float* cos_el_cos_az,
@@ -238,11 +239,25 @@ __attribute__((target("avx2"))) void spin_loop_avx2(const std::int32_t* fire_ns,
   spin_loop(fire_ns, cos_el_cos_az, cos_el_sin_az, offset_deg, dir_cos, dir_sin, azimuth_deg, channels, omega,
             lo_key, hi_key);
 }
+
+// And for AVX-512 (16 channels a step), where the decode finds it.
+#if defined(__clang__)
+#define HESAI_SPIN_AVX512 __attribute__((target("avx512f,avx512bw,avx512dq,avx512vl,avx2")))
+#else  // GCC otherwise vectorises it 8 channels wide
+#define HESAI_SPIN_AVX512 __attribute__((target("avx512f,avx512bw,avx512dq,avx512vl,avx2,prefer-vector-width=512")))
+#endif
+HESAI_SPIN_AVX512 void spin_loop_avx512(
+    const std::int32_t* fire_ns, const float* cos_el_cos_az, const float* cos_el_sin_az, const float* offset_deg,
+    float* __restrict dir_cos, float* __restrict dir_sin, float* __restrict azimuth_deg, std::size_t channels,
+    float omega, std::int32_t& lo_key, std::int32_t& hi_key) noexcept {
+  spin_loop(fire_ns, cos_el_cos_az, cos_el_sin_az, offset_deg, dir_cos, dir_sin, azimuth_deg, channels, omega,
+            lo_key, hi_key);
+}
 #endif
 
 }  // namespace
 
-void Decoder::update_spin(std::uint16_t rpm) noexcept {
+void Decoder::update_spin(std::uint16_t rpm, [[maybe_unused]] DecodePath path) noexcept {
   // Spin rate in radians per nanosecond: rpm x 2 pi / 60e9, negative for a counter-clockwise
   // unit: azimuths grow clockwise whichever way it spins (Pandar40 manual Section 4.2, item 6), so a
   // channel fired later lies further clockwise on a clockwise unit and further back on the other.
@@ -254,7 +269,13 @@ void Decoder::update_spin(std::uint16_t rpm) noexcept {
   std::int32_t lo = order_key(180.0f), hi = order_key(-180.0f);
   for (std::size_t loop = 0; loop < loops; ++loop) {
 #if defined(HESAI_COLUMNS_AVX2)
-    if (detail::columns_simd_available()) {
+    if (path == DecodePath::best && detail::x86_has(detail::X86Feature::avx512)) {
+      spin_loop_avx512(geo_.fire_ns[loop].data(), geo_.cos_el_cos_az.data(), geo_.cos_el_sin_az.data(),
+                       geo_.azimuth_deg.data(), spin_.dir_cos[loop].data(), spin_.dir_sin[loop].data(),
+                       spin_.azimuth_deg[loop].data(), channels, omega, lo, hi);
+      continue;
+    }
+    if (path != DecodePath::portable && detail::columns_simd_available()) {
       spin_loop_avx2(geo_.fire_ns[loop].data(), geo_.cos_el_cos_az.data(), geo_.cos_el_sin_az.data(),
                      geo_.azimuth_deg.data(), spin_.dir_cos[loop].data(), spin_.dir_sin[loop].data(),
                      spin_.azimuth_deg[loop].data(), channels, omega, lo, hi);
@@ -381,7 +402,7 @@ Error Decoder::decode_into(ByteView payload, PacketInfo& info, Output& out, std:
   const Error e = validate(payload, info);
   if (e != Error::ok) return e;
   const std::uint16_t rpm = firetime_correction_ ? info.motor_rpm : 0;
-  if (rpm != spin_.rpm) update_spin(rpm);
+  if (rpm != spin_.rpm) update_spin(rpm, out.path);
   switch (model_) {
     case Model::pandar40:
     case Model::pandar40p: decode_pandar40(payload.data, info, out); break;
