@@ -457,7 +457,8 @@ void register_all() {
   } crcs[] = {{"bitwise", hesai::CrcPath::bitwise},
               {"table", hesai::CrcPath::table},
               {"slicing", hesai::CrcPath::slicing},
-              {"hardware", hesai::CrcPath::hardware}};
+              {"hardware", hesai::CrcPath::hardware},
+              {"hardware_128", hesai::CrcPath::hardware_128}};
   for (const auto& c : crcs)
     benchmark::RegisterBenchmark((std::string("BM_CRC32_") + c.name).c_str(), BM_Crc, c.path)
         ->Arg(1028)

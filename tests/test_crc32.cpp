@@ -20,7 +20,8 @@ using hesai::ByteView;
 using hesai::CrcPath;
 using hesai::kCrc32Mpeg2Init;
 
-constexpr CrcPath kPaths[] = {CrcPath::bitwise, CrcPath::table, CrcPath::slicing, CrcPath::hardware};
+constexpr CrcPath kPaths[] = {CrcPath::bitwise, CrcPath::table, CrcPath::slicing, CrcPath::hardware,
+                              CrcPath::hardware_128};
 
 const char* path_name(CrcPath p) {
   switch (p) {
@@ -28,6 +29,7 @@ const char* path_name(CrcPath p) {
     case CrcPath::table: return "table";
     case CrcPath::slicing: return "slicing";
     case CrcPath::hardware: return "hardware";
+    case CrcPath::hardware_128: return "hardware_128";
   }
   return "?";
 }

@@ -19,7 +19,7 @@ TEST(ZeroAllocation, Crc32Mpeg2EveryPath) {
       sink = sink ^ hesai::crc32_mpeg2(v);
       sink = sink ^ hesai::crc32_mpeg2_update(sink, v);
       for (hesai::CrcPath p : {hesai::CrcPath::bitwise, hesai::CrcPath::table, hesai::CrcPath::slicing,
-                               hesai::CrcPath::hardware}) {
+                               hesai::CrcPath::hardware, hesai::CrcPath::hardware_128}) {
         sink = sink ^ hesai::crc32_mpeg2_update(p, hesai::kCrc32Mpeg2Init, v);
       }
       hesai::Crc32Mpeg2 crc;

@@ -76,7 +76,9 @@ enum class CrcPath : std::uint8_t {
   bitwise,   ///< the definition, 8 shifts per byte
   table,     ///< one 256-entry table lookup per byte
   slicing,   ///< slicing-by-kCrc32Mpeg2Slices: a table lookup per byte, one dependent step per 16, 8 or 4 bytes (1: as table)
-  hardware,  ///< PCLMULQDQ (x86-64) or PMULL (AArch64) folding; slicing when unavailable or short
+  hardware,  ///< carry-less multiply folding: 512-bit VPCLMULQDQ (x86-64 with AVX-512, 256 bytes
+             ///< and more), else PCLMULQDQ (x86-64) or PMULL (AArch64); slicing when unavailable or short
+  hardware_128,  ///< the 128-bit PCLMULQDQ/PMULL folding even where VPCLMULQDQ is present (tests, benchmarks)
 };
 
 /// crc32_mpeg2_update through one chosen path.

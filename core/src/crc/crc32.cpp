@@ -95,16 +95,36 @@ static_assert(model_update(kCrc32Mpeg2Init, kSample.bytes, 143) ==
 static_assert(model_update(0x89ABCDEFu, kSample.bytes + 3, 200) ==
                   crc32_mpeg2_bitwise(0x89ABCDEFu, kSample.bytes + 3, 200),
               "folding from any register");
+// The 512-bit scheme: one window, one window and 16 bytes, and the 300-byte sample.
+constexpr std::uint32_t model_update_512(std::uint32_t crc, const std::uint8_t* p, std::size_t n) {
+  const std::size_t folded = n & ~std::size_t{15};
+  return slicing_update(crc32_fold::model_fold_blocks_512(crc, p, n), p + folded, n - folded);
+}
+static_assert(model_update_512(kCrc32Mpeg2Init, kSample.bytes, kSampleSize) == kSampleCrc, "512-bit folding, 300 B");
+static_assert(model_update_512(kCrc32Mpeg2Init, kSample.bytes, 256) ==
+                  crc32_mpeg2_bitwise(kCrc32Mpeg2Init, kSample.bytes, 256),
+              "512-bit folding, 256 B");
+static_assert(model_update_512(0x89ABCDEFu, kSample.bytes + 5, 287) ==
+                  crc32_mpeg2_bitwise(0x89ABCDEFu, kSample.bytes + 5, 287),
+              "512-bit folding from any register");
 
-std::uint32_t hardware_update(std::uint32_t crc, const std::uint8_t* p, std::size_t n) noexcept {
+// Folding by the widest kernel this CPU has (`widest`: the 512-bit one where there is one; else
+// the 128-bit one), the last 0..15 bytes by slicing.
+std::uint32_t hardware_update(std::uint32_t crc, const std::uint8_t* p, std::size_t n, bool widest) noexcept {
 #if defined(HESAI_CRC32_FOLD_X86) || defined(HESAI_CRC32_FOLD_ARM)
   if (n >= crc32_fold::kMinBytes && crc32_fold::fold_available()) {
     const std::size_t folded = n & ~std::size_t{15};
-    crc = crc32_fold::fold_blocks(crc, p, n);
+#if defined(HESAI_CRC32_FOLD_X86)
+    if (widest && n >= crc32_fold::kMinBytes512 && crc32_fold::fold512_available())
+      crc = crc32_fold::fold_blocks_512(crc, p, n);
+    else
+#endif
+      crc = crc32_fold::fold_blocks(crc, p, n);
     p += folded;
     n -= folded;
   }
 #endif
+  (void)widest;
   return slicing_update(crc, p, n);
 }
 
@@ -124,14 +144,15 @@ std::uint32_t crc32_mpeg2_update(CrcPath path, std::uint32_t crc, ByteView data)
     case CrcPath::bitwise: return crc32_mpeg2_bitwise(crc, data.data, data.size);
     case CrcPath::table: return table_update(crc, data.data, data.size);
     case CrcPath::slicing: return slicing_update(crc, data.data, data.size);
-    case CrcPath::hardware: return hardware_update(crc, data.data, data.size);
+    case CrcPath::hardware: return hardware_update(crc, data.data, data.size, true);
+    case CrcPath::hardware_128: return hardware_update(crc, data.data, data.size, false);
   }
-  return hardware_update(crc, data.data, data.size);
+  return hardware_update(crc, data.data, data.size, true);
 }
 
 std::uint32_t crc32_mpeg2_update(std::uint32_t crc, ByteView data) noexcept {
   if (data.size == 0) return crc;
-  return hardware_update(crc, data.data, data.size);
+  return hardware_update(crc, data.data, data.size, true);
 }
 
 std::uint32_t crc32_mpeg2(ByteView data) noexcept { return crc32_mpeg2_update(kCrc32Mpeg2Init, data); }

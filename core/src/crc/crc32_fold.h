@@ -6,7 +6,9 @@
 // bit order. A block followed by T more bits of message contributes A * x^T; writing A = H*x^64 + L,
 //   A * x^T == H * (x^(T+64) mod P) + L * (x^T mod P)   (mod P),
 // a 95-bit value that is xored into the block T bits later ("folding"). Four accumulators fold
-// across 512 bits, one across 128. The last 128-bit accumulator R is reduced to R * x^32 mod P
+// across 512 bits, one across 128. The 512-bit kernel (VPCLMULQDQ, x86-64) folds sixteen 128-bit
+// lanes across 2048 bits, then each lane by its distance from the end of its 256-byte window
+// into one accumulator. The last 128-bit accumulator R is reduced to R * x^32 mod P
 // with two more folds (x^96, x^64) and a Barrett step (mu = floor(x^64 / P)). Every constant is
 // computed below from the polynomial; crc32.cpp proves the scheme against the definition at
 // compile time with the software model at the end of this file.
@@ -64,11 +66,30 @@ inline constexpr std::uint64_t kReduce64 = xpow_mod(64);  ///< then bits 64..95 
 inline constexpr std::uint64_t kBarrettMu = barrett_mu();
 static_assert(kBarrettMu >> 32 == 1, "mu has degree 64 - 32");
 
+/// The 512-bit kernel: four 64-byte accumulators, 256 bytes (2048 bits) apart.
+inline constexpr std::size_t kMinBytes512 = 256;
+inline constexpr std::uint64_t kFold2048 = xpow_mod(2048);
+inline constexpr std::uint64_t kFold2112 = xpow_mod(2112);
+/// Lane L (0..15, 16 bytes each) of the last 256-byte window times x^(128 (15 - L)): [L] holds
+/// x^(128 (15 - L)) mod P and x^(128 (15 - L) + 64) mod P.
+struct LaneFold {
+  std::uint64_t lo, hi;
+};
+constexpr LaneFold lane_fold(unsigned lane) noexcept {
+  return {xpow_mod(128 * (15 - lane)), xpow_mod(128 * (15 - lane) + 64)};
+}
+
 #if defined(HESAI_CRC32_FOLD_X86) || defined(HESAI_CRC32_FOLD_ARM)
 /// True when this CPU can run fold_blocks (x86-64: CPUID, cached; AArch64: always).
 bool fold_available() noexcept;
 /// Feeds the first (n & ~15) bytes at `p` into `crc` and returns the register; n >= kMinBytes.
 std::uint32_t fold_blocks(std::uint32_t crc, const std::uint8_t* p, std::size_t n) noexcept;
+#endif
+#if defined(HESAI_CRC32_FOLD_X86)
+/// True when this CPU can run fold_blocks_512 (VPCLMULQDQ with AVX-512; CPUID, cached).
+bool fold512_available() noexcept;
+/// As fold_blocks, sixteen 128-bit lanes at a time; n >= kMinBytes512.
+std::uint32_t fold_blocks_512(std::uint32_t crc, const std::uint8_t* p, std::size_t n) noexcept;
 #endif
 
 // ---- Software model of the kernels: same steps, plain integers, constexpr. ----
@@ -119,6 +140,22 @@ constexpr std::uint32_t model_fold_blocks(std::uint32_t crc, const std::uint8_t*
   }
   U128 r = x[0];
   for (int i = 1; i < 4; ++i) r = xor128(model_fold(r, kFold128, kFold192), x[i]);
+  for (; n >= 16; p += 16, n -= 16) r = xor128(model_fold(r, kFold128, kFold192), model_load(p));
+  return model_reduce(r);
+}
+
+/// What fold_blocks_512 computes (n >= kMinBytes512), lane by lane, for compile-time proof.
+constexpr std::uint32_t model_fold_blocks_512(std::uint32_t crc, const std::uint8_t* p, std::size_t n) noexcept {
+  U128 x[16] = {};
+  for (int i = 0; i < 16; ++i) x[i] = model_load(p + 16 * i);
+  x[0].hi ^= static_cast<std::uint64_t>(crc) << 32;
+  p += 256;
+  n -= 256;
+  for (; n >= 256; p += 256, n -= 256) {
+    for (int i = 0; i < 16; ++i) x[i] = xor128(model_fold(x[i], kFold2048, kFold2112), model_load(p + 16 * i));
+  }
+  U128 r{};
+  for (unsigned i = 0; i < 16; ++i) r = xor128(r, model_fold(x[i], lane_fold(i).lo, lane_fold(i).hi));
   for (; n >= 16; p += 16, n -= 16) r = xor128(model_fold(r, kFold128, kFold192), model_load(p));
   return model_reduce(r);
 }
