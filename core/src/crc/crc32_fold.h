@@ -72,12 +72,18 @@ inline constexpr std::uint64_t kFold2048 = xpow_mod(2048);
 inline constexpr std::uint64_t kFold2112 = xpow_mod(2112);
 /// Lane L (0..15, 16 bytes each) of the last 256-byte window times x^(128 (15 - L)): [L] holds
 /// x^(128 (15 - L)) mod P and x^(128 (15 - L) + 64) mod P.
-struct LaneFold {
-  std::uint64_t lo, hi;
+struct LaneFolds {
+  std::uint64_t lo[16], hi[16];
 };
-constexpr LaneFold lane_fold(unsigned lane) noexcept {
-  return {xpow_mod(128 * (15 - lane)), xpow_mod(128 * (15 - lane) + 64)};
+constexpr LaneFolds lane_folds() noexcept {
+  LaneFolds f{};
+  for (unsigned lane = 0; lane < 16; ++lane) {
+    f.lo[lane] = xpow_mod(128 * (15 - lane));
+    f.hi[lane] = xpow_mod(128 * (15 - lane) + 64);
+  }
+  return f;
 }
+inline constexpr LaneFolds kLaneFolds = lane_folds();  // computed at compile time
 
 #if defined(HESAI_CRC32_FOLD_X86) || defined(HESAI_CRC32_FOLD_ARM)
 /// True when this CPU can run fold_blocks (x86-64: CPUID, cached; AArch64: always).
@@ -155,7 +161,7 @@ constexpr std::uint32_t model_fold_blocks_512(std::uint32_t crc, const std::uint
     for (int i = 0; i < 16; ++i) x[i] = xor128(model_fold(x[i], kFold2048, kFold2112), model_load(p + 16 * i));
   }
   U128 r{};
-  for (unsigned i = 0; i < 16; ++i) r = xor128(r, model_fold(x[i], lane_fold(i).lo, lane_fold(i).hi));
+  for (unsigned i = 0; i < 16; ++i) r = xor128(r, model_fold(x[i], kLaneFolds.lo[i], kLaneFolds.hi[i]));
   for (; n >= 16; p += 16, n -= 16) r = xor128(model_fold(r, kFold128, kFold192), model_load(p));
   return model_reduce(r);
 }

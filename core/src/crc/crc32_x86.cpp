@@ -95,11 +95,12 @@ HESAI_VPCLMUL_TARGET inline __m512i fold4(__m512i a, __m512i k) noexcept {
   return _mm512_xor_si512(_mm512_clmulepi64_epi128(a, k, 0x00), _mm512_clmulepi64_epi128(a, k, 0x11));
 }
 
-// Lanes 4q .. 4q + 3 of the window's lane_fold() constants.
+// Lanes 4q .. 4q + 3 of the window's kLaneFolds.
 HESAI_VPCLMUL_TARGET inline __m512i lane_folds(unsigned q) noexcept {
-  const LaneFold a = lane_fold(4 * q), b = lane_fold(4 * q + 1), c = lane_fold(4 * q + 2), d = lane_fold(4 * q + 3);
-  return _mm512_set_epi64(as_ll(d.hi), as_ll(d.lo), as_ll(c.hi), as_ll(c.lo), as_ll(b.hi), as_ll(b.lo), as_ll(a.hi),
-                          as_ll(a.lo));
+  const std::uint64_t* lo = kLaneFolds.lo + 4 * q;
+  const std::uint64_t* hi = kLaneFolds.hi + 4 * q;
+  return _mm512_set_epi64(as_ll(hi[3]), as_ll(lo[3]), as_ll(hi[2]), as_ll(lo[2]), as_ll(hi[1]), as_ll(lo[1]),
+                          as_ll(hi[0]), as_ll(lo[0]));
 }
 
 }  // namespace
