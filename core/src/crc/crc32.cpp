@@ -80,10 +80,12 @@ constexpr std::size_t kSampleSize = sizeof kSample.bytes;
 constexpr std::uint32_t kSampleCrc = crc32_mpeg2_bitwise(kCrc32Mpeg2Init, kSample.bytes, kSampleSize);
 static_assert(slicing_update(kCrc32Mpeg2Init, kSample.bytes, kSampleSize) == kSampleCrc, "slicing");
 
-// The folding scheme and its constants, proven on the software model of the kernels.
-constexpr std::uint32_t model_update(std::uint32_t crc, const std::uint8_t* p, std::size_t n) {
+// The folding schemes and their constants, proven on the software models of the kernels (wide:
+// the 512-bit one).
+constexpr std::uint32_t model_update(std::uint32_t crc, const std::uint8_t* p, std::size_t n, bool wide = false) {
   const std::size_t folded = n & ~std::size_t{15};
-  return slicing_update(crc32_fold::model_fold_blocks(crc, p, n), p + folded, n - folded);
+  crc = wide ? crc32_fold::model_fold_blocks_512(crc, p, n) : crc32_fold::model_fold_blocks(crc, p, n);
+  return slicing_update(crc, p + folded, n - folded);
 }
 static_assert(model_update(kCrc32Mpeg2Init, kSample.bytes, kSampleSize) == kSampleCrc, "folding, 300 B");
 static_assert(model_update(kCrc32Mpeg2Init, kSample.bytes, 64) ==
@@ -95,16 +97,12 @@ static_assert(model_update(kCrc32Mpeg2Init, kSample.bytes, 143) ==
 static_assert(model_update(0x89ABCDEFu, kSample.bytes + 3, 200) ==
                   crc32_mpeg2_bitwise(0x89ABCDEFu, kSample.bytes + 3, 200),
               "folding from any register");
-// The 512-bit scheme: one window, one window and 16 bytes, and the 300-byte sample.
-constexpr std::uint32_t model_update_512(std::uint32_t crc, const std::uint8_t* p, std::size_t n) {
-  const std::size_t folded = n & ~std::size_t{15};
-  return slicing_update(crc32_fold::model_fold_blocks_512(crc, p, n), p + folded, n - folded);
-}
-static_assert(model_update_512(kCrc32Mpeg2Init, kSample.bytes, kSampleSize) == kSampleCrc, "512-bit folding, 300 B");
-static_assert(model_update_512(kCrc32Mpeg2Init, kSample.bytes, 256) ==
+// The 512-bit scheme: the 300-byte sample, one window, and one window and 31 bytes.
+static_assert(model_update(kCrc32Mpeg2Init, kSample.bytes, kSampleSize, true) == kSampleCrc, "512-bit folding, 300 B");
+static_assert(model_update(kCrc32Mpeg2Init, kSample.bytes, 256, true) ==
                   crc32_mpeg2_bitwise(kCrc32Mpeg2Init, kSample.bytes, 256),
               "512-bit folding, 256 B");
-static_assert(model_update_512(0x89ABCDEFu, kSample.bytes + 5, 287) ==
+static_assert(model_update(0x89ABCDEFu, kSample.bytes + 5, 287, true) ==
                   crc32_mpeg2_bitwise(0x89ABCDEFu, kSample.bytes + 5, 287),
               "512-bit folding from any register");
 
