@@ -216,19 +216,30 @@ HESAI_AVX512_TARGET inline __m512i three_byte_lanes() noexcept {
   return _mm512_setr_epi32(0, 1, 2, 3, 3, 4, 5, 6, 6, 7, 8, 9, 9, 10, 11, 12);
 }
 
-// Within each 128-bit lane: units at bytes 0, s, 2s, 3s (s the unit size); bytes `field` and
-// `field + 1` (width 2) or `field` alone of unit i into dword i, the rest 0; `top`, when not -1,
-// into byte 3 of the dword.
-template <std::size_t kUnitBytes>
-HESAI_AVX512_TARGET inline __m512i unit_field(int field, int width, int top = -1) noexcept {
-  alignas(16) std::int8_t s[16];
-  for (int i = 0; i < 16; ++i) s[i] = -1;
+// A byte shuffle for each 128-bit lane holding four units at bytes 0, s, 2s, 3s (s the unit
+// size): bytes `field` and `field + 1` (width 2) or `field` alone of unit i into dword i, the rest
+// 0; `top`, when not -1, into byte 3 of the dword.
+struct LaneShuffle {
+  std::int8_t byte[16];
+};
+constexpr LaneShuffle lane_shuffle(int unit_bytes, int field, int width, int top = -1) {
+  LaneShuffle u{};
+  for (int i = 0; i < 16; ++i) u.byte[i] = -1;
   for (int i = 0; i < 4; ++i) {
-    const int at = i * static_cast<int>(kUnitBytes);
-    for (int b = 0; b < width; ++b) s[4 * i + b] = static_cast<std::int8_t>(at + field + b);
-    if (top >= 0) s[4 * i + 3] = static_cast<std::int8_t>(at + top);
+    const int at = i * unit_bytes;
+    for (int b = 0; b < width; ++b) u.byte[4 * i + b] = static_cast<std::int8_t>(at + field + b);
+    if (top >= 0) u.byte[4 * i + 3] = static_cast<std::int8_t>(at + top);
   }
-  return _mm512_broadcast_i32x4(_mm_load_si128(reinterpret_cast<const __m128i*>(s)));
+  return u;
+}
+// [unit_bytes == 4]: the distance; the intensity; the intensity with a 4-byte unit's confidence
+// in byte 3.
+inline constexpr LaneShuffle kDistance[2] = {lane_shuffle(3, 0, 2), lane_shuffle(4, 0, 2)};
+inline constexpr LaneShuffle kIntensity[2] = {lane_shuffle(3, 2, 1), lane_shuffle(4, 2, 1)};
+inline constexpr LaneShuffle kIntensityConfidence[2] = {lane_shuffle(3, 2, 1), lane_shuffle(4, 2, 1, 3)};
+
+HESAI_AVX512_TARGET inline __m512i every_lane(const LaneShuffle& u) noexcept {
+  return _mm512_broadcast_i32x4(_mm_loadu_si128(reinterpret_cast<const __m128i*>(u.byte)));
 }
 
 // Sixteen units of a block, as both AVX-512 loops read them: the unit bytes (each unit's at the
@@ -247,7 +258,7 @@ class SixteenUnits {
   HESAI_AVX512_TARGET explicit SixteenUnits(const PacketConstants& k) noexcept
       : units_(k.units),
         sin_el_(k.sin_el),
-        distance_(unit_field<kUnitBytes>(0, 2)),
+        distance_(every_lane(kDistance[kUnitBytes == 4])),
         lanes_of_three_(three_byte_lanes()),
         unit_m_(_mm512_set1_ps(k.unit_m)),
         below_(_mm512_set1_epi32(k.min_distance - 1)) {
@@ -317,7 +328,7 @@ template <std::size_t kUnitBytes>
 HESAI_AVX512_TARGET void columns_avx512(const PacketConstants& k, const PointColumns out, std::size_t& count) noexcept {
   SixteenUnits<kUnitBytes> sixteen_units(k);
   const std::size_t blocks = k.blocks, units = k.units;
-  const __m512i intensity = unit_field<kUnitBytes>(2, 1);
+  const __m512i intensity = every_lane(kIntensity[kUnitBytes == 4]);
   const __m512i lane_index = lane_indices();
   const __m512i next_channels = _mm512_set1_epi32(16 << 8);
   const BlockSinCos sc = block_sin_cos(k);
@@ -382,7 +393,7 @@ HESAI_AVX512_TARGET void points_avx512(const PacketConstants& k, Point* out, std
   SixteenUnits<kUnitBytes> sixteen_units(k);
   const std::size_t blocks = k.blocks, units = k.units;
   // Intensity in byte 0 and the confidence byte of a 4-byte unit in byte 3 of each lane.
-  const __m512i intensity_confidence = unit_field<kUnitBytes>(2, 1, kUnitBytes == 4 ? 3 : -1);
+  const __m512i intensity_confidence = every_lane(kIntensityConfidence[kUnitBytes == 4]);
   const __m512 full_turn = _mm512_set1_ps(360.0f);
   const float* const elevation_deg = k.elevation_deg;
   // Two-source permutations (indices 16.. and 8.. name the second source): dwords of units
