@@ -2,7 +2,7 @@
 """The core's layering (core/src/README.md): every file of the core, source or public header,
 belongs to one concern, and includes only headers of its own concern or of the concerns below it.
 
-    base <- crc, crypto, calibration <- sensors <- streams <- capi
+    base <- crc, crypto, calibration, ptc <- sensors <- streams <- capi
 
 A public header's concern is given below; a file under core/src/<folder>/ has that folder's, and
 so has a private header reached from another folder as "../<folder>/name.h".
@@ -17,9 +17,10 @@ BELOW = {  # concern -> the concerns it may include
     'crc': {'base'},
     'crypto': {'base'},
     'calibration': {'base'},
+    'ptc': {'base'},
     'sensors': {'base', 'crc', 'crypto', 'calibration'},
-    'streams': {'base', 'crc', 'crypto', 'calibration', 'sensors'},
-    'capi': {'base', 'crc', 'crypto', 'calibration', 'sensors', 'streams'},
+    'streams': {'base', 'crc', 'crypto', 'calibration', 'ptc', 'sensors'},
+    'capi': {'base', 'crc', 'crypto', 'calibration', 'ptc', 'sensors', 'streams'},
 }
 HEADERS = {  # public header (under core/include/hesai/) -> concern
     'config.h': 'base', 'bytes.h': 'base', 'error.h': 'base', 'error_list.h': 'base', 'model.h': 'base', 'math.h': 'base',
@@ -27,6 +28,7 @@ HEADERS = {  # public header (under core/include/hesai/) -> concern
     'crc32.h': 'crc',
     'sha256.h': 'crypto', 'hmac.h': 'crypto', 'hkdf.h': 'crypto', 'ct.h': 'crypto',
     'calibration.h': 'calibration', 'decimal.h': 'calibration',
+    'ptc.h': 'ptc',
     'decoder.h': 'sensors', 'point.h': 'sensors', 'gps.h': 'sensors', 'pandar40_packet.h': 'sensors',
     'pandar64_packet.h': 'sensors', 'qt128_packet.h': 'sensors', 'xt_packet.h': 'sensors', 'tables/': 'sensors',
     'qt64_packet.h': 'sensors',

@@ -164,12 +164,15 @@ int UdpReceiver::receive(std::vector<Datagram>& out, int timeout_ms) {
 #if HESAI_UDP_RECVMMSG
   mmsghdr msgs[kBatch];
   iovec iovs[kBatch];
+  sockaddr_in sources[kBatch];
   for (std::size_t i = 0; i < kBatch; ++i) {
     iovs[i].iov_base = buffers_.data() + i * kSlot;
     iovs[i].iov_len = kMaxDatagram;
     std::memset(&msgs[i], 0, sizeof msgs[i]);
     msgs[i].msg_hdr.msg_iov = &iovs[i];
     msgs[i].msg_hdr.msg_iovlen = 1;
+    msgs[i].msg_hdr.msg_name = &sources[i];
+    msgs[i].msg_hdr.msg_namelen = sizeof sources[i];
     msgs[i].msg_hdr.msg_control = control_.data() + i * kControlEach;
     msgs[i].msg_hdr.msg_controllen = kControlEach;
   }
@@ -182,6 +185,8 @@ int UdpReceiver::receive(std::vector<Datagram>& out, int timeout_ms) {
     d.size = msgs[i].msg_len;
     d.truncated = (msgs[i].msg_hdr.msg_flags & MSG_TRUNC) != 0;
     d.time_ns = fallback;
+    d.source_ipv4 = sources[i].sin_addr.s_addr;
+    d.source_port = ntohs(sources[i].sin_port);
     for (cmsghdr* c = CMSG_FIRSTHDR(&msgs[i].msg_hdr); c != nullptr; c = CMSG_NXTHDR(&msgs[i].msg_hdr, c)) {
       if (c->cmsg_level != SOL_SOCKET) continue;
       if (c->cmsg_type == SCM_TIMESTAMPNS) {
@@ -201,7 +206,9 @@ int UdpReceiver::receive(std::vector<Datagram>& out, int timeout_ms) {
   // One recvfrom per datagram on the non-blocking socket, until it is empty or kBatch are read.
   for (std::size_t i = 0; i < kBatch; ++i) {
     std::uint8_t* slot = buffers_.data() + i * kSlot;
-    const ssize_t got = recvfrom(fd_, slot, kSlot, 0, nullptr, nullptr);
+    sockaddr_in source{};
+    socklen_t source_len = sizeof source;
+    const ssize_t got = recvfrom(fd_, slot, kSlot, 0, reinterpret_cast<sockaddr*>(&source), &source_len);
     if (got < 0) {
       if (errno == EAGAIN || errno == EWOULDBLOCK || errno == EINTR) break;
       if (out.empty()) return -1;
@@ -212,10 +219,27 @@ int UdpReceiver::receive(std::vector<Datagram>& out, int timeout_ms) {
     d.truncated = static_cast<std::size_t>(got) > kMaxDatagram;
     d.size = d.truncated ? kMaxDatagram : static_cast<std::size_t>(got);
     d.time_ns = realtime_ns();
+    d.source_ipv4 = source.sin_addr.s_addr;
+    d.source_port = ntohs(source.sin_port);
     out.push_back(d);
   }
   return static_cast<int>(out.size());
 #endif
+}
+
+bool resolve_ipv4(const std::string& host, std::uint32_t& address, std::string& error) {
+  addrinfo hints{};
+  hints.ai_family = AF_INET;
+  addrinfo* res = nullptr;
+  if (const int rc = getaddrinfo(host.c_str(), nullptr, &hints, &res); rc != 0) {
+    error = "cannot resolve " + host + ": " + gai_strerror(rc);
+    return false;
+  }
+  sockaddr_in sa{};
+  std::memcpy(&sa, res->ai_addr, sizeof sa);
+  freeaddrinfo(res);
+  address = sa.sin_addr.s_addr;
+  return true;
 }
 
 UdpSender::~UdpSender() {
@@ -266,6 +290,18 @@ bool UdpSender::open(const std::string& host_port, const std::string& multicast_
   }
   const int sndbuf = 4 * 1024 * 1024;
   if (fd_ >= 0) setsockopt(fd_, SOL_SOCKET, SO_SNDBUF, &sndbuf, sizeof sndbuf);
+  if (fd_ >= 0 && !source_.empty()) {
+    sockaddr_in from{};
+    from.sin_family = AF_INET;
+    if (inet_pton(AF_INET, source_.c_str(), &from.sin_addr) != 1 ||
+        bind(fd_, reinterpret_cast<const sockaddr*>(&from), sizeof from) != 0) {
+      error = "cannot send from " + source_ + ": " + (errno != 0 ? std::strerror(errno) : "not an IPv4 address");
+      freeaddrinfo(res);
+      close(fd_);
+      fd_ = -1;
+      return false;
+    }
+  }
   const bool ok = fd_ >= 0 && connect(fd_, res->ai_addr, res->ai_addrlen) == 0;
   freeaddrinfo(res);
   if (!ok) {

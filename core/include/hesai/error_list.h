@@ -49,6 +49,12 @@
   X(calib_bad_row)            /* a row has the wrong number of fields */                                       \
   X(calib_bad_number)         /* a field is not a decimal number */                                            \
   X(calib_bad_channel)        /* a channel number outside 1..N, or repeated */                                 \
-  X(calib_channel_count)      /* the file has another number of channels than the model */
+  X(calib_channel_count)      /* the file has another number of channels than the model */                     \
+  /* PTC (Pandar TCP Commands) responses. */                                                                   \
+  X(ptc_bad_magic)            /* a response header that does not start with 47 74 */                           \
+  X(ptc_command_mismatch)     /* the response echoes another command than the request's */                     \
+  X(ptc_length_exceeds_bound) /* the announced payload length is above the caller's bound for the command */   \
+  X(ptc_sensor_error)         /* the sensor answered with a non-zero return code */                            \
+  X(ptc_payload_length)       /* a payload shorter than its command's layout, or not the size it fixes */
 
 #endif /* HESAI_ERROR_LIST_H */

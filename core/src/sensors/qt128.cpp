@@ -5,6 +5,7 @@
 // Layout: hesai/qt128_packet.h; tables: hesai/tables/qt128_tables.h.
 #include "hesai/crc32.h"
 #include "hesai/ct.h"
+#include "hesai/hmac.h"
 #include "hesai/decoder.h"
 #include "hesai/qt128_packet.h"
 #include "hesai/tables/block_times.h"
@@ -189,6 +190,21 @@ Error seal(std::uint8_t* payload, std::size_t size) noexcept {
     if (f.at != 0) store_le32(payload + f.at, crc32_mpeg2(f.covered));
   }
   return Error::ok;
+}
+
+Error sign(std::uint8_t* payload, std::size_t size, const std::uint8_t key[32]) noexcept {
+  if (size <= kFlags) return Error::bad_length;
+  if (payload[0] != kMagic0 || payload[1] != kMagic1) return Error::bad_magic;
+  const Layout layout = Layout::from_header(payload[kLaserNum], payload[kFlags]);
+  if (size != layout.total) return Error::bad_length;
+  if (layout.signature == 0) return Error::signature_missing;
+#if HESAI_SIGNATURE
+  hmac_sha256(ByteView{key, 32}, ByteView{payload, layout.signature}, payload + layout.signature);
+  return Error::ok;
+#else
+  (void)key;
+  return Error::unsupported_feature;
+#endif
 }
 
 }  // namespace qt128

@@ -26,7 +26,12 @@ struct Datagram {
   std::size_t size = 0;
   std::int64_t time_ns = 0;  ///< kernel receive time (SO_TIMESTAMPNS) or, without it, realtime_ns() when read
   bool truncated = false;    ///< larger than the buffer (MSG_TRUNC): not a sensor packet
+  std::uint32_t source_ipv4 = 0;  ///< sender's IPv4 address as in in_addr.s_addr (network byte order)
+  std::uint16_t source_port = 0;  ///< sender's UDP port
 };
+
+/// The IPv4 address of `host` (a dotted quad or a name) as in in_addr.s_addr. False with a message.
+bool resolve_ipv4(const std::string& host, std::uint32_t& address, std::string& error);
 
 /// How a UdpReceiver opens its socket, beyond the address and port.
 struct UdpReceiveOptions {
@@ -106,12 +111,16 @@ class UdpSender {
   /// `multicast_if` (an IPv4 address; empty: the kernel's route for the group) and are looped
   /// back to listeners on this host.
   bool open(const std::string& host_port, const std::string& multicast_if, std::string& error);
+  /// Before open(): send from this local IPv4 address (as a sensor sends from its own address)
+  /// instead of the one the kernel picks.
+  void set_source(const std::string& address) { source_ = address; }
   /// Sends one datagram; returns false on a socket error (retries briefly when the send
   /// buffer is full).
   bool send(const std::uint8_t* data, std::size_t size);
 
  private:
   int fd_ = -1;
+  std::string source_;
 };
 
 }  // namespace hesai::port

@@ -2,7 +2,8 @@
 //   hesai decode CAPTURE ...   points to CSV, PCD, PLY or PNG
 //   hesai stats CAPTURE ...    integrity, loss and content counters
 //   hesai listen ...           live UDP statistics (and frames with --out)
-//   hesai replay CAPTURE ...   send a capture's payloads to HOST:PORT
+//   hesai replay CAPTURE ...   send a capture's payloads to HOST:PORT (--serve-ptc: a stand-in sensor)
+//   hesai sensor COMMAND HOST  PTC: the unit's inventory, status, calibration, signature session
 #include <unistd.h>
 
 #include <atomic>
@@ -13,18 +14,37 @@
 #include <string>
 #include <vector>
 
+#include "hesai/ct.h"
 #include "hesai/pandar40_packet.h"
+#include "hesai/ptc.h"
 #include "hesai/pandar64_packet.h"
 #include "hesai/qt128_packet.h"
 #include "hesai/xt_packet.h"
 #include "hesai_port/capture.h"
 #include "hesai_port/udp.h"
+#include "commands.h"
 #include "options.h"
 #include "pipeline.h"
 #include "report.h"
+#include "sensor.h"
 #include "sinks.h"
 
 namespace hesai::cli {
+
+std::atomic<bool> g_stop{false};
+void on_signal(int) { g_stop = true; }
+
+int usage_error(const std::string& command, const std::string& message) {
+  std::fprintf(stderr, "hesai %s: %s\nRun 'hesai %s --help' for usage.\n", command.c_str(), message.c_str(), command.c_str());
+  return kExitUsage;
+}
+
+bool open_capture(const std::string& path, port::CaptureFile& file) {
+  if (file.open(path) == port::CaptureError::ok) return true;
+  std::fprintf(stderr, "hesai: %s\n", file.message().c_str());
+  return false;
+}
+
 namespace {
 
 constexpr const char* kUsage =
@@ -34,17 +54,11 @@ constexpr const char* kUsage =
     "  decode CAPTURE   decode a pcap/pcapng capture into points (CSV, PCD, PLY or PNG)\n"
     "  stats CAPTURE    count packets, points, frames, integrity failures and losses\n"
     "  listen           receive packets live over UDP and report statistics\n"
-    "  replay CAPTURE   send a capture's UDP payloads to HOST:PORT\n"
+    "  replay CAPTURE   send a capture's UDP payloads to HOST:PORT (and stand in for the sensor's PTC)\n"
+    "  sensor COMMAND HOST  talk to a sensor over PTC: info, config, status, calibration,\n"
+    "                   firetimes, channel-config, signature start|status|stop\n"
     "\n"
     "Run 'hesai <command> --help' for the options of a command.\n";
-
-std::atomic<bool> g_stop{false};
-void on_signal(int) { g_stop = true; }
-
-int usage_error(const std::string& command, const std::string& message) {
-  std::fprintf(stderr, "hesai %s: %s\nRun 'hesai %s --help' for usage.\n", command.c_str(), message.c_str(), command.c_str());
-  return kExitUsage;
-}
 
 // Reports a failure with exit status `status`: a usage error with the hint to --help, any other
 // with the message alone.
@@ -58,13 +72,6 @@ std::uint64_t source_key(const port::UdpDatagram& d) {
   std::uint64_t h = 1469598103934665603ull;  // FNV-1a over the address, then the port
   for (std::uint8_t b : d.src_addr) h = (h ^ b) * 1099511628211ull;
   return h ^ d.src_port;
-}
-
-// Opens a capture; false, after saying why, when it cannot be read.
-bool open_capture(const std::string& path, port::CaptureFile& file) {
-  if (file.open(path) == port::CaptureError::ok) return true;
-  std::fprintf(stderr, "hesai: %s\n", file.message().c_str());
-  return false;
 }
 
 // Feeds every datagram of an open capture to the pipeline. Returns an exit status.
@@ -234,8 +241,9 @@ int cmd_listen(Args& args) {
   out.format = "pcd";
   std::string bind_addr = "0.0.0.0", error;
   port::UdpReceiveOptions receive;
-  std::uint64_t port = 2368, gps_port = 10110, count = 0;
-  float seconds = 0, idle = 0;
+  std::uint64_t port = 2368, gps_port = 10110, count = 0, ptc_port = ptc::kDefaultPort;
+  std::string sensor_host;
+  float seconds = 0, idle = 0, ptc_timeout = 3;
   bool json = false, quiet = false;
   while (!args.empty()) {
     const std::string a = args.peek();
@@ -253,7 +261,16 @@ int cmd_listen(Args& args) {
                   "  --count N               stop after N packets\n"
                   "  --seconds S             stop after S seconds\n"
                   "  --idle S                stop when no packet came for S seconds (after the first)\n"
-                  "  --json                  the summary as one JSON object (keys as in 'hesai stats --json')\n"
+                  "  --sensor HOST           the sensor's address: its calibration, firing times and QT128\n"
+                  "                          channel configuration are fetched over PTC (a --calibration,\n"
+                  "                          --firetimes or --channel-config file wins), a signature session\n"
+                  "                          is started with --secret-file FILE or HESAI_SECRET (every packet\n"
+                  "                          then verified, the session stopped at the end), and datagrams\n"
+                  "                          from any other address are dropped and counted (foreign_packets)\n"
+                  "  --ptc-port N            the sensor's PTC port (default 9347)\n"
+                  "  --timeout S             PTC connect and per-request timeout (default 3)\n"
+                  "  --json                  the summary as one JSON object (keys as in 'hesai stats --json',\n"
+                  "                          and foreign_packets)\n"
                   "  --quiet                 no statistics once a second\n%s%s%s",
                   port::UdpReceiver::method(), kDecodeOptionsHelp, kOutputOptionsHelp, kKeyOptionsHelp);
       return kExitOk;
@@ -266,6 +283,14 @@ int cmd_listen(Args& args) {
     std::string v;
     if (a == "--json") json = true;
     else if (a == "--quiet") quiet = true;
+    else if (a == "--sensor") { if (!args.value(a, sensor_host)) return usage_error("listen", "--sensor needs a host"); }
+    else if (a == "--ptc-port") {
+      if (!args.value(a, v) || !parse_u64(v, ptc_port) || ptc_port == 0 || ptc_port > 65535)
+        return usage_error("listen", "--ptc-port takes 1 to 65535");
+    } else if (a == "--timeout") {
+      if (!args.value(a, v) || !parse_float(v, ptc_timeout) || !(ptc_timeout > 0) || ptc_timeout > 3600)
+        return usage_error("listen", "--timeout takes seconds above 0 (at most 3600)");
+    }
     else if (a == "--bind") { if (!args.value(a, bind_addr)) return usage_error("listen", "--bind needs an address"); }
     else if (a == "--multicast") {
       if (!args.value(a, receive.multicast_group) || !port::is_ipv4_multicast(receive.multicast_group))
@@ -287,7 +312,12 @@ int cmd_listen(Args& args) {
       if (!args.value(a, v) || !parse_float(v, target) || target <= 0) return usage_error("listen", a + " needs a positive number");
     } else return usage_error("listen", "unknown option " + a);
   }
+  o.session_secret_allowed = !sensor_host.empty();  // the session's randoms come from the sensor
   if (const int st = finish_key_options(o, error); st != kExitOk) return fail("listen", st, error);
+  std::uint32_t sensor_address = 0;
+  if (!sensor_host.empty() && !port::resolve_ipv4(sensor_host, sensor_address, error)) return fail("listen", kExitInput, error);
+  std::string session_secret;
+  session_secret.swap(o.session_secret);  // the pipeline gets no copy
 
   std::unique_ptr<OutputSink> sink;
   if (!out.out.empty()) {
@@ -307,6 +337,19 @@ int cmd_listen(Args& args) {
     return kExitInput;
   }
   report_receive_buffer(points_rx, receive.rcvbuf_request, quiet);
+  // The sockets are bound: what the sensor sends from now on waits for us while PTC runs.
+  std::unique_ptr<SensorLink> link;
+  if (!sensor_host.empty()) {
+    link = std::make_unique<SensorLink>(sensor_host, static_cast<std::uint16_t>(ptc_port), static_cast<int>(ptc_timeout * 1000));
+    int rc = link->fetch(o, pipeline, error);
+    if (rc == kExitOk && !session_secret.empty()) rc = link->start_session(session_secret, pipeline, error);
+    secure_wipe(session_secret.data(), session_secret.size());
+    if (rc != kExitOk) {
+      std::fprintf(stderr, "hesai listen: %s\n", error.c_str());
+      return rc;
+    }
+  }
+  std::uint64_t foreign = 0;
   if (!quiet && receive.multicast_group.empty())
     std::fprintf(stderr, "listening on %s:%u (GPS %u)\n", bind_addr.c_str(), points_rx.port(), static_cast<unsigned>(gps_port));
   else if (!quiet)
@@ -332,6 +375,10 @@ int cmd_listen(Args& args) {
       arrived = arrived || !batch.empty();
       for (const port::Datagram& d : batch) {
         if (count != 0 && received >= count) break;
+        if (link && d.source_ipv4 != sensor_address) {
+          ++foreign;  // not the sensor's address: no point of it is decoded
+          continue;
+        }
         ++received;
         if (!pipeline.feed(ByteView{d.data, d.size}, rx == &gps_rx ? 1 : 0)) {
           std::fprintf(stderr, "hesai listen: %s\n", pipeline.error().c_str());
@@ -352,116 +399,17 @@ int cmd_listen(Args& args) {
     }
   }
   pipeline.finish();
+  if (link) link->stop_session();
   if (sink && !sink->close(error)) std::fprintf(stderr, "hesai listen: %s\n", error.c_str());
-  if (json) std::printf("%s\n", stats_json(pipeline.stats()).c_str());
-  else std::printf("%s  kernel_drops          %s\n", stats_text(pipeline).c_str(), kernel_drops(points_rx).c_str());
-  return fatal ? kExitInput : kExitOk;
-}
-
-// ---- replay ----
-
-// Writes `seq` into a packet's UDP sequence field, if it has one (QT128: CRC3 re-sealed).
-// Returns false for packets without a sequence field.
-bool renumber(std::vector<std::uint8_t>& p, std::uint32_t seq) {
-  Model m = Model::unknown;
-  PacketKind kind = PacketKind::point_cloud;
-  if (identify(ByteView{p.data(), p.size()}, m, kind) != Error::ok || kind != PacketKind::point_cloud) return false;
-  if (m == Model::pandar64 && p.size() == pandar64::kSequencePacketBytes) {
-    store_le32(&p[pandar64::kSequence], seq);
-  } else if (m == Model::pandar40p && p.size() == pandar40::kPandar40PSequenceBytes) {
-    store_le32(&p[pandar40::kSequence], seq);
-  } else if (m == Model::qt128c2x && (p[qt128::kFlags] & qt128::kFlagSequence)) {
-    store_le32(&p[qt128::Layout::from_header(p[qt128::kLaserNum], p[qt128::kFlags]).tail + qt128::kTailSequence], seq);
-    return qt128::seal(p.data(), p.size()) == Error::ok;  // identify() checked the length
-  } else if ((m == Model::pandar_xt16 || m == Model::pandar_xt32 || m == Model::pandar_xt32m2x) &&
-             (p[xt::kFlags] & xt::kFlagSequence)) {
-    store_le32(&p[xt::tail_offset(p[xt::kLaserNum], p[xt::kBlockNum]) + xt::kTailSequence], seq);  // no CRC in 6.1
+  if (json) {
+    std::string j = stats_json(pipeline.stats());
+    j.insert(j.size() - 1, ",\"foreign_packets\":" + std::to_string(foreign));
+    std::printf("%s\n", j.c_str());
   } else {
-    return false;
+    std::printf("%s  kernel_drops          %s\n  foreign_packets       %llu\n", stats_text(pipeline).c_str(),
+                kernel_drops(points_rx).c_str(), static_cast<unsigned long long>(foreign));
   }
-  return true;
-}
-
-int cmd_replay(Args& args) {
-  std::string capture, to, multicast_if, error, rate_text = "1";
-  std::uint64_t loops = 1;
-  bool quiet = false, renumber_sequence = false;
-  while (!args.empty()) {
-    const std::string a = args.take();
-    std::string v;
-    if (a == "--help" || a == "-h") {
-      std::printf("usage: hesai replay CAPTURE --to HOST:PORT [--rate 1|N|max] [--loop N]\n\n"
-                  "Sends the UDP payloads of a capture to HOST:PORT.\n\n"
-                  "  --to HOST:PORT          destination (a multicast group too: looped back to this host)\n"
-                  "  --multicast-if ADDR     with a multicast group: send through the interface of this\n"
-                  "                          local IPv4 address (default: the kernel's route to the group)\n"
-                  "  --rate 1|N|max          the recorded pace (1), N times faster, or as fast as possible\n"
-                  "  --loop N                play the capture N times (default 1)\n"
-                  "  --renumber              rewrite UDP sequence numbers to count up across loops (QT128:\n"
-                  "                          CRC3 re-sealed; signatures then no longer verify)\n"
-                  "  --quiet                 no summary\n");
-      return kExitOk;
-    }
-    if (a == "--to") { if (!args.value(a, to)) return usage_error("replay", "--to needs HOST:PORT"); }
-    else if (a == "--multicast-if") { if (!args.value(a, multicast_if)) return usage_error("replay", "--multicast-if needs an address"); }
-    else if (a == "--rate") { if (!args.value(a, rate_text)) return usage_error("replay", "--rate needs 1, N or max"); }
-    else if (a == "--loop") { if (!args.value(a, v) || !parse_u64(v, loops) || loops == 0) return usage_error("replay", "--loop needs N >= 1"); }
-    else if (a == "--quiet") quiet = true;
-    else if (a == "--renumber") renumber_sequence = true;
-    else if (a.rfind("--", 0) == 0) return usage_error("replay", "unknown option " + a);
-    else if (capture.empty()) capture = a;
-    else return usage_error("replay", "one capture at a time ('" + a + "')");
-  }
-  if (capture.empty()) return usage_error("replay", "missing CAPTURE");
-  if (to.empty()) return usage_error("replay", "missing --to HOST:PORT");
-  float rate = 0;  // 0: as fast as possible
-  if (rate_text != "max" && (!parse_float(rate_text, rate) || rate <= 0))
-    return usage_error("replay", "--rate takes 1, a factor N > 0, or max");
-
-  port::UdpSender sender;
-  if (!sender.open(to, multicast_if, error)) return usage_error("replay", error);
-  port::CaptureFile file;
-  if (!open_capture(capture, file)) return kExitInput;
-  std::signal(SIGINT, on_signal);
-  std::uint64_t sent = 0, failed = 0;
-  std::uint32_t next_sequence = 0;
-  std::vector<std::uint8_t> packet;
-  const std::int64_t start = port::monotonic_ns();
-  for (std::uint64_t loop = 0; loop < loops && !g_stop; ++loop) {
-    if (loop > 0 && file.open(capture) != port::CaptureError::ok) {
-      std::fprintf(stderr, "hesai: %s\n", file.message().c_str());
-      return kExitInput;
-    }
-    port::UdpDatagram d;
-    std::int64_t first_record = -1, loop_start = port::monotonic_ns();
-    for (;;) {
-      const port::CaptureStatus st = file.next(d);
-      if (st == port::CaptureStatus::end || g_stop) break;
-      if (st == port::CaptureStatus::error) {
-        std::fprintf(stderr, "hesai: %s\n", file.message().c_str());
-        return kExitInput;
-      }
-      if (rate > 0) {
-        const std::int64_t t = static_cast<std::int64_t>(d.time_ns);
-        if (first_record < 0) first_record = t;
-        port::sleep_until_ns(loop_start + static_cast<std::int64_t>(static_cast<double>(t - first_record) / rate));
-      }
-      bool ok;
-      if (renumber_sequence) {
-        packet.assign(d.payload.data, d.payload.data + d.payload.size);
-        if (renumber(packet, next_sequence)) ++next_sequence;
-        ok = sender.send(packet.data(), packet.size());
-      } else {
-        ok = sender.send(d.payload.data, d.payload.size);
-      }
-      if (ok) ++sent;
-      else ++failed;
-    }
-  }
-  if (!quiet)
-    std::fprintf(stderr, "sent %llu datagrams to %s in %.2f s (%llu failed)\n", static_cast<unsigned long long>(sent),
-                 to.c_str(), static_cast<double>(port::monotonic_ns() - start) / 1e9, static_cast<unsigned long long>(failed));
-  return failed ? kExitInput : kExitOk;
+  return fatal ? kExitInput : kExitOk;
 }
 
 }  // namespace
@@ -479,6 +427,7 @@ int main(int argc, char** argv) {
   if (command == "stats") return cmd_stats(args);
   if (command == "listen") return cmd_listen(args);
   if (command == "replay") return cmd_replay(args);
+  if (command == "sensor") return cmd_sensor(args);
   std::fprintf(stderr, "hesai: unknown command '%s'\n\n%s", command.c_str(), kUsage);
   return kExitUsage;
 }

@@ -12,6 +12,7 @@
 
 #include "hesai/ct.h"
 #include "hesai/hkdf.h"
+#include "hesai/hkdf.h"
 
 namespace hesai::cli {
 
@@ -294,6 +295,14 @@ int set_key(KeyOption kind, const char* source, const std::string& key_text, Dec
     o.has_key = true;
     return kExitOk;
   }
+  if (o.session_secret_allowed && p.lidar_random.empty() && p.client_random.empty()) {
+    if (key_text.size() < kHesaiSecretMin || key_text.size() > kHesaiSecretMax) {
+      error = std::string(source) + ": the secret must be 8 to 32 characters";
+      return kExitUsage;
+    }
+    o.session_secret = key_text;  // the session's randoms come from the sensor
+    return kExitOk;
+  }
   std::uint8_t lidar[32], client[32];
   if (!parse_hex(p.lidar_random, lidar, 32) || !parse_hex(p.client_random, client, 32)) {
     error = std::string(source) + " needs --lidar-random HEX64 and --client-random HEX64 (32 bytes each in hex)";
@@ -351,7 +360,28 @@ int finish_key_options(DecodeOptions& o, std::string& error) {
   return status;
 }
 
-void wipe_key(DecodeOptions& o) { secure_wipe(o.session_key.data(), o.session_key.size()); }
+void wipe_key(DecodeOptions& o) {
+  secure_wipe(o.session_key.data(), o.session_key.size());
+  wipe(o.session_secret);
+}
+
+int read_secret(const std::string& secret_file, std::string& secret, std::string& error) {
+  int status = kExitOk;
+  if (!secret_file.empty()) {
+    status = read_key_file("--secret-file", secret_file, secret, error);
+  } else if (const char* env = std::getenv("HESAI_SECRET"); env != nullptr && *env != '\0') {
+    secret.assign(env);
+  } else {
+    error = "a signature session needs the shared secret: --secret-file FILE or HESAI_SECRET";
+    return kExitUsage;
+  }
+  if (status == kExitOk && (secret.size() < kHesaiSecretMin || secret.size() > kHesaiSecretMax)) {
+    error = std::string(secret_file.empty() ? "HESAI_SECRET" : "--secret-file") + ": the secret must be 8 to 32 characters";
+    status = kExitUsage;
+  }
+  if (status != kExitOk) wipe(secret);
+  return status;
+}
 
 bool parse_output_option(Args& args, OutputOptions& o, std::string& error) {
   const std::string opt = args.peek();

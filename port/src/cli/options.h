@@ -56,8 +56,12 @@ bool parse_output_option(Args& args, OutputOptions& o, std::string& error);
 /// ambiguous key) or kExitInput (a key file that cannot be read), with a message that never holds
 /// key material.
 int finish_key_options(DecodeOptions& o, std::string& error);
-/// Wipes the session key of `o` (once the pipeline holds its copy).
+/// Wipes the session key and the session secret of `o` (once the pipeline holds its copy).
 void wipe_key(DecodeOptions& o);
+/// The shared secret of a signature session, from `secret_file` (its first line) when given, else
+/// from HESAI_SECRET; 8 to 32 characters. Returns an exit status, with a message that never holds
+/// the secret.
+int read_secret(const std::string& secret_file, std::string& secret, std::string& error);
 
 /// Help text of the decode options, the key options and the output options.
 extern const char* const kDecodeOptionsHelp;

@@ -1,5 +1,6 @@
 #include "pipeline.h"
 
+#include <algorithm>
 #include <cerrno>
 #include <cstring>
 #include <fstream>
@@ -55,6 +56,39 @@ int Pipeline::load_files(std::string& error) {
     }
   }
   return kExitOk;
+}
+
+int Pipeline::use_downloaded(const std::string& origin, const std::string& angles, const std::string& firetimes,
+                             const std::string& channel_config, std::string& error) {
+  if (options_.calibration_path.empty() && !angles.empty()) {
+    angles_text_ = angles;
+    options_.calibration_path = "the calibration from " + origin;
+  }
+  if (options_.firetimes_path.empty() && !firetimes.empty()) {
+    firetimes_text_ = firetimes;
+    options_.firetimes_path = "the firing times from " + origin;
+  }
+  if (options_.channel_config_path.empty() && !channel_config.empty()) {
+    options_.channel_config_path = "the channel configuration from " + origin;
+    channel_config_ = std::make_unique<ChannelConfig>();
+    const ParseResult r = parse_channel_config_csv(text_view(channel_config), *channel_config_);
+    if (r.error != Error::ok) {
+      error = calibration_error(options_.channel_config_path, r.line, r.error);
+      return kExitUsage;
+    }
+  }
+  return kExitOk;
+}
+
+void Pipeline::start_session(const std::uint8_t key[32]) {
+  session_ = true;
+  options_.has_key = true;
+  std::copy(key, key + 32, options_.session_key.begin());
+  for (auto& [k, s] : sources_) {
+    (void)s.decoder->set_session_key(key);  // only unsupported_feature, checked at creation
+    s.decoder->set_allow_unsigned(true);
+    s.signed_seen = false;
+  }
 }
 
 Pipeline::Source* Pipeline::source_for(std::uint64_t key, Model model) {
@@ -114,7 +148,7 @@ Pipeline::Source* Pipeline::source_for(std::uint64_t key, Model model) {
       return nullptr;
     }
   }
-  d.set_allow_unsigned(options_.allow_unsigned);
+  d.set_allow_unsigned(options_.allow_unsigned || session_);
   if (have_gps_) d.update_gps(last_gps_);
   s.frames = options_.frames;
   d.set_rotation(options_.rotation);
@@ -183,6 +217,10 @@ bool Pipeline::feed(ByteView payload, std::uint64_t source_key) {
   last_source_ = src;
   const std::uint64_t index = point_packet_index_++;
   count_model(stats_, model);
+  if (session_ && !src->signed_seen && info.signature == SignatureStatus::valid) {
+    src->signed_seen = true;
+    decoder.set_allow_unsigned(options_.allow_unsigned);
+  }
   switch (info.signature) {
     case SignatureStatus::valid: ++stats_.signature_valid; break;
     case SignatureStatus::unverified: ++stats_.signature_unverified; break;

@@ -36,6 +36,10 @@ struct DecodeOptions {
   bool has_key = false;             ///< --session-key, or --secret with the two randoms
   std::array<std::uint8_t, 32> session_key{};
   bool allow_unsigned = false;      ///< --allow-unsigned
+  /// listen --sensor: a secret without randoms is kept here for a signature session (the randoms
+  /// come from the sensor) instead of being refused.
+  bool session_secret_allowed = false;
+  std::string session_secret;
 };
 
 /// A point with the context the outputs need.
@@ -71,6 +75,16 @@ class Pipeline {
   /// Returns the exit status: kExitOk, kExitInput (with a message) for a missing or unreadable
   /// file, kExitUsage (with a message) for a channel configuration that does not parse.
   int load_files(std::string& error);
+  /// Files downloaded from a sensor (listen --sensor), used where no file was given (an explicit
+  /// file wins); `origin` names them in messages. Returns an exit status as load_files().
+  int use_downloaded(const std::string& origin, const std::string& angles, const std::string& firetimes,
+                     const std::string& channel_config, std::string& error);
+  /// Verifies signatures under `key` from now on (a live signature session), in every decoder and
+  /// those created later. Until a sensor's first valid signature its unsigned packets are accepted
+  /// and counted as signature_missing: the sensor signs from the session's start, but what it sent
+  /// before may still wait in the socket. After that first valid signature, an unsigned packet is
+  /// rejected (unless --allow-unsigned).
+  void start_session(const std::uint8_t key[32]);
 
   /// One UDP payload; `source` identifies the sender (address and port). Returns false on a
   /// fatal configuration error: a calibration file that does not parse, does not fit the model or
@@ -95,6 +109,7 @@ class Pipeline {
     FrameAssembler frames;
     SafetyMonitor safety;
     RotationDetector rotation;
+    bool signed_seen = false;  // a valid signature arrived (start_session)
   };
   Source* source_for(std::uint64_t key, Model model);
   void close_frames(FrameAssembler& frames);
@@ -105,6 +120,7 @@ class Pipeline {
   std::unique_ptr<ChannelConfig> channel_config_;  // --channel-config, parsed once
   std::map<std::uint64_t, Source> sources_;
   const Source* last_source_ = nullptr;  // of the last decoded point-cloud packet
+  bool session_ = false;  // start_session() was called
   GpsPacket last_gps_{};
   bool have_gps_ = false;
   Stats stats_{};

@@ -1,0 +1,72 @@
+// A stand-in sensor's PTC service, for tests and for users without hardware (hesai replay
+// --serve-ptc): it answers the commands of hesai/ptc.h from files and the capture's model, and runs
+// signature sessions as QT128C2X manual 4.9.3 describes them (the key from the shared secret and
+// both randoms, hesai_session_key()).
+//
+// Answers: 0x05/0xA9/0xA8 the files byte for byte ('unsupported command' without one); 0x07 an
+// inventory in the model's layout (serial "STANDIN", MAC 02:00:00:00:00:01, versions "standin");
+// 0x08 a configuration with the model's spin rate; 0x09 a status with the model's temperature count
+// (each 25.00 C), the uptime since open() and the motor speed set by set_motor_speed(); 0x2E with
+// a 32-byte client random: a fresh lidar random (from /dev/urandom), 'unsupported command' without
+// a secret, 'invalid input parameter' for another payload size; 0x2D the session state; 0x2F ends
+// the session. Any other command: 'unsupported command'.
+//
+// One connection is served at a time, each until its client closes it, sends a header without the
+// magic or a payload over 4 KiB, or stays silent for 10 s.
+#pragma once
+
+#include <array>
+#include <atomic>
+#include <cstdint>
+#include <mutex>
+#include <string>
+#include <vector>
+
+#include "hesai/model.h"
+
+namespace hesai::port {
+
+struct StandInContent {
+  Model model = Model::unknown;
+  std::string calibration, firetimes, channel_config;  ///< file bytes; empty: not served
+  std::string secret;                                  ///< shared secret; empty: no signature sessions
+};
+
+class PtcServer {
+ public:
+  PtcServer() = default;
+  ~PtcServer();
+  PtcServer(const PtcServer&) = delete;
+  PtcServer& operator=(const PtcServer&) = delete;
+
+  /// Listens on `address` (IPv4 dotted quad) and `port` (0: any free port). False with a message.
+  bool open(const std::string& address, std::uint16_t port, StandInContent content, std::string& error);
+  std::uint16_t port() const { return port_; }
+
+  /// Serves connections until stop() is called (from another thread).
+  void run();
+  void stop() { stop_ = true; }
+
+  /// While a session runs: copies its key and returns true.
+  bool session_key(std::uint8_t key[32]) const;
+  /// Sessions started so far.
+  std::uint64_t sessions_started() const { return sessions_started_; }
+  void set_motor_speed(std::uint16_t rpm) { motor_rpm_ = rpm; }
+
+ private:
+  void serve(int fd);
+  std::vector<std::uint8_t> answer(std::uint8_t command, const std::vector<std::uint8_t>& request, std::uint8_t& code);
+
+  int fd_ = -1;
+  std::uint16_t port_ = 0;
+  StandInContent content_;
+  std::int64_t opened_ns_ = 0;
+  std::atomic<bool> stop_{false};
+  std::atomic<std::uint16_t> motor_rpm_{0};
+  std::atomic<std::uint64_t> sessions_started_{0};
+  mutable std::mutex session_mutex_;
+  bool session_on_ = false;
+  std::array<std::uint8_t, 32> key_{};
+};
+
+}  // namespace hesai::port

@@ -1,0 +1,253 @@
+// hesai replay: sends a capture's UDP payloads, paced as recorded; with --serve-ptc it also stands
+// in for the sensor's PTC service (port/include/hesai_port/ptc_server.h) and, once a signature
+// session starts, signs each QT128 packet with the session's key, as the sensor would.
+#include <csignal>
+#include <cstdio>
+#include <thread>
+#include <vector>
+
+#include "hesai/ct.h"
+#include "hesai/decoder.h"
+#include "hesai/pandar40_packet.h"
+#include "hesai/pandar64_packet.h"
+#include "hesai/qt128_packet.h"
+#include "hesai/xt_packet.h"
+#include "hesai_port/capture.h"
+#include "hesai_port/ptc_server.h"
+#include "hesai_port/udp.h"
+#include "commands.h"
+#include "pipeline.h"  // read_text_file
+
+namespace hesai::cli {
+namespace {
+
+// Writes `seq` into a packet's UDP sequence field, if it has one (QT128: CRC3 re-sealed).
+// Returns false for packets without a sequence field.
+bool renumber(std::vector<std::uint8_t>& p, std::uint32_t seq) {
+  Model m = Model::unknown;
+  PacketKind kind = PacketKind::point_cloud;
+  if (identify(ByteView{p.data(), p.size()}, m, kind) != Error::ok || kind != PacketKind::point_cloud) return false;
+  if (m == Model::pandar64 && p.size() == pandar64::kSequencePacketBytes) {
+    store_le32(&p[pandar64::kSequence], seq);
+  } else if (m == Model::pandar40p && p.size() == pandar40::kPandar40PSequenceBytes) {
+    store_le32(&p[pandar40::kSequence], seq);
+  } else if (m == Model::qt128c2x && (p[qt128::kFlags] & qt128::kFlagSequence)) {
+    store_le32(&p[qt128::Layout::from_header(p[qt128::kLaserNum], p[qt128::kFlags]).tail + qt128::kTailSequence], seq);
+    return qt128::seal(p.data(), p.size()) == Error::ok;  // identify() checked the length
+  } else if ((m == Model::pandar_xt16 || m == Model::pandar_xt32 || m == Model::pandar_xt32m2x) &&
+             (p[xt::kFlags] & xt::kFlagSequence)) {
+    store_le32(&p[xt::tail_offset(p[xt::kLaserNum], p[xt::kBlockNum]) + xt::kTailSequence], seq);  // no CRC in 6.1
+  } else {
+    return false;
+  }
+  return true;
+}
+
+// The model and motor speed of a capture's first point-cloud packet (Model::unknown: none).
+Model first_model(const std::string& capture, std::uint16_t& rpm) {
+  port::CaptureFile file;
+  port::UdpDatagram d;
+  if (file.open(capture) != port::CaptureError::ok) return Model::unknown;
+  while (file.next(d) == port::CaptureStatus::datagram) {
+    Model m = Model::unknown;
+    PacketKind kind = PacketKind::point_cloud;
+    if (identify(d.payload, m, kind) != Error::ok || kind != PacketKind::point_cloud) continue;
+    Decoder decoder(m);
+    PacketInfo info;
+    rpm = decoder.validate(d.payload, info) == Error::ok ? info.motor_rpm : 0;
+    return m;
+  }
+  return Model::unknown;
+}
+
+// The stand-in's options: --serve-ptc [ADDR:]PORT and the files it serves.
+struct StandIn {
+  std::string serve;  // [ADDR:]PORT; empty: no PTC service
+  std::string calibration, firetimes, channel_config, secret_file;
+  bool wait_for_session = false;
+};
+
+// Opens the stand-in's PTC service for `capture`; `address` is the address it serves on (the
+// datagrams are sent from it too). Returns an exit status.
+int open_stand_in(const StandIn& o, const std::string& capture, port::PtcServer& server, std::string& address) {
+  const std::size_t colon = o.serve.rfind(':');
+  address = colon == std::string::npos ? "127.0.0.1" : o.serve.substr(0, colon);
+  std::uint64_t port = 0;
+  if (!parse_u64(colon == std::string::npos ? o.serve : o.serve.substr(colon + 1), port) || port > 65535)
+    return usage_error("replay", "--serve-ptc takes [ADDR:]PORT, got '" + o.serve + "'");
+  port::StandInContent content;
+  std::uint16_t rpm = 0;
+  content.model = first_model(capture, rpm);
+  std::string error;
+  const std::pair<const std::string*, std::string*> files[] = {
+      {&o.calibration, &content.calibration}, {&o.firetimes, &content.firetimes}, {&o.channel_config, &content.channel_config}};
+  for (const auto& [path, text] : files) {
+    if (!path->empty() && !read_text_file(*path, *text, error)) {
+      std::fprintf(stderr, "hesai replay: %s\n", error.c_str());
+      return kExitInput;
+    }
+  }
+  if (!o.secret_file.empty()) {
+    if (const int st = read_secret(o.secret_file, content.secret, error); st != kExitOk) {
+      std::fprintf(stderr, "hesai replay: %s\n", error.c_str());
+      return st;
+    }
+  }
+  if (!server.open(address, static_cast<std::uint16_t>(port), std::move(content), error)) {
+    std::fprintf(stderr, "hesai replay: %s\n", error.c_str());
+    return kExitInput;
+  }
+  server.set_motor_speed(rpm);
+  std::fprintf(stderr, "serving PTC on %s:%u\n", address.c_str(), server.port());
+  return kExitOk;
+}
+
+// Runs a PtcServer on a thread of its own while in scope.
+class ServerThread {
+ public:
+  ServerThread(port::PtcServer& server, bool run) : server_(server) {
+    if (run) thread_ = std::thread([this] { server_.run(); });
+  }
+  ~ServerThread() {
+    server_.stop();
+    if (thread_.joinable()) thread_.join();
+  }
+  ServerThread(const ServerThread&) = delete;
+  ServerThread& operator=(const ServerThread&) = delete;
+
+ private:
+  port::PtcServer& server_;
+  std::thread thread_;
+};
+
+}  // namespace
+
+int cmd_replay(Args& args) {
+  std::string capture, to, multicast_if, error, rate_text = "1";
+  std::uint64_t loops = 1;
+  bool quiet = false, renumber_sequence = false;
+  StandIn stand_in;
+  while (!args.empty()) {
+    const std::string a = args.take();
+    std::string v;
+    if (a == "--help" || a == "-h") {
+      std::printf("usage: hesai replay CAPTURE --to HOST:PORT [--rate 1|N|max] [--loop N]\n\n"
+                  "Sends the UDP payloads of a capture to HOST:PORT.\n\n"
+                  "  --to HOST:PORT          destination (a multicast group too: looped back to this host)\n"
+                  "  --multicast-if ADDR     with a multicast group: send through the interface of this\n"
+                  "                          local IPv4 address (default: the kernel's route to the group)\n"
+                  "  --rate 1|N|max          the recorded pace (1), N times faster, or as fast as possible\n"
+                  "  --loop N                play the capture N times (default 1)\n"
+                  "  --renumber              rewrite UDP sequence numbers to count up across loops (QT128:\n"
+                  "                          CRC3 re-sealed; signatures then no longer verify)\n"
+                  "  --quiet                 no summary\n\n"
+                  "A stand-in sensor (for tests, and for trying 'hesai sensor' and 'listen --sensor' without\n"
+                  "hardware):\n"
+                  "  --serve-ptc [ADDR:]PORT answer PTC on ADDR (default 127.0.0.1) and PORT (0: any free port,\n"
+                  "                          printed); the datagrams are then sent from ADDR, as a sensor's\n"
+                  "  --calibration FILE      served for PTC 0x05 (the file, byte for byte)\n"
+                  "  --firetimes FILE        served for 0xA9\n"
+                  "  --channel-config FILE   served for 0xA8\n"
+                  "  --secret-file FILE      the shared secret: signature sessions (0x2E) are accepted, and\n"
+                  "                          while one runs every QT128 packet is signed with its key\n"
+                  "  --wait-for-session      send nothing until a signature session starts\n");
+      return kExitOk;
+    }
+    if (a == "--to") { if (!args.value(a, to)) return usage_error("replay", "--to needs HOST:PORT"); }
+    else if (a == "--multicast-if") { if (!args.value(a, multicast_if)) return usage_error("replay", "--multicast-if needs an address"); }
+    else if (a == "--rate") { if (!args.value(a, rate_text)) return usage_error("replay", "--rate needs 1, N or max"); }
+    else if (a == "--loop") { if (!args.value(a, v) || !parse_u64(v, loops) || loops == 0) return usage_error("replay", "--loop needs N >= 1"); }
+    else if (a == "--quiet") quiet = true;
+    else if (a == "--renumber") renumber_sequence = true;
+    else if (a == "--wait-for-session") stand_in.wait_for_session = true;
+    else if (a == "--serve-ptc" || a == "--calibration" || a == "--firetimes" || a == "--channel-config" ||
+             a == "--secret-file") {
+      std::string& target = a == "--serve-ptc"       ? stand_in.serve
+                            : a == "--calibration"   ? stand_in.calibration
+                            : a == "--firetimes"     ? stand_in.firetimes
+                            : a == "--channel-config" ? stand_in.channel_config
+                                                     : stand_in.secret_file;
+      if (!args.value(a, target)) return usage_error("replay", a + " needs a value");
+    }
+    else if (a.rfind("--", 0) == 0) return usage_error("replay", "unknown option " + a);
+    else if (capture.empty()) capture = a;
+    else return usage_error("replay", "one capture at a time ('" + a + "')");
+  }
+  if (capture.empty()) return usage_error("replay", "missing CAPTURE");
+  if (to.empty()) return usage_error("replay", "missing --to HOST:PORT");
+  float rate = 0;  // 0: as fast as possible
+  if (rate_text != "max" && (!parse_float(rate_text, rate) || rate <= 0))
+    return usage_error("replay", "--rate takes 1, a factor N > 0, or max");
+
+  const bool serving = !stand_in.serve.empty();
+  if (!serving && (!stand_in.calibration.empty() || !stand_in.firetimes.empty() || !stand_in.channel_config.empty() ||
+                   !stand_in.secret_file.empty() || stand_in.wait_for_session))
+    return usage_error("replay", "--calibration, --firetimes, --channel-config, --secret-file and --wait-for-session "
+                                 "go with --serve-ptc");
+  if (stand_in.wait_for_session && stand_in.secret_file.empty())
+    return usage_error("replay", "--wait-for-session needs --secret-file (no session can start without it)");
+
+  port::CaptureFile file;
+  if (!open_capture(capture, file)) return kExitInput;
+  port::PtcServer server;
+  std::string address;
+  if (serving) {
+    if (const int st = open_stand_in(stand_in, capture, server, address); st != kExitOk) return st;
+  }
+  port::UdpSender sender;
+  if (serving && address != "0.0.0.0") sender.set_source(address);
+  if (!sender.open(to, multicast_if, error)) return usage_error("replay", error);
+  std::signal(SIGINT, on_signal);
+  std::signal(SIGTERM, on_signal);
+  ServerThread ptc_thread(server, serving);
+  while (stand_in.wait_for_session && server.sessions_started() == 0 && !g_stop)
+    port::sleep_until_ns(port::monotonic_ns() + 10000000);
+  std::uint8_t key[32];
+  std::uint64_t signed_packets = 0;
+  std::uint64_t sent = 0, failed = 0;
+  std::uint32_t next_sequence = 0;
+  std::vector<std::uint8_t> packet;
+  const std::int64_t start = port::monotonic_ns();
+  for (std::uint64_t loop = 0; loop < loops && !g_stop; ++loop) {
+    if (loop > 0 && file.open(capture) != port::CaptureError::ok) {
+      std::fprintf(stderr, "hesai: %s\n", file.message().c_str());
+      return kExitInput;
+    }
+    port::UdpDatagram d;
+    std::int64_t first_record = -1, loop_start = port::monotonic_ns();
+    for (;;) {
+      const port::CaptureStatus st = file.next(d);
+      if (st == port::CaptureStatus::end || g_stop) break;
+      if (st == port::CaptureStatus::error) {
+        std::fprintf(stderr, "hesai: %s\n", file.message().c_str());
+        return kExitInput;
+      }
+      if (rate > 0) {
+        const std::int64_t t = static_cast<std::int64_t>(d.time_ns);
+        if (first_record < 0) first_record = t;
+        port::sleep_until_ns(loop_start + static_cast<std::int64_t>(static_cast<double>(t - first_record) / rate));
+      }
+      // A running session signs every QT128 packet that has room for a signature.
+      const bool sign = serving && server.session_key(key);
+      bool ok;
+      if (renumber_sequence || sign) {
+        packet.assign(d.payload.data, d.payload.data + d.payload.size);
+        if (renumber_sequence && renumber(packet, next_sequence)) ++next_sequence;
+        if (sign && qt128::sign(packet.data(), packet.size(), key) == Error::ok) ++signed_packets;
+        ok = sender.send(packet.data(), packet.size());
+      } else {
+        ok = sender.send(d.payload.data, d.payload.size);
+      }
+      if (ok) ++sent;
+      else ++failed;
+    }
+  }
+  secure_wipe(key, sizeof key);
+  if (!quiet)
+    std::fprintf(stderr, "sent %llu datagrams to %s in %.2f s (%llu failed, %llu signed)\n", static_cast<unsigned long long>(sent),
+                 to.c_str(), static_cast<double>(port::monotonic_ns() - start) / 1e9, static_cast<unsigned long long>(failed),
+                 static_cast<unsigned long long>(signed_packets));
+  return failed ? kExitInput : kExitOk;
+}
+
+}  // namespace hesai::cli

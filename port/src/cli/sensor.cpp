@@ -1,0 +1,461 @@
+#include "sensor.h"
+
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+#include <vector>
+
+#include "hesai/calibration.h"
+#include "hesai/ct.h"
+#include "hesai/hkdf.h"
+#include "hesai/ptc.h"
+
+namespace hesai::cli {
+namespace {
+
+using port::PtcClient;
+using port::PtcResult;
+using Bytes = std::vector<std::uint8_t>;
+
+constexpr const char* kSensorUsage =
+    "usage: hesai sensor COMMAND HOST [--ptc-port N] [--timeout SECONDS] [--json]\n"
+    "\n"
+    "Talks to a sensor over PTC (Pandar TCP Commands, plain TCP; a unit set to PTCS/TLS only is out\n"
+    "of reach: take its session key from another tool and use --session-key-file).\n"
+    "\n"
+    "commands:\n"
+    "  info                    serial, manufacture date, MAC, versions, model (0x07)\n"
+    "  config                  network, spin rate, return mode... (0x08)\n"
+    "  status                  uptime, motor speed, temperatures, GPS and PTP state (0x09)\n"
+    "  calibration --out FILE  the unit's angle-correction file, byte for byte (0x05)\n"
+    "  firetimes --out FILE    the unit's firing-time file (0xA9)\n"
+    "  channel-config --out FILE  the QT128's channel configuration (0xA8)\n"
+    "  signature start --session-key-out FILE [--secret-file FILE]\n"
+    "                          start a point-cloud signature session (0x2E); the session key (HKDF\n"
+    "                          of the shared secret, from --secret-file or HESAI_SECRET, and both\n"
+    "                          randoms) goes to FILE, mode 0600, for 'decode --session-key-file'\n"
+    "  signature status        whether the unit signs its packets (0x2D)\n"
+    "  signature stop          end the session (0x2F)\n"
+    "\n"
+    "  --ptc-port N            PTC port (default 9347)\n"
+    "  --timeout SECONDS       connect and per-request timeout (default 3)\n"
+    "  --json                  one JSON object (info: serial, manufacture_date, mac, software_version,\n"
+    "                          hardware_version, control_firmware, sensor_firmware, model,\n"
+    "                          product_model, lines; status: uptime_s, motor_speed_rpm, temperatures_c,\n"
+    "                          gps_pps_locked, gprmc_valid, startups, operating_time (minutes),\n"
+    "                          ptp_status)\n"
+    "\n"
+    "Exit status: 0 success, 1 usage, 2 an unreachable sensor, a timeout, a malformed answer or an\n"
+    "error code from the sensor (named in the message).\n";
+
+std::string json_string(const char* s) {
+  std::string out = "\"";
+  for (const char* p = s; *p != '\0'; ++p) {
+    const unsigned char c = static_cast<unsigned char>(*p);
+    if (c == '"' || c == '\\') {
+      out += '\\';
+      out += static_cast<char>(c);
+    } else if (c < 0x20 || c >= 0x7F) {
+      char esc[8];
+      std::snprintf(esc, sizeof esc, "\\u%04x", c);
+      out += esc;
+    } else {
+      out += static_cast<char>(c);
+    }
+  }
+  return out + "\"";
+}
+
+std::string ipv4_text(const std::uint8_t a[4]) {
+  return std::to_string(a[0]) + "." + std::to_string(a[1]) + "." + std::to_string(a[2]) + "." + std::to_string(a[3]);
+}
+
+std::string mac_text(const std::uint8_t m[6]) {
+  char text[18];
+  std::snprintf(text, sizeof text, "%02x:%02x:%02x:%02x:%02x:%02x", m[0], m[1], m[2], m[3], m[4], m[5]);
+  return text;
+}
+
+// Fills `bytes` with random bytes from the kernel. False when it cannot.
+bool random_bytes(std::uint8_t* bytes, std::size_t n) {
+  const int fd = ::open("/dev/urandom", O_RDONLY | O_CLOEXEC);
+  std::size_t done = 0;
+  while (fd >= 0 && done < n) {
+    const ssize_t got = ::read(fd, bytes + done, n - done);
+    if (got <= 0) break;
+    done += static_cast<std::size_t>(got);
+  }
+  if (fd >= 0) ::close(fd);
+  return done == n;
+}
+
+// Runs one request; on failure prints the client's message and returns false.
+bool ask(PtcClient& client, ptc::Command command, ByteView payload, Bytes& response) {
+  const PtcResult r = client.request(command, payload, response);
+  if (r.ok()) return true;
+  std::fprintf(stderr, "hesai sensor: %s\n", r.message.c_str());
+  return false;
+}
+
+// A payload the codec refused: the message names the host, the command and the length.
+int payload_error(const PtcClient& client, const char* what, Error e, std::size_t size) {
+  std::fprintf(stderr, "hesai sensor: %s:%u: the %s answer (%zu bytes) does not fit its layout: %s\n",
+               client.host().c_str(), client.port(), what, size, error_name(e));
+  return kExitInput;
+}
+
+// Writes `bytes` to `path`, created with `mode` (and set to it when it existed). Exit status.
+int write_file(const std::string& path, const Bytes& bytes, mode_t mode, std::string& error) {
+  const int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, mode);
+  if (fd < 0 || fchmod(fd, mode) != 0) {
+    error = "cannot write '" + path + "': " + std::strerror(errno);
+    if (fd >= 0) ::close(fd);
+    return kExitInput;
+  }
+  std::size_t done = 0;
+  while (done < bytes.size()) {
+    const ssize_t n = ::write(fd, bytes.data() + done, bytes.size() - done);
+    if (n <= 0) break;
+    done += static_cast<std::size_t>(n);
+  }
+  const bool ok = done == bytes.size() && ::close(fd) == 0;
+  if (!ok) error = "cannot write '" + path + "': " + std::strerror(errno);
+  return ok ? kExitOk : kExitInput;
+}
+
+// Asks the unit its model (Model::unknown when its inventory names none we know). False after
+// printing why the request failed.
+bool ask_model(PtcClient& client, Model& model) {
+  Bytes r;
+  if (!ask(client, ptc::Command::inventory, {}, r)) return false;
+  ptc::Inventory inv;
+  model = ptc::parse_inventory(ByteView{r.data(), r.size()}, inv) == Error::ok ? inv.model : Model::unknown;
+  return true;
+}
+
+// Whether a downloaded file parses for `model`: "fits the QT128C2X (128 channels)", or why not.
+std::string fit_text(ptc::Command command, const Bytes& file, Model model) {
+  if (model == Model::unknown) return "model unknown: not checked";
+  const ByteView text{file.data(), file.size()};
+  const std::size_t channels = channel_count(model);
+  ParseResult r{};
+  if (command == ptc::Command::calibration) {
+    AngleCorrection a;
+    r = parse_angle_csv(text, channels, a);
+  } else if (command == ptc::Command::firetimes) {
+    FiretimeCorrection f;
+    r = parse_firetime_csv(text, channels, f);
+  } else {
+    ChannelConfig c;
+    r = parse_channel_config_csv(text, c);
+  }
+  if (r.error == Error::ok)
+    return std::string("fits the ") + model_name(model) + " (" + std::to_string(channels) + " channels)";
+  return std::string("does not fit the ") + model_name(model) + ": " + error_name(r.error) + " at line " +
+         std::to_string(r.line);
+}
+
+int sensor_info(PtcClient& client, bool json) {
+  Bytes r;
+  if (!ask(client, ptc::Command::inventory, {}, r)) return kExitInput;
+  ptc::Inventory inv;
+  if (const Error e = ptc::parse_inventory(ByteView{r.data(), r.size()}, inv); e != Error::ok)
+    return payload_error(client, "inventory", e, r.size());
+  const std::string model = inv.has_model ? model_name(inv.model) : "unknown";
+  if (json) {
+    std::printf("{\"serial\":%s,\"manufacture_date\":%s,\"mac\":\"%s\",\"software_version\":%s,\"hardware_version\":%s,"
+                "\"control_firmware\":%s,\"sensor_firmware\":%s,\"model\":\"%s\",\"product_model\":%d,\"lines\":%d}\n",
+                json_string(inv.serial).c_str(), json_string(inv.manufacture_date).c_str(), mac_text(inv.mac).c_str(),
+                json_string(inv.software_version).c_str(), json_string(inv.hardware_version).c_str(),
+                json_string(inv.control_firmware).c_str(), json_string(inv.sensor_firmware).c_str(), model.c_str(),
+                inv.has_model ? inv.product_model : -1, inv.has_model ? inv.lines : -1);
+  } else {
+    std::printf("serial            %s\nmanufacture date  %s\nMAC               %s\nsoftware          %s\n"
+                "hardware          %s\ncontrol firmware  %s\nsensor firmware   %s\nmodel             %s",
+                inv.serial, inv.manufacture_date, mac_text(inv.mac).c_str(), inv.software_version, inv.hardware_version,
+                inv.control_firmware, inv.sensor_firmware, model.c_str());
+    if (inv.has_model) std::printf(" (product model %u, %u lines)", inv.product_model, inv.lines);
+    std::printf("\n");
+  }
+  return kExitOk;
+}
+
+int sensor_config(PtcClient& client, bool json) {
+  Bytes r;
+  if (!ask(client, ptc::Command::config, {}, r)) return kExitInput;
+  ptc::Config c;
+  if (const Error e = ptc::parse_config(ByteView{r.data(), r.size()}, c); e != Error::ok)
+    return payload_error(client, "configuration", e, r.size());
+  const std::pair<const char*, std::string> fields[] = {
+      {"ip", "\"" + ipv4_text(c.ip) + "\""},
+      {"mask", "\"" + ipv4_text(c.mask) + "\""},
+      {"gateway", "\"" + ipv4_text(c.gateway) + "\""},
+      {"destination_ip", "\"" + ipv4_text(c.destination_ip) + "\""},
+      {"destination_port", std::to_string(c.destination_port)},
+      {"gps_port", std::to_string(c.gps_port)},
+      {"spin_rate_rpm", std::to_string(c.spin_rate_rpm)},
+      {"sync", std::to_string(c.sync)},
+      {"sync_angle", std::to_string(c.sync_angle)},
+      {"start_angle", std::to_string(c.start_angle)},
+      {"stop_angle", std::to_string(c.stop_angle)},
+      {"clock_source", std::to_string(c.clock_source)},
+      {"udp_sequence", std::to_string(c.udp_sequence)},
+      {"trigger_method", std::to_string(c.trigger_method)},
+      {"return_mode", std::to_string(c.return_mode)},
+      {"standby_mode", std::to_string(c.standby_mode)},
+      {"motor_status", std::to_string(c.motor_status)},
+      {"vlan_flag", std::to_string(c.vlan_flag)},
+      {"vlan_id", std::to_string(c.vlan_id)},
+      {"clock_data_format", c.has_extra ? std::to_string(c.clock_data_format) : "null"},
+      {"noise_filtering", c.has_extra ? std::to_string(c.noise_filtering) : "null"},
+      {"reflectivity_mapping", c.has_extra ? std::to_string(c.reflectivity_mapping) : "null"},
+  };
+  std::string out = json ? "{" : "";
+  for (const auto& [key, value] : fields) {
+    if (json) out += (out.size() > 1 ? ",\"" : "\"") + std::string(key) + "\":" + value;
+    else out += std::string(key) + std::string(22 - std::strlen(key), ' ') + value + "\n";
+  }
+  std::printf("%s%s", out.c_str(), json ? "}\n" : "");
+  return kExitOk;
+}
+
+int sensor_status(PtcClient& client, bool json) {
+  // The count of temperatures depends on the model: the inventory says which it is.
+  Model model = Model::unknown;
+  if (!ask_model(client, model)) return kExitInput;
+  Bytes r;
+  if (!ask(client, ptc::Command::status, {}, r)) return kExitInput;
+  ptc::Status s;
+  if (const Error e = ptc::parse_status(ByteView{r.data(), r.size()}, model, s); e != Error::ok)
+    return payload_error(client, "status", e, r.size());
+  std::string temperatures;
+  for (std::size_t i = 0; i < s.temperature_count; ++i) {
+    char t[32];
+    std::snprintf(t, sizeof t, "%s%.2f", i == 0 ? "" : json ? "," : " ", s.temperature_centi_c[i] / 100.0);
+    temperatures += t;
+  }
+  if (json) {
+    std::printf("{\"uptime_s\":%u,\"motor_speed_rpm\":%u,\"temperatures_c\":[%s],\"gps_pps_locked\":%s,"
+                "\"gprmc_valid\":%s,\"startups\":%u,\"operating_time\":%u,\"ptp_status\":\"%s\",\"ptp_status_code\":%u,"
+                "\"model\":\"%s\"}\n",
+                s.uptime_s, s.motor_speed_rpm, temperatures.c_str(), s.gps_pps_lock == 1 ? "true" : "false",
+                s.gprmc_status == 1 ? "true" : "false", s.startups, s.operating_time_min, ptc::ptp_status_name(s.ptp_status),
+                s.ptp_status, model_name(model));
+  } else {
+    std::printf("uptime            %u s\nmotor speed       %u rpm\ntemperatures      %s C\nGPS PPS           %s\n"
+                "GPRMC             %s\nstart-ups         %u\noperating time    %u min\nPTP               %s\n",
+                s.uptime_s, s.motor_speed_rpm, temperatures.c_str(), s.gps_pps_lock == 1 ? "locked" : "not locked",
+                s.gprmc_status == 1 ? "valid" : "not valid", s.startups, s.operating_time_min, ptc::ptp_status_name(s.ptp_status));
+  }
+  return kExitOk;
+}
+
+int sensor_file(PtcClient& client, ptc::Command command, const std::string& out_path) {
+  Bytes r;
+  if (!ask(client, command, {}, r)) return kExitInput;
+  std::string error;
+  if (const int st = write_file(out_path, r, 0644, error); st != kExitOk) {
+    std::fprintf(stderr, "hesai sensor: %s\n", error.c_str());
+    return st;
+  }
+  // The model, to check that the file parses for it (a failure to learn it is only a note).
+  Model model = Model::unknown;
+  Bytes inv;
+  ptc::Inventory parsed;
+  if (client.request(ptc::Command::inventory, {}, inv).ok() &&
+      ptc::parse_inventory(ByteView{inv.data(), inv.size()}, parsed) == Error::ok)
+    model = parsed.model;
+  const std::string fit = fit_text(command, r, model);
+  std::fprintf(stderr, "%zu bytes to %s; %s\n", r.size(), out_path.c_str(), fit.c_str());
+  return fit.rfind("does not fit", 0) == 0 ? kExitInput : kExitOk;
+}
+
+// Starts a session with `secret`: the derived key in `key`. Exit status.
+int session_start(PtcClient& client, const std::string& secret, std::uint8_t key[32]) {
+  std::uint8_t client_random[ptc::kRandomBytes], lidar_random[ptc::kRandomBytes];
+  if (!random_bytes(client_random, sizeof client_random)) {
+    std::fprintf(stderr, "hesai sensor: cannot read /dev/urandom for the client random\n");
+    return kExitInput;
+  }
+  Bytes r;
+  if (!ask(client, ptc::Command::signature_start, ByteView{client_random, sizeof client_random}, r)) return kExitInput;
+  if (const Error e = ptc::parse_session_start(ByteView{r.data(), r.size()}, lidar_random); e != Error::ok)
+    return payload_error(client, "signature session start", e, r.size());
+  const ByteView text{reinterpret_cast<const std::uint8_t*>(secret.data()), secret.size()};
+  if (hesai_session_key(text, lidar_random, client_random, key) != Error::ok) return kExitUsage;  // length checked before
+  return kExitOk;
+}
+
+int sensor_signature(PtcClient& client, const std::string& action, const std::string& secret_file,
+                     const std::string& key_out, bool json) {
+  if (action == "start") {
+    if (key_out.empty()) {
+      std::fprintf(stderr, "hesai sensor: signature start needs --session-key-out FILE\n");
+      return kExitUsage;
+    }
+    std::string secret, error;
+    if (const int st = read_secret(secret_file, secret, error); st != kExitOk) {
+      std::fprintf(stderr, "hesai sensor: %s\n", error.c_str());
+      return st;
+    }
+    std::uint8_t key[32];
+    const int st = session_start(client, secret, key);
+    secure_wipe(secret.data(), secret.size());
+    if (st != kExitOk) return st;
+    Bytes hex(65);
+    for (std::size_t i = 0; i < 32; ++i) std::snprintf(reinterpret_cast<char*>(&hex[2 * i]), 3, "%02x", key[i]);
+    hex[64] = '\n';
+    secure_wipe(key, sizeof key);
+    const int wst = write_file(key_out, hex, 0600, error);
+    secure_wipe(hex.data(), hex.size());
+    if (wst != kExitOk) {
+      std::fprintf(stderr, "hesai sensor: %s\n", error.c_str());
+      return wst;
+    }
+    if (json) std::printf("{\"session\":\"started\",\"session_key_file\":%s}\n", json_string(key_out.c_str()).c_str());
+    else std::fprintf(stderr, "signature session started; session key written to %s (mode 0600)\n", key_out.c_str());
+    return kExitOk;
+  }
+  Bytes r;
+  const ptc::Command command = action == "status" ? ptc::Command::signature_state : ptc::Command::signature_stop;
+  if (!ask(client, command, {}, r)) return kExitInput;
+  if (action == "stop") {
+    if (json) std::printf("{\"session\":\"stopped\"}\n");
+    else std::fprintf(stderr, "signature session stopped\n");
+    return kExitOk;
+  }
+  bool on = false;
+  if (const Error e = ptc::parse_signature_state(ByteView{r.data(), r.size()}, on); e != Error::ok)
+    return payload_error(client, "signature state", e, r.size());
+  if (json) std::printf("{\"signing\":%s}\n", on ? "true" : "false");
+  else std::printf("signature %s\n", on ? "on" : "off");
+  return kExitOk;
+}
+
+}  // namespace
+
+int cmd_sensor(Args& args) {
+  std::string command, action, host, out, secret_file, key_out, v;
+  std::uint64_t port = ptc::kDefaultPort;
+  float timeout_s = 3;
+  bool json = false;
+  const auto usage = [](const std::string& message) {
+    std::fprintf(stderr, "hesai sensor: %s\nRun 'hesai sensor --help' for usage.\n", message.c_str());
+    return kExitUsage;
+  };
+  while (!args.empty()) {
+    const std::string a = args.take();
+    if (a == "--help" || a == "-h") {
+      std::printf("%s", kSensorUsage);
+      return kExitOk;
+    }
+    if (a == "--json") json = true;
+    else if (a == "--ptc-port") {
+      if (!args.value(a, v) || !parse_u64(v, port) || port == 0 || port > 65535) return usage("--ptc-port takes 1 to 65535");
+    } else if (a == "--timeout") {
+      if (!args.value(a, v) || !parse_float(v, timeout_s) || !(timeout_s > 0) || timeout_s > 3600)
+        return usage("--timeout takes seconds above 0 (at most 3600)");
+    } else if (a == "--out") {
+      if (!args.value(a, out)) return usage("--out needs a file");
+    } else if (a == "--secret-file") {
+      if (!args.value(a, secret_file)) return usage("--secret-file needs a file");
+    } else if (a == "--session-key-out") {
+      if (!args.value(a, key_out)) return usage("--session-key-out needs a file");
+    } else if (a.rfind("--", 0) == 0) {
+      return usage("unknown option " + a);
+    } else if (command.empty()) {
+      command = a;
+    } else if (command == "signature" && action.empty()) {
+      action = a;
+    } else if (host.empty()) {
+      host = a;
+    } else {
+      return usage("unexpected argument '" + a + "'");
+    }
+  }
+  const bool file_command = command == "calibration" || command == "firetimes" || command == "channel-config";
+  if (command.empty()) return usage("missing COMMAND");
+  if (!file_command && command != "info" && command != "config" && command != "status" && command != "signature")
+    return usage("unknown command '" + command + "'");
+  if (command == "signature" && action != "start" && action != "status" && action != "stop")
+    return usage("signature takes start, status or stop");
+  if (host.empty()) return usage("missing HOST");
+  if (file_command && out.empty()) return usage(command + " needs --out FILE");
+
+  PtcClient client(host, static_cast<std::uint16_t>(port), static_cast<int>(timeout_s * 1000));
+  if (command == "info") return sensor_info(client, json);
+  if (command == "config") return sensor_config(client, json);
+  if (command == "status") return sensor_status(client, json);
+  if (command == "signature") return sensor_signature(client, action, secret_file, key_out, json);
+  const ptc::Command c = command == "calibration" ? ptc::Command::calibration
+                         : command == "firetimes" ? ptc::Command::firetimes
+                                                  : ptc::Command::channel_config;
+  return sensor_file(client, c, out);
+}
+
+// ---- listen --sensor ----
+
+SensorLink::~SensorLink() { stop_session(); }
+
+int SensorLink::fetch(const DecodeOptions& options, Pipeline& pipeline, std::string& error) {
+  const std::string origin = client_.host() + ":" + std::to_string(client_.port());
+  if (!ask_model(client_, model_)) {
+    error = "cannot fetch the calibration from the sensor (see above)";
+    return kExitInput;
+  }
+  std::fprintf(stderr, "sensor %s: %s\n", origin.c_str(), model_name(model_));
+  Bytes files[3];
+  const ptc::Command commands[3] = {ptc::Command::calibration, ptc::Command::firetimes, ptc::Command::channel_config};
+  const bool given[3] = {!options.calibration_path.empty(), !options.firetimes_path.empty(),
+                         !options.channel_config_path.empty() || model_ != Model::qt128c2x};
+  for (std::size_t i = 0; i < 3; ++i) {
+    const char* name = ptc::command_name(static_cast<std::uint8_t>(commands[i]));
+    if (given[i]) continue;
+    const PtcResult r = client_.request(commands[i], {}, files[i]);
+    if (r.outcome == port::PtcOutcome::sensor_error && i != 0) {
+      std::fprintf(stderr, "%s: not served (%s); the built-in tables apply\n", name, ptc::return_code_name(r.return_code));
+      continue;
+    }
+    if (!r.ok()) {
+      error = r.message;
+      return kExitInput;
+    }
+    std::fprintf(stderr, "%s: %zu bytes, %s\n", name, files[i].size(), fit_text(commands[i], files[i], model_).c_str());
+  }
+  client_.close();  // the session, if any, opens its own connection
+  const auto text = [](const Bytes& b) { return std::string(b.begin(), b.end()); };
+  return pipeline.use_downloaded(origin, text(files[0]), text(files[1]), text(files[2]), error);
+}
+
+int SensorLink::start_session(const std::string& secret, Pipeline& pipeline, std::string& error) {
+  if (model_ != Model::qt128c2x) {
+    std::fprintf(stderr, "signature: the %s signs no packets; no session started\n", model_name(model_));
+    return kExitOk;
+  }
+  std::uint8_t key[32];
+  if (const int st = session_start(client_, secret, key); st != kExitOk) {
+    error = "no signature session (see above)";
+    return st;
+  }
+  session_ = true;
+  pipeline.start_session(key);
+  secure_wipe(key, sizeof key);
+  client_.close();
+  std::fprintf(stderr, "signature session started: every packet is verified\n");
+  return kExitOk;
+}
+
+void SensorLink::stop_session() {
+  if (!session_) return;
+  session_ = false;
+  Bytes r;
+  const PtcResult res = client_.request(ptc::Command::signature_stop, {}, r);
+  if (!res.ok()) std::fprintf(stderr, "hesai listen: warning: the session was not stopped: %s\n", res.message.c_str());
+  else std::fprintf(stderr, "signature session stopped\n");
+}
+
+}  // namespace hesai::cli

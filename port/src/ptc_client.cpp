@@ -1,0 +1,208 @@
+#include "hesai_port/ptc_client.h"
+
+#include <arpa/inet.h>
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+#include <fcntl.h>
+#include <netdb.h>
+#include <netinet/in.h>
+#include <netinet/tcp.h>
+#include <poll.h>
+#include <sys/socket.h>
+#include <unistd.h>
+
+#include "hesai_port/udp.h"  // monotonic_ns
+
+namespace hesai::port {
+namespace {
+
+// Milliseconds left until `deadline_ns`, at least 0, rounded up.
+int ms_left(std::int64_t deadline_ns) {
+  const std::int64_t left = deadline_ns - monotonic_ns();
+  if (left <= 0) return 0;
+  const std::int64_t ms = (left + 999999) / 1000000;
+  return ms > 60000 ? 60000 : static_cast<int>(ms);
+}
+
+// Waits until `fd` is ready for `events` or the deadline passes: true when ready.
+bool wait_ready(int fd, short events, std::int64_t deadline_ns) {
+  for (;;) {
+    pollfd p{fd, events, 0};
+    const int timeout = ms_left(deadline_ns);
+    const int r = poll(&p, 1, timeout);
+    if (r > 0) return true;
+    if (r == 0 && monotonic_ns() >= deadline_ns) return false;
+    if (r < 0 && errno != EINTR) return true;  // the next call reports the error
+  }
+}
+
+std::string hex_byte(std::uint8_t b) {
+  char text[8];
+  std::snprintf(text, sizeof text, "0x%02X", b);
+  return text;
+}
+
+}  // namespace
+
+TcpTransport::~TcpTransport() {
+  if (fd_ >= 0) ::close(fd_);
+}
+
+PtcTransport::Io TcpTransport::connect(const std::string& host, std::uint16_t port, int timeout_ms, std::string& error) {
+  addrinfo hints{};
+  hints.ai_family = AF_INET;
+  hints.ai_socktype = SOCK_STREAM;
+  addrinfo* res = nullptr;
+  const std::string service = std::to_string(port);
+  if (const int rc = getaddrinfo(host.c_str(), service.c_str(), &hints, &res); rc != 0) {
+    error = std::string("cannot resolve: ") + gai_strerror(rc);
+    return Io::error;
+  }
+  fd_ = socket(AF_INET, SOCK_STREAM | SOCK_CLOEXEC, 0);
+  if (fd_ < 0) {
+    error = std::string("socket: ") + std::strerror(errno);
+    freeaddrinfo(res);
+    return Io::error;
+  }
+  fcntl(fd_, F_SETFL, fcntl(fd_, F_GETFL) | O_NONBLOCK);
+  const int one = 1;
+  setsockopt(fd_, IPPROTO_TCP, TCP_NODELAY, &one, sizeof one);
+  const int rc = ::connect(fd_, res->ai_addr, res->ai_addrlen);
+  freeaddrinfo(res);
+  if (rc != 0 && errno != EINPROGRESS) {
+    error = std::string("cannot connect: ") + std::strerror(errno);
+    return Io::error;
+  }
+  if (rc != 0) {
+    if (!wait_ready(fd_, POLLOUT, monotonic_ns() + static_cast<std::int64_t>(timeout_ms) * 1000000)) {
+      error = "no connection within " + std::to_string(timeout_ms) + " ms";
+      return Io::timeout;
+    }
+    int so_error = 0;
+    socklen_t len = sizeof so_error;
+    getsockopt(fd_, SOL_SOCKET, SO_ERROR, &so_error, &len);
+    if (so_error != 0) {
+      error = std::string("cannot connect: ") + std::strerror(so_error);
+      return Io::error;
+    }
+  }
+  return Io::ok;
+}
+
+PtcTransport::Io TcpTransport::send_all(const std::uint8_t* data, std::size_t size, std::int64_t deadline_ns) {
+  std::size_t done = 0;
+  while (done < size) {
+    const ssize_t n = ::send(fd_, data + done, size - done, MSG_NOSIGNAL);
+    if (n > 0) {
+      done += static_cast<std::size_t>(n);
+    } else if (n < 0 && (errno == EAGAIN || errno == EWOULDBLOCK || errno == EINTR)) {
+      if (!wait_ready(fd_, POLLOUT, deadline_ns)) return Io::timeout;
+    } else {
+      return (errno == EPIPE || errno == ECONNRESET) ? Io::closed : Io::error;
+    }
+  }
+  return Io::ok;
+}
+
+PtcTransport::Io TcpTransport::receive_exact(std::uint8_t* data, std::size_t size, std::int64_t deadline_ns) {
+  std::size_t done = 0;
+  while (done < size) {
+    const ssize_t n = ::recv(fd_, data + done, size - done, 0);
+    if (n > 0) {
+      done += static_cast<std::size_t>(n);
+    } else if (n == 0) {
+      return Io::closed;
+    } else if (errno == EAGAIN || errno == EWOULDBLOCK || errno == EINTR) {
+      if (!wait_ready(fd_, POLLIN, deadline_ns)) return Io::timeout;
+    } else {
+      return errno == ECONNRESET ? Io::closed : Io::error;
+    }
+  }
+  return Io::ok;
+}
+
+PtcClient::PtcClient(std::string host, std::uint16_t port, int timeout_ms)
+    : host_(std::move(host)), port_(port), timeout_ms_(timeout_ms) {}
+
+PtcResult PtcClient::fail(PtcOutcome outcome, ptc::Command command, const std::string& what) {
+  transport_.reset();
+  PtcResult r;
+  r.outcome = outcome;
+  const std::uint8_t c = static_cast<std::uint8_t>(command);
+  r.message = host_ + ":" + std::to_string(port_) + ": command " + hex_byte(c) + " (" + ptc::command_name(c) + "): " + what;
+  return r;
+}
+
+PtcResult PtcClient::request(ptc::Command command, ByteView payload, std::vector<std::uint8_t>& response) {
+  response.clear();
+  const std::int64_t timeout_ns = static_cast<std::int64_t>(timeout_ms_) * 1000000;
+  if (!transport_) {
+    auto tcp = std::make_unique<TcpTransport>();
+    std::string error;
+    const PtcTransport::Io io = tcp->connect(host_, port_, timeout_ms_, error);
+    if (io == PtcTransport::Io::timeout) return fail(PtcOutcome::timeout, command, error);
+    if (io != PtcTransport::Io::ok) return fail(PtcOutcome::unreachable, command, error);
+    transport_ = std::move(tcp);
+  }
+  const std::int64_t deadline = monotonic_ns() + timeout_ns;
+  const auto io_failure = [&](PtcTransport::Io io, const char* during) {
+    const std::string seconds = std::to_string(timeout_ms_ / 1000) + "." + std::to_string(timeout_ms_ % 1000 / 100) + " s";
+    switch (io) {
+      case PtcTransport::Io::timeout: return fail(PtcOutcome::timeout, command, std::string("no ") + during + " within " + seconds);
+      case PtcTransport::Io::closed: return fail(PtcOutcome::cut_short, command, std::string("the sensor closed the connection within the ") + during);
+      default: return fail(PtcOutcome::io_error, command, std::string("socket error during the ") + during + ": " + std::strerror(errno));
+    }
+  };
+
+  std::vector<std::uint8_t> frame(ptc::kHeaderBytes + payload.size);
+  std::size_t written = 0;
+  if (ptc::encode_request(command, payload, frame.data(), frame.size(), written) != Error::ok)
+    return fail(PtcOutcome::io_error, command, "request too large");
+  if (const auto io = transport_->send_all(frame.data(), written, deadline); io != PtcTransport::Io::ok)
+    return io_failure(io, "request");
+
+  std::uint8_t header_bytes[ptc::kHeaderBytes];
+  if (const auto io = transport_->receive_exact(header_bytes, sizeof header_bytes, deadline); io != PtcTransport::Io::ok)
+    return io_failure(io, "response header");
+  ptc::Header header;
+  const std::uint32_t bound = ptc::max_response_bytes(command);
+  const Error e = ptc::check_response(ByteView{header_bytes, sizeof header_bytes}, command, bound, header);
+  if (e == Error::ptc_bad_magic || e == Error::ptc_command_mismatch || e == Error::ptc_length_exceeds_bound) {
+    const std::string what =
+        e == Error::ptc_bad_magic
+            ? "the response does not start with 47 74 (got " + hex_byte(header_bytes[0]) + " " + hex_byte(header_bytes[1]) + ")"
+        : e == Error::ptc_command_mismatch
+            ? "the response echoes command " + hex_byte(header.command)
+            : "the response announces " + std::to_string(header.length) + " bytes, above this command's bound of " +
+                  std::to_string(bound);
+    PtcResult r = fail(PtcOutcome::framing, command, what);
+    r.error = e;
+    return r;
+  }
+  // The length is within the bound: the payload may be stored (and, after an error code, read to
+  // keep the stream in step).
+  response.resize(header.length);
+  if (const auto io = transport_->receive_exact(response.data(), response.size(), deadline); io != PtcTransport::Io::ok) {
+    response.clear();
+    PtcResult r = io_failure(io, "response payload");
+    if (r.outcome == PtcOutcome::cut_short || r.outcome == PtcOutcome::timeout)
+      r.message += " (" + std::to_string(header.length) + " bytes announced)";
+    return r;
+  }
+  if (e == Error::ptc_sensor_error) {
+    response.clear();
+    const std::uint8_t c = static_cast<std::uint8_t>(command);
+    PtcResult r;
+    r.outcome = PtcOutcome::sensor_error;
+    r.error = e;
+    r.return_code = header.return_code;
+    r.message = host_ + ":" + std::to_string(port_) + ": command " + hex_byte(c) + " (" + ptc::command_name(c) +
+                "): the sensor answered '" + ptc::return_code_name(header.return_code) + "' (return code " +
+                std::to_string(header.return_code) + ")";
+    return r;
+  }
+  return PtcResult{};
+}
+
+}  // namespace hesai::port
