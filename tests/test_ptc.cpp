@@ -1,0 +1,305 @@
+// The PTC codec (hesai/ptc.h) on responses built byte by byte here, field by field in the order of
+// tier4/nebula's hesai_cmd_response.hpp structs (big-endian), with the values each field should
+// parse to written beside it. The expectations come from those layouts, not from the codec.
+#include <gtest/gtest.h>
+
+#include <cstdint>
+#include <cstring>
+#include <string>
+#include <vector>
+
+#include "hesai/decoder.h"
+#include "hesai/hkdf.h"
+#include "hesai/ptc.h"
+#include "hesai/qt128_packet.h"
+#include "test_support.h"
+
+namespace {
+
+using hesai::ByteView;
+using hesai::Error;
+using hesai::Model;
+namespace ptc = hesai::ptc;
+using Bytes = std::vector<std::uint8_t>;
+
+void text(Bytes& b, const char* s, std::size_t field) {
+  const std::size_t n = std::strlen(s);
+  for (std::size_t i = 0; i < field; ++i) b.push_back(i < n ? static_cast<std::uint8_t>(s[i]) : 0);
+}
+void be16(Bytes& b, std::uint16_t v) {
+  b.push_back(static_cast<std::uint8_t>(v >> 8));
+  b.push_back(static_cast<std::uint8_t>(v));
+}
+void be32(Bytes& b, std::uint32_t v) {
+  for (int s = 24; s >= 0; s -= 8) b.push_back(static_cast<std::uint8_t>(v >> s));
+}
+
+// HesaiInventoryBase::Internal: sn[18], date_of_manufacture[16], mac[6], sw_ver[16], hw_ver[16],
+// control_fw_ver[16], sensor_fw_ver[16].
+Bytes inventory_common() {
+  Bytes b;
+  text(b, "PT2020123456789ABC", 18);  // all 18 bytes used: no NUL in the field
+  text(b, "2020-10-09", 16);
+  for (int m : {0x00, 0x1C, 0x2D, 0xAB, 0xCD, 0xEF}) b.push_back(static_cast<std::uint8_t>(m));
+  text(b, "2.1.5", 16);
+  text(b, "1.0", 16);
+  text(b, "3.4.6", 16);
+  text(b, "7.8.9", 16);
+  return b;
+}
+
+TEST(Ptc, RequestBytes) {
+  // 47 74, command, return code 0, length big-endian, payload.
+  const std::uint8_t random[3] = {0xAA, 0xBB, 0xCC};
+  std::uint8_t out[16];
+  std::size_t n = 0;
+  ASSERT_EQ(ptc::encode_request(ptc::Command::signature_start, ByteView{random, 3}, out, sizeof out, n), Error::ok);
+  const std::uint8_t expected[] = {0x47, 0x74, 0x2E, 0x00, 0x00, 0x00, 0x00, 0x03, 0xAA, 0xBB, 0xCC};
+  ASSERT_EQ(n, sizeof expected);
+  EXPECT_EQ(std::memcmp(out, expected, n), 0);
+  ASSERT_EQ(ptc::encode_request(ptc::Command::inventory, {}, out, 8, n), Error::ok);
+  const std::uint8_t inventory[] = {0x47, 0x74, 0x07, 0x00, 0x00, 0x00, 0x00, 0x00};
+  EXPECT_EQ(std::memcmp(out, inventory, 8), 0);
+  EXPECT_EQ(ptc::encode_request(ptc::Command::signature_start, ByteView{random, 3}, out, 10, n), Error::buffer_too_small);
+}
+
+TEST(Ptc, ResponseHeaderChecks) {
+  ptc::Header h;
+  // 0x05 answered with 0x00012345 bytes (74 565), return code 0.
+  const std::uint8_t good[] = {0x47, 0x74, 0x05, 0x00, 0x00, 0x01, 0x23, 0x45};
+  ASSERT_EQ(ptc::check_response(ByteView{good, 8}, ptc::Command::calibration, 1u << 20, h), Error::ok);
+  EXPECT_EQ(h.command, 0x05);
+  EXPECT_EQ(h.return_code, 0);
+  EXPECT_EQ(h.length, 74565u);
+  EXPECT_EQ(ptc::check_response(ByteView{good, 7}, ptc::Command::calibration, 1u << 20, h), Error::truncated);
+
+  const std::uint8_t magic[] = {0x47, 0x75, 0x05, 0x00, 0x00, 0x00, 0x00, 0x00};
+  EXPECT_EQ(ptc::check_response(ByteView{magic, 8}, ptc::Command::calibration, 100, h), Error::ptc_bad_magic);
+  const std::uint8_t echo[] = {0x47, 0x74, 0x09, 0x00, 0x00, 0x00, 0x00, 0x00};
+  EXPECT_EQ(ptc::check_response(ByteView{echo, 8}, ptc::Command::calibration, 100, h), Error::ptc_command_mismatch);
+  EXPECT_EQ(h.command, 0x09);  // named in the message
+  // The bound: 74 565 is one above 74 564.
+  EXPECT_EQ(ptc::check_response(ByteView{good, 8}, ptc::Command::calibration, 74564, h), Error::ptc_length_exceeds_bound);
+  EXPECT_EQ(ptc::check_response(ByteView{good, 8}, ptc::Command::calibration, 74565, h), Error::ok);
+  const std::uint8_t huge[] = {0x47, 0x74, 0x05, 0x00, 0xFF, 0xFF, 0xFF, 0xF0};
+  EXPECT_EQ(ptc::check_response(ByteView{huge, 8}, ptc::Command::calibration, ptc::max_response_bytes(ptc::Command::calibration), h),
+            Error::ptc_length_exceeds_bound);
+  EXPECT_EQ(h.length, 0xFFFFFFF0u);
+  // Return code 5, unsupported command (nebula g_ptc_error_code_unsupported_cmd).
+  const std::uint8_t refused[] = {0x47, 0x74, 0x05, 0x05, 0x00, 0x00, 0x00, 0x00};
+  EXPECT_EQ(ptc::check_response(ByteView{refused, 8}, ptc::Command::calibration, 100, h), Error::ptc_sensor_error);
+  EXPECT_EQ(h.return_code, 5);
+  EXPECT_STREQ(ptc::return_code_name(5), "unsupported command");
+  EXPECT_STREQ(ptc::return_code_name(1), "invalid input parameter");
+  EXPECT_STREQ(ptc::return_code_name(6), "FPGA communication failed");
+  EXPECT_STREQ(ptc::return_code_name(8), "unknown return code");
+}
+
+TEST(Ptc, Bounds) {
+  EXPECT_EQ(ptc::max_response_bytes(ptc::Command::calibration), 1u << 20);
+  EXPECT_EQ(ptc::max_response_bytes(ptc::Command::firetimes), 1u << 20);
+  EXPECT_EQ(ptc::max_response_bytes(ptc::Command::channel_config), 1u << 20);
+  EXPECT_EQ(ptc::max_response_bytes(ptc::Command::inventory), 4096u);
+  EXPECT_EQ(ptc::max_response_bytes(ptc::Command::signature_start), 4096u);
+}
+
+TEST(Ptc, InventoryXtLayout) {
+  // HesaiInventory_XT16_32_40P: zero_angle_offset i16, product_model, motor_type, num_of_lines, reserved[11].
+  Bytes b = inventory_common();
+  be16(b, static_cast<std::uint16_t>(-25));
+  b.push_back(25);  // PandarXT32
+  b.push_back(0);
+  b.push_back(32);
+  b.resize(b.size() + 11, 0);
+  ASSERT_EQ(b.size(), 120u);
+  ptc::Inventory inv;
+  ASSERT_EQ(ptc::parse_inventory(ByteView{b.data(), b.size()}, inv), Error::ok);
+  EXPECT_STREQ(inv.serial, "PT2020123456789ABC");
+  EXPECT_STREQ(inv.manufacture_date, "2020-10-09");
+  const std::uint8_t mac[6] = {0x00, 0x1C, 0x2D, 0xAB, 0xCD, 0xEF};
+  EXPECT_EQ(std::memcmp(inv.mac, mac, 6), 0);
+  EXPECT_STREQ(inv.software_version, "2.1.5");
+  EXPECT_STREQ(inv.hardware_version, "1.0");
+  EXPECT_STREQ(inv.control_firmware, "3.4.6");
+  EXPECT_STREQ(inv.sensor_firmware, "7.8.9");
+  EXPECT_TRUE(inv.has_model);
+  EXPECT_EQ(inv.product_model, 25);
+  EXPECT_EQ(inv.model, Model::pandar_xt32);
+  EXPECT_EQ(inv.lines, 32);
+  EXPECT_EQ(inv.zero_angle_offset, -25);
+}
+
+TEST(Ptc, InventoryQt128Layout) {
+  // HesaiInventory_QT128: zero_angle_offset i16, angle_offset_cc i16, product_model, motor_type,
+  // num_of_lines, pn[32], reserved.
+  Bytes b = inventory_common();
+  be16(b, 0);
+  be16(b, 0);
+  b.push_back(32);  // QT128C2X
+  b.push_back(0);
+  b.push_back(128);
+  text(b, "QT128C2X-PN", 32);
+  b.push_back(0);
+  ASSERT_EQ(b.size(), 144u);
+  ptc::Inventory inv;
+  ASSERT_EQ(ptc::parse_inventory(ByteView{b.data(), b.size()}, inv), Error::ok);
+  EXPECT_EQ(inv.model, Model::qt128c2x);
+  EXPECT_EQ(inv.lines, 128);
+  // The same bytes read in the XT layout would give product model 0 (the high byte of the
+  // counter-clockwise offset): the layout is chosen by where the model and lines sit.
+  b[108] = 25;
+  ASSERT_EQ(ptc::parse_inventory(ByteView{b.data(), b.size()}, inv), Error::ok);
+  EXPECT_EQ(inv.product_model, 0);
+  EXPECT_EQ(inv.model, Model::pandar40p);
+}
+
+TEST(Ptc, InventoryShortAndNumbers) {
+  Bytes b = inventory_common();
+  ptc::Inventory inv;
+  ASSERT_EQ(ptc::parse_inventory(ByteView{b.data(), b.size()}, inv), Error::ok);  // 104 bytes: no model
+  EXPECT_FALSE(inv.has_model);
+  EXPECT_EQ(inv.model, Model::unknown);
+  inv.serial[0] = 'X';
+  EXPECT_EQ(ptc::parse_inventory(ByteView{b.data(), 103}, inv), Error::ptc_payload_length);
+  EXPECT_EQ(inv.serial[0], 'X');  // untouched
+  // nebula nebula_model_to_hesai_model_no.
+  EXPECT_EQ(ptc::model_from_product_number(0), Model::pandar40p);
+  EXPECT_EQ(ptc::model_from_product_number(2), Model::pandar64);
+  EXPECT_EQ(ptc::model_from_product_number(15), Model::pandar_qt64);
+  EXPECT_EQ(ptc::model_from_product_number(26), Model::pandar_xt16);
+  EXPECT_EQ(ptc::model_from_product_number(38), Model::pandar_xt32m2x);
+  EXPECT_EQ(ptc::model_from_product_number(42), Model::unknown);  // OT128: not decoded here
+}
+
+TEST(Ptc, Config) {
+  // HesaiConfigBase::Internal then HesaiConfig_XT_40P_64_QT128::Internal.
+  Bytes b = {192, 168, 1, 201, 255, 255, 255, 0, 192, 168, 1, 1, 192, 168, 1, 100};
+  be16(b, 2368);   // dest_LiDAR_udp_port
+  be16(b, 10110);  // dest_gps_udp_port
+  be16(b, 1200);   // spin_rate
+  b.push_back(1);  // sync
+  be16(b, 90);     // sync_angle
+  be16(b, 100);    // start_angle
+  be16(b, 3500);   // stop_angle
+  for (int v : {2, 1, 0, 0x39, 0, 1, 1}) b.push_back(static_cast<std::uint8_t>(v));  // clock_source .. vlan_flag
+  be16(b, 7);      // vlan_id
+  ASSERT_EQ(b.size(), 38u);
+  ptc::Config c;
+  ASSERT_EQ(ptc::parse_config(ByteView{b.data(), b.size()}, c), Error::ok);
+  EXPECT_FALSE(c.has_extra);
+  for (int v : {1, 0, 2}) b.push_back(static_cast<std::uint8_t>(v));  // clock_data_fmt, noise_filtering, reflectivity_mapping
+  b.resize(b.size() + 6, 0);
+  ASSERT_EQ(ptc::parse_config(ByteView{b.data(), b.size()}, c), Error::ok);
+  EXPECT_EQ(c.ip[3], 201);
+  EXPECT_EQ(c.mask[3], 0);
+  EXPECT_EQ(c.destination_ip[3], 100);
+  EXPECT_EQ(c.destination_port, 2368);
+  EXPECT_EQ(c.gps_port, 10110);
+  EXPECT_EQ(c.spin_rate_rpm, 1200);
+  EXPECT_EQ(c.sync, 1);
+  EXPECT_EQ(c.sync_angle, 90);
+  EXPECT_EQ(c.start_angle, 100);
+  EXPECT_EQ(c.stop_angle, 3500);
+  EXPECT_EQ(c.clock_source, 2);
+  EXPECT_EQ(c.udp_sequence, 1);
+  EXPECT_EQ(c.return_mode, 0x39);
+  EXPECT_EQ(c.motor_status, 1);
+  EXPECT_EQ(c.vlan_flag, 1);
+  EXPECT_EQ(c.vlan_id, 7);
+  EXPECT_TRUE(c.has_extra);
+  EXPECT_EQ(c.clock_data_format, 1);
+  EXPECT_EQ(c.reflectivity_mapping, 2);
+  EXPECT_EQ(ptc::parse_config(ByteView{b.data(), 37}, c), Error::ptc_payload_length);
+}
+
+// HesaiLidarStatus_XT_40p (8 temperatures) and HesaiLidarStatusQT128 (9): system_uptime u32,
+// motor_speed u16, temperature i32[N], gps_pps_lock, gps_gprmc_status, startup_times u32,
+// total_operation_time u32, ptp_status, reserved[5].
+Bytes status_bytes(std::size_t temperatures) {
+  Bytes b;
+  be32(b, 86400);
+  be16(b, 600);
+  for (std::size_t i = 0; i < temperatures; ++i) be32(b, static_cast<std::uint32_t>(i == 0 ? -1050 : 4000 + 10 * static_cast<int>(i)));
+  b.push_back(1);
+  b.push_back(0);
+  be32(b, 321);
+  be32(b, 98765);
+  b.push_back(2);
+  b.resize(b.size() + 5, 0);
+  return b;
+}
+
+TEST(Ptc, StatusTemperaturesPerModel) {
+  const Bytes eight = status_bytes(8), nine = status_bytes(9);
+  ASSERT_EQ(eight.size(), 54u);
+  ASSERT_EQ(nine.size(), 58u);
+  ptc::Status s;
+  ASSERT_EQ(ptc::parse_status(ByteView{nine.data(), nine.size()}, Model::qt128c2x, s), Error::ok);
+  EXPECT_EQ(s.temperature_count, 9);
+  EXPECT_EQ(s.uptime_s, 86400u);
+  EXPECT_EQ(s.motor_speed_rpm, 600);
+  EXPECT_EQ(s.temperature_centi_c[0], -1050);  // -10.50 C
+  EXPECT_EQ(s.temperature_centi_c[8], 4080);
+  EXPECT_EQ(s.gps_pps_lock, 1);
+  EXPECT_EQ(s.gprmc_status, 0);
+  EXPECT_EQ(s.startups, 321u);
+  EXPECT_EQ(s.operating_time_min, 98765u);
+  EXPECT_EQ(s.ptp_status, 2);
+  EXPECT_STREQ(ptc::ptp_status_name(2), "locked");
+  for (Model m : {Model::pandar40p, Model::pandar64, Model::pandar_xt16, Model::pandar_xt32, Model::unknown}) {
+    ASSERT_EQ(ptc::parse_status(ByteView{eight.data(), eight.size()}, m, s), Error::ok) << hesai::model_name(m);
+    EXPECT_EQ(s.temperature_count, 8);
+    EXPECT_EQ(s.temperature_centi_c[7], 4070);
+    EXPECT_EQ(s.startups, 321u);
+    EXPECT_EQ(s.ptp_status, 2);
+  }
+  // Without the reserved bytes a status still parses; one byte short of the fields does not.
+  EXPECT_EQ(ptc::parse_status(ByteView{nine.data(), 53}, Model::qt128c2x, s), Error::ok);
+  EXPECT_EQ(ptc::parse_status(ByteView{nine.data(), 52}, Model::qt128c2x, s), Error::ptc_payload_length);
+  EXPECT_EQ(ptc::parse_status(ByteView{eight.data(), 48}, Model::pandar64, s), Error::ptc_payload_length);
+}
+
+TEST(Ptc, SignatureSessionPayloads) {
+  std::uint8_t r[32];
+  Bytes random(32);
+  for (std::size_t i = 0; i < 32; ++i) random[i] = static_cast<std::uint8_t>(0xA0 + i);
+  ASSERT_EQ(ptc::parse_session_start(ByteView{random.data(), 32}, r), Error::ok);
+  EXPECT_EQ(std::memcmp(r, random.data(), 32), 0);
+  EXPECT_EQ(ptc::parse_session_start(ByteView{random.data(), 31}, r), Error::ptc_payload_length);
+  random.push_back(0);
+  EXPECT_EQ(ptc::parse_session_start(ByteView{random.data(), 33}, r), Error::ptc_payload_length);
+  bool on = false;
+  const std::uint8_t one = 1, zero = 0;
+  ASSERT_EQ(ptc::parse_signature_state(ByteView{&one, 1}, on), Error::ok);
+  EXPECT_TRUE(on);
+  ASSERT_EQ(ptc::parse_signature_state(ByteView{&zero, 1}, on), Error::ok);
+  EXPECT_FALSE(on);
+  EXPECT_EQ(ptc::parse_signature_state(ByteView{random.data(), 2}, on), Error::ptc_payload_length);
+}
+
+// qt128::sign on a real packet: the decoder verifies it under the same key, and rejects it under
+// another; the CRCs still hold (the signature is outside them).
+TEST(Ptc, Qt128SignVerifiesWithTheSessionKey) {
+  const auto packets = hesai_test::pcap_payloads("qt128c2x_dual.pcap");
+  ASSERT_FALSE(packets.empty());
+  std::uint8_t key[32], other[32];
+  const std::uint8_t lidar[32] = {1}, client[32] = {2};
+  const char secret[] = "12345678";
+  ASSERT_EQ(hesai::hesai_session_key(ByteView{reinterpret_cast<const std::uint8_t*>(secret), 8}, lidar, client, key), Error::ok);
+  std::memcpy(other, key, 32);
+  other[31] ^= 1;
+  Bytes p = packets[3];
+  ASSERT_EQ(hesai::qt128::sign(p.data(), p.size(), key), Error::ok);
+  EXPECT_NE(std::memcmp(p.data(), packets[3].data(), p.size()), 0);
+  EXPECT_EQ(std::memcmp(p.data(), packets[3].data(), p.size() - 32), 0);  // only the signature changed
+  hesai::Decoder d(Model::qt128c2x);
+  ASSERT_EQ(d.set_session_key(key), Error::ok);
+  hesai::PacketInfo info;
+  ASSERT_EQ(d.validate(ByteView{p.data(), p.size()}, info), Error::ok);
+  EXPECT_EQ(info.signature, hesai::SignatureStatus::valid);
+  ASSERT_EQ(d.set_session_key(other), Error::ok);
+  EXPECT_EQ(d.validate(ByteView{p.data(), p.size()}, info), Error::signature_invalid);
+  EXPECT_EQ(hesai::qt128::sign(p.data(), p.size() - 1, key), Error::bad_length);
+}
+
+}  // namespace

@@ -1,0 +1,416 @@
+// The live path over PTC, end to end on the loopback: 'hesai sensor' and 'hesai listen --sensor'
+// against the stand-in sensor ('hesai replay --serve-ptc'), and the client against a test server
+// that misbehaves in each of the six ways a sensor can (another magic, another command's echo, a
+// length past the bound, silence, an answer cut short, an error code).
+//
+// Expectations: the stand-in's answers as its header documents them (hesai_port/ptc_server.h), the
+// bundled files byte for byte, and 'hesai decode' of the same capture with the same files.
+#include <arpa/inet.h>
+#include <netinet/in.h>
+#include <signal.h>
+#include <sys/resource.h>
+#include <sys/socket.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <chrono>
+#include <cstdio>
+#include <fstream>
+#include <map>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "test_support.h"
+#include "udp_support.h"
+
+namespace {
+
+using hesai_test::data_path;
+using hesai_test::free_udp_port;
+
+std::string cli() {
+#if defined(HESAI_CLI_EMULATOR)
+  return std::string(HESAI_CLI_EMULATOR) + " " + HESAI_CLI_PATH;
+#else
+  return HESAI_CLI_PATH;
+#endif
+}
+
+std::string slurp(const std::string& path) {
+  std::ifstream f(path, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(f), std::istreambuf_iterator<char>());
+}
+
+std::string temp_path(const std::string& name) { return "/tmp/hesai_sensor_test_" + std::to_string(getpid()) + "_" + name; }
+
+struct Ran {
+  int status = -1;
+  std::string out, err;
+  double seconds = 0;
+  long max_rss_kib = 0;  // the program's own peak resident set
+};
+
+// Runs `hesai ARGS` (shell words) with the key variables of the test's own environment removed.
+Ran run(const std::string& args, const std::string& env = "") {
+  Ran r;
+  const std::string out = temp_path("stdout"), err = temp_path("stderr");
+  const std::string cmd = "exec env -u HESAI_SESSION_KEY -u HESAI_SECRET " + env + " " + cli() + " " + args + " >" + out +
+                          " 2>" + err;
+  const auto t0 = std::chrono::steady_clock::now();
+  const pid_t pid = fork();
+  if (pid == 0) {
+    execl("/bin/sh", "sh", "-c", cmd.c_str(), static_cast<char*>(nullptr));
+    _exit(127);
+  }
+  int st = 0;
+  rusage u{};
+  if (pid < 0 || wait4(pid, &st, 0, &u) != pid) return r;
+  r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  r.status = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
+  r.max_rss_kib = u.ru_maxrss;
+  r.out = slurp(out);
+  r.err = slurp(err);
+  std::remove(out.c_str());
+  std::remove(err.c_str());
+  return r;
+}
+
+// The integer after "key": in a flat JSON object; -1 when absent.
+long long json_number(const std::string& json, const std::string& key) {
+  const std::size_t at = json.find("\"" + key + "\":");
+  if (at == std::string::npos) return -1;
+  return std::stoll(json.substr(at + key.size() + 3));
+}
+
+// A stand-in sensor: 'hesai replay CAPTURE --serve-ptc ADDR:0 ...' in the background; the PTC
+// port it chose is read from its stderr.
+class StandIn {
+ public:
+  StandIn(const std::string& capture, const std::string& address, const std::string& options) {
+    err_ = temp_path("standin_" + std::to_string(++count_));
+    const std::string cmd = "exec env -u HESAI_SECRET " + cli() + " replay " + data_path(capture) + " --serve-ptc " + address +
+                            ":0 " + options + " 2>" + err_;
+    pid_ = fork();
+    if (pid_ == 0) {
+      execl("/bin/sh", "sh", "-c", cmd.c_str(), static_cast<char*>(nullptr));
+      _exit(127);
+    }
+    for (int i = 0; i < 200 && port_ == 0; ++i) {
+      const std::string text = slurp(err_);
+      const std::size_t at = text.find("serving PTC on " + address + ":");
+      if (at != std::string::npos && text.find('\n', at) != std::string::npos)
+        port_ = std::stoi(text.substr(at + 16 + address.size()));
+      else usleep(25000);
+    }
+  }
+  ~StandIn() {
+    if (pid_ > 0) {
+      kill(pid_, SIGTERM);
+      waitpid(pid_, nullptr, 0);
+    }
+    std::remove(err_.c_str());
+  }
+  int port() const { return port_; }
+  // Waits for the replay to end by itself (it has sent the capture).
+  int wait() {
+    int st = 0;
+    waitpid(pid_, &st, 0);
+    pid_ = -1;
+    return WIFEXITED(st) ? WEXITSTATUS(st) : -1;
+  }
+  std::string stderr_text() const { return slurp(err_); }
+
+ private:
+  static inline int count_ = 0;
+  pid_t pid_ = -1;
+  int port_ = 0;
+  std::string err_;
+};
+
+std::string secret_file() {
+  const std::string path = temp_path("secret");
+  std::ofstream(path) << "sensor-secret-42\n";
+  chmod(path.c_str(), 0600);
+  return path;
+}
+
+const std::string kQtAngles = data_path("calibration/qt128c2x_unit_a_angles.csv");
+const std::string kQtFiretimes = data_path("calibration/qt128c2x_firetimes.csv");
+
+TEST(Sensor, InfoStatusAndCalibrationFromTheStandIn) {
+  struct Case {
+    const char* capture;
+    const char* angles;
+    const char* model;
+    int product_model, lines, temperatures;
+    std::size_t rpm_offset;  // motor speed u16 LE: QT128C2X tail (1061) + 13, Pandar64 tail (1172) + 8
+  };
+  // Product models: nebula nebula_model_to_hesai_model_no; temperatures: 9 in the QT128's status
+  // (nebula HesaiLidarStatusQT128), 8 in the Pandar64's (HesaiLidarStatus_XT_40p).
+  for (const Case& c : {Case{"qt128c2x_dual.pcap", "calibration/qt128c2x_unit_a_angles.csv", "QT128C2X", 32, 128, 9, 1074},
+                        Case{"pandar64_dual.pcap", "calibration/pandar64_unit_a_angles.csv", "Pandar64", 2, 64, 8, 1180}}) {
+    SCOPED_TRACE(c.model);
+    StandIn s(c.capture, "127.0.0.1", std::string("--to 127.0.0.1:9 --rate 0.05 --quiet --calibration ") + data_path(c.angles));
+    ASSERT_NE(s.port(), 0) << s.stderr_text();
+    const std::string at = " 127.0.0.1 --ptc-port " + std::to_string(s.port());
+    const Ran info = run("sensor info" + at + " --json");
+    ASSERT_EQ(info.status, 0) << info.err;
+    for (const char* kv : {"\"serial\":\"STANDIN\"", "\"manufacture_date\":\"2026-11-25\"", "\"mac\":\"02:00:00:00:00:01\"",
+                           "\"software_version\":\"standin\"", "\"hardware_version\":\"standin\"",
+                           "\"control_firmware\":\"standin\"", "\"sensor_firmware\":\"standin\""})
+      EXPECT_NE(info.out.find(kv), std::string::npos) << kv << " in " << info.out;
+    EXPECT_NE(info.out.find(std::string("\"model\":\"") + c.model + "\""), std::string::npos) << info.out;
+    EXPECT_EQ(json_number(info.out, "product_model"), c.product_model);
+    EXPECT_EQ(json_number(info.out, "lines"), c.lines);
+
+    const Ran status = run("sensor status" + at + " --json");
+    ASSERT_EQ(status.status, 0) << status.err;
+    const std::size_t t0 = status.out.find("\"temperatures_c\":[");
+    ASSERT_NE(t0, std::string::npos) << status.out;
+    const std::string temps = status.out.substr(t0, status.out.find(']', t0) - t0);
+    std::string expected = "\"temperatures_c\":[25.00";
+    for (int i = 1; i < c.temperatures; ++i) expected += ",25.00";
+    EXPECT_EQ(temps, expected);
+    // The stand-in reports the motor speed of the capture's first packet.
+    const auto first = hesai_test::pcap_payloads(c.capture)[0];
+    EXPECT_EQ(json_number(status.out, "motor_speed_rpm"), first[c.rpm_offset] | first[c.rpm_offset + 1] << 8);
+    for (const char* key : {"uptime_s", "startups", "operating_time"}) EXPECT_GE(json_number(status.out, key), 0) << key;
+    for (const char* key : {"\"gps_pps_locked\":false", "\"gprmc_valid\":false", "\"ptp_status\":\"free run\""})
+      EXPECT_NE(status.out.find(key), std::string::npos) << key;
+
+    const std::string out = temp_path("calibration.csv");
+    const Ran cal = run("sensor calibration" + at + " --out " + out);
+    ASSERT_EQ(cal.status, 0) << cal.err;
+    EXPECT_EQ(slurp(out), slurp(data_path(c.angles)));  // byte for byte
+    EXPECT_NE(cal.err.find(std::string("fits the ") + c.model), std::string::npos) << cal.err;
+    std::remove(out.c_str());
+
+    // No firing-time file given to the stand-in: the sensor's error code, by name, exit 2.
+    const Ran fire = run("sensor firetimes" + at + " --out " + out);
+    EXPECT_EQ(fire.status, 2);
+    EXPECT_NE(fire.err.find("'unsupported command' (return code 5)"), std::string::npos) << fire.err;
+    EXPECT_NE(fire.err.find("127.0.0.1:" + std::to_string(s.port())), std::string::npos) << fire.err;
+    EXPECT_NE(fire.err.find("0xA9"), std::string::npos) << fire.err;
+  }
+}
+
+// listen --sensor against a QT128 stand-in that signs from the session's start: the calibration
+// and firing times come over PTC and are applied (the CSV equals 'decode' with those files), every
+// packet's signature verifies, and datagrams from another address are dropped and counted.
+TEST(Sensor, ListenFetchesCalibrationAndVerifiesEverySignature) {
+  const int port = free_udp_port();
+  ASSERT_NE(port, 0);
+  const std::string secret = secret_file(), csv = temp_path("listen.csv");
+  const std::string listen = cli() + " listen --bind 127.0.0.1 --port " + std::to_string(port) +
+                             " --gps-port 0 --sensor 127.0.0.3 --ptc-port PTC --secret-file " + secret +
+                             " --count 1800 --seconds 60 --idle 5 --format csv --out " + csv + " --json --quiet";
+  StandIn s("qt128c2x_dual.pcap", "127.0.0.3",
+            "--to 127.0.0.1:" + std::to_string(port) + " --rate 4 --loop 2 --quiet --wait-for-session --secret-file " + secret +
+                " --calibration " + kQtAngles + " --firetimes " + kQtFiretimes);
+  ASSERT_NE(s.port(), 0) << s.stderr_text();
+  std::string cmd = listen;
+  cmd.replace(cmd.find("PTC"), 3, std::to_string(s.port()));
+  const std::string listen_err = temp_path("listen_err");
+  FILE* l = popen(("env -u HESAI_SECRET " + cmd + " 2>" + listen_err).c_str(), "r");
+  ASSERT_NE(l, nullptr);
+  // Bound (it says whom it asks over PTC only after binding its sockets). wait_for_listener() would
+  // also see the stand-in's socket, which is connected to the same port.
+  for (int i = 0; i < 400 && slurp(listen_err).find("sensor 127.0.0.3:") == std::string::npos; ++i) usleep(25000);
+  ASSERT_NE(slurp(listen_err).find("sensor 127.0.0.3:"), std::string::npos);
+  // Five datagrams from another address of the loopback: a spoofed stream on the same port.
+  const auto packets = hesai_test::pcap_payloads("qt128c2x_dual.pcap");
+  const int spoof = socket(AF_INET, SOCK_DGRAM, 0);
+  sockaddr_in from{}, to{};
+  from.sin_family = to.sin_family = AF_INET;
+  inet_pton(AF_INET, "127.0.0.2", &from.sin_addr);
+  inet_pton(AF_INET, "127.0.0.1", &to.sin_addr);
+  to.sin_port = htons(static_cast<std::uint16_t>(port));
+  ASSERT_EQ(bind(spoof, reinterpret_cast<const sockaddr*>(&from), sizeof from), 0);
+  for (int i = 0; i < 5; ++i)
+    ASSERT_EQ(sendto(spoof, packets[static_cast<std::size_t>(i)].data(), packets[0].size(), 0,
+                     reinterpret_cast<const sockaddr*>(&to), sizeof to),
+              static_cast<ssize_t>(packets[0].size()));
+  close(spoof);
+  std::string out;
+  char buf[4096];
+  std::size_t n;
+  while ((n = std::fread(buf, 1, sizeof buf, l)) > 0) out.append(buf, n);
+  EXPECT_EQ(pclose(l), 0) << slurp(listen_err);
+  const std::string err = slurp(listen_err);
+  EXPECT_EQ(s.wait(), 0);
+  EXPECT_EQ(json_number(out, "packets"), 1800) << out << err;
+  EXPECT_EQ(json_number(out, "signature_valid"), 1800) << out;
+  EXPECT_EQ(json_number(out, "signature_invalid"), 0);
+  EXPECT_EQ(json_number(out, "signature_missing"), 0);
+  EXPECT_EQ(json_number(out, "foreign_packets"), 5);
+  EXPECT_EQ(json_number(out, "crc_errors"), 0);
+  EXPECT_NE(err.find("calibration: 3595 bytes, fits the QT128C2X"), std::string::npos) << err;
+  EXPECT_NE(err.find("signature session started"), std::string::npos) << err;
+  EXPECT_NE(err.find("signature session stopped"), std::string::npos) << err;
+  // The stand-in's session is over: it says so when asked.
+  // The points: those of 'decode' with the two files the sensor served.
+  const Ran decoded = run("decode " + data_path("qt128c2x_dual.pcap") + " --calibration " + kQtAngles + " --firetimes " +
+                          kQtFiretimes + " --format csv");
+  ASSERT_EQ(decoded.status, 0);
+  const std::string live = slurp(csv);
+  EXPECT_GT(live.size(), 1000000u);
+  EXPECT_TRUE(live == decoded.out) << "listen's CSV differs from decode's with the downloaded files";
+  std::remove(csv.c_str());
+  std::remove(listen_err.c_str());
+  std::remove(secret.c_str());
+}
+
+// 'sensor signature start' writes the session key (mode 0600); with it, a listener that knows
+// nothing of PTC verifies every packet the stand-in signs in that session; 'signature status'
+// and 'stop' follow the session.
+TEST(Sensor, SignatureStartWritesAKeyThatVerifiesTheSession) {
+  const int port = free_udp_port();
+  ASSERT_NE(port, 0);
+  const std::string secret = secret_file(), key = temp_path("session.key");
+  StandIn s("qt128c2x_dual.pcap", "127.0.0.1",
+            "--to 127.0.0.1:" + std::to_string(port) + " --rate 1 --loop 20 --quiet --wait-for-session --secret-file " + secret);
+  ASSERT_NE(s.port(), 0) << s.stderr_text();
+  const std::string at = " 127.0.0.1 --ptc-port " + std::to_string(s.port());
+  EXPECT_EQ(run("sensor signature status" + at).out, "signature off\n");
+  const Ran start = run("sensor signature start" + at + " --secret-file " + secret + " --session-key-out " + key);
+  ASSERT_EQ(start.status, 0) << start.err;
+  struct stat st {};
+  ASSERT_EQ(stat(key.c_str(), &st), 0);
+  EXPECT_EQ(st.st_mode & 0777, 0600u);
+  EXPECT_EQ(slurp(key).size(), 65u);  // 64 hex digits and a line feed
+  // The stand-in now signs and sends; a listener started after it verifies what it receives.
+  FILE* l = popen(("env -u HESAI_SECRET " + cli() + " listen --bind 127.0.0.1 --port " + std::to_string(port) +
+                   " --gps-port 0 --session-key-file " + key + " --count 1000 --seconds 60 --idle 2 --json --quiet 2>/dev/null")
+                      .c_str(),
+                  "r");
+  ASSERT_NE(l, nullptr);
+  std::string out;
+  char buf[4096];
+  std::size_t n;
+  while ((n = std::fread(buf, 1, sizeof buf, l)) > 0) out.append(buf, n);
+  pclose(l);
+  EXPECT_EQ(run("sensor signature status" + at).out, "signature on\n");
+  // Whatever reached the listener was signed under the key the file holds, none unsigned.
+  EXPECT_GT(json_number(out, "packets"), 0) << out;
+  EXPECT_EQ(json_number(out, "signature_valid"), json_number(out, "packets")) << out;
+  EXPECT_EQ(json_number(out, "signature_invalid"), 0);
+  EXPECT_EQ(run("sensor signature stop" + at).status, 0);
+  EXPECT_EQ(run("sensor signature status" + at).out, "signature off\n");
+  std::remove(key.c_str());
+  std::remove(secret.c_str());
+}
+
+// A one-connection PTC server that answers the first request with `reply` (then, if `hang`, stays
+// silent until the client gives up; otherwise closes).
+class HostileServer {
+ public:
+  explicit HostileServer(std::vector<std::uint8_t> reply, bool hang) : reply_(std::move(reply)), hang_(hang) {
+    fd_ = socket(AF_INET, SOCK_STREAM, 0);
+    sockaddr_in sa{};
+    sa.sin_family = AF_INET;
+    sa.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+    socklen_t len = sizeof sa;
+    if (bind(fd_, reinterpret_cast<const sockaddr*>(&sa), sizeof sa) != 0 || listen(fd_, 1) != 0 ||
+        getsockname(fd_, reinterpret_cast<sockaddr*>(&sa), &len) != 0)
+      return;
+    port_ = ntohs(sa.sin_port);
+    thread_ = std::thread([this] {
+      const int c = accept(fd_, nullptr, nullptr);
+      if (c < 0) return;
+      std::uint8_t header[8];
+      if (recv(c, header, sizeof header, MSG_WAITALL) == 8 && !reply_.empty())
+        (void)!send(c, reply_.data(), reply_.size(), MSG_NOSIGNAL);
+      if (hang_) {
+        std::uint8_t b;
+        while (!done_ && recv(c, &b, 1, MSG_DONTWAIT) != 0) usleep(10000);
+      }
+      close(c);
+    });
+  }
+  ~HostileServer() {
+    done_ = true;
+    shutdown(fd_, SHUT_RDWR);
+    close(fd_);
+    if (thread_.joinable()) thread_.join();
+  }
+  int port() const { return port_; }
+
+ private:
+  std::vector<std::uint8_t> reply_;
+  bool hang_;
+  int fd_ = -1;
+  int port_ = 0;
+  std::atomic<bool> done_{false};
+  std::thread thread_;
+};
+
+std::vector<std::uint8_t> header(std::uint8_t c0, std::uint8_t c1, std::uint8_t command, std::uint8_t code, std::uint32_t length) {
+  return {c0, c1, command, code, static_cast<std::uint8_t>(length >> 24), static_cast<std::uint8_t>(length >> 16),
+          static_cast<std::uint8_t>(length >> 8), static_cast<std::uint8_t>(length)};
+}
+
+TEST(Sensor, HostileSensorsEndInTimeWithANamedError) {
+  struct Case {
+    const char* name;
+    std::vector<std::uint8_t> reply;
+    bool hang;
+    const char* message;
+  };
+  std::vector<std::uint8_t> cut = header(0x47, 0x74, 0x07, 0, 120);
+  cut.resize(cut.size() + 10, 'x');  // 10 of the 120 bytes announced, then the connection ends
+  const std::vector<Case> cases = {
+      {"magic", header('X', 'Y', 0x07, 0, 0), false, "does not start with 47 74 (got 0x58 0x59)"},
+      {"echo", header(0x47, 0x74, 0x09, 0, 0), false, "echoes command 0x09"},
+      // 4 GiB - 16 announced: refused before any of it is stored.
+      {"length", header(0x47, 0x74, 0x07, 0, 0xFFFFFFF0u), true, "announces 4294967280 bytes, above this command's bound of 4096"},
+      {"silence", {}, true, "no response header within 1.0 s"},
+      {"cut_short", cut, false, "closed the connection within the response payload (120 bytes announced)"},
+      {"error_code", header(0x47, 0x74, 0x07, 3, 0), false, "answered 'invalid data' (return code 3)"},
+  };
+  const double timeout = 1.0;
+  for (const Case& c : cases) {
+    SCOPED_TRACE(c.name);
+    HostileServer server(c.reply, c.hang);
+    ASSERT_NE(server.port(), 0);
+    const Ran r = run("sensor info 127.0.0.1 --ptc-port " + std::to_string(server.port()) + " --timeout 1");
+    EXPECT_EQ(r.status, 2) << r.err;
+    EXPECT_LT(r.seconds, timeout + 1.0);
+    EXPECT_NE(r.err.find(c.message), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("127.0.0.1:" + std::to_string(server.port()) + ": command 0x07 (inventory)"), std::string::npos)
+        << r.err;
+    // Memory: the program stays small whatever the sensor announces (4 GiB allocated nothing).
+    EXPECT_LT(r.max_rss_kib, 32 * 1024);
+  }
+}
+
+TEST(Sensor, UnreachableAndUsage) {
+  // A port nobody listens on (bound, then closed).
+  const int fd = socket(AF_INET, SOCK_STREAM, 0);
+  sockaddr_in sa{};
+  sa.sin_family = AF_INET;
+  sa.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+  socklen_t len = sizeof sa;
+  ASSERT_EQ(bind(fd, reinterpret_cast<const sockaddr*>(&sa), sizeof sa), 0);
+  getsockname(fd, reinterpret_cast<sockaddr*>(&sa), &len);
+  const int port = ntohs(sa.sin_port);
+  close(fd);
+  const Ran r = run("sensor status 127.0.0.1 --ptc-port " + std::to_string(port) + " --timeout 1");
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find("cannot connect: Connection refused"), std::string::npos) << r.err;
+  EXPECT_EQ(run("sensor").status, 1);
+  EXPECT_EQ(run("sensor info").status, 1);
+  EXPECT_EQ(run("sensor calibration 127.0.0.1").status, 1);  // --out is required
+  EXPECT_EQ(run("sensor signature 127.0.0.1").status, 1);
+  EXPECT_EQ(run("sensor info 127.0.0.1 --ptc-port 70000").status, 1);
+  const Ran listen = run("listen --sensor 127.0.0.1 --ptc-port " + std::to_string(port) + " --timeout 1 --port " +
+                         std::to_string(free_udp_port()) + " --bind 127.0.0.1 --gps-port 0 --quiet");
+  EXPECT_EQ(listen.status, 2);
+  EXPECT_NE(listen.err.find("cannot connect"), std::string::npos) << listen.err;
+}
+
+}  // namespace
