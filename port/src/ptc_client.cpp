@@ -135,6 +135,7 @@ PtcResult PtcClient::fail(PtcOutcome outcome, ptc::Command command, const std::s
 }
 
 PtcResult PtcClient::request(ptc::Command command, ByteView payload, std::vector<std::uint8_t>& response) {
+  std::lock_guard<std::mutex> lock(mutex_);
   response.clear();
   const std::int64_t timeout_ns = static_cast<std::int64_t>(timeout_ms_) * 1000000;
   if (!transport_) {

@@ -122,9 +122,9 @@ Error parse_inventory(ByteView payload, Inventory& out) noexcept {
   copy_text(p + kInvHardware, kInvVersionBytes, inv.hardware_version);
   copy_text(p + kInvControlFirmware, kInvVersionBytes, inv.control_firmware);
   copy_text(p + kInvSensorFirmware, kInvVersionBytes, inv.sensor_firmware);
-  inv.zero_angle_offset = load_be_i16(p + kInvCommonBytes);  // both layouts start with it
   const bool qt128 = payload.size >= kInvQt128Bytes && p[kInvQt128Model] == product_number(Model::qt128c2x) &&
                      p[kInvQt128Lines] == channel_count(Model::qt128c2x);
+  if (qt128 || payload.size >= kInvBytes) inv.zero_angle_offset = load_be_i16(p + kInvCommonBytes);  // both layouts start with it
   if (qt128) {
     inv.has_model = true;
     inv.product_model = p[kInvQt128Model];
@@ -135,8 +135,6 @@ Error parse_inventory(ByteView payload, Inventory& out) noexcept {
     inv.product_model = p[kInvModel];
     inv.motor_type = p[kInvMotor];
     inv.lines = p[kInvLines];
-  } else {
-    inv.zero_angle_offset = 0;
   }
   inv.model = inv.has_model ? model_from_product_number(inv.product_model) : Model::unknown;
   out = inv;

@@ -14,6 +14,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <mutex>
 #include <string>
 #include <vector>
 
@@ -76,10 +77,14 @@ class PtcClient {
   PtcClient(std::string host, std::uint16_t port = ptc::kDefaultPort, int timeout_ms = kDefaultTimeoutMs);
 
   /// Sends `command` with `payload` and reads the answer's payload into `response` (resized to
-  /// the announced length, which is at most ptc::max_response_bytes(command)).
+  /// the announced length, which is at most ptc::max_response_bytes(command)). Requests from
+  /// several threads are serialised: one is on the wire at a time.
   PtcResult request(ptc::Command command, ByteView payload, std::vector<std::uint8_t>& response);
   /// Closes the connection (the next request opens another).
-  void close() { transport_.reset(); }
+  void close() {
+    std::lock_guard<std::mutex> lock(mutex_);
+    transport_.reset();
+  }
 
   const std::string& host() const { return host_; }
   std::uint16_t port() const { return port_; }
@@ -91,6 +96,7 @@ class PtcClient {
   std::uint16_t port_;
   int timeout_ms_;
   std::unique_ptr<PtcTransport> transport_;  // connected, or null
+  std::mutex mutex_;                         // one request on the wire at a time
 };
 
 }  // namespace hesai::port
