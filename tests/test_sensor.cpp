@@ -373,18 +373,25 @@ TEST(Sensor, HostileSensorsEndInTimeWithANamedError) {
       {"error_code", header(0x47, 0x74, 0x07, 3, 0), false, "answered 'invalid data' (return code 3)"},
   };
   const double timeout = 1.0;
+#if defined(HESAI_CLI_EMULATOR)
+  const double slack = 5.0;  // qemu-user starts the program slowly; natively the bound is 1 s
+#else
+  const double slack = 1.0;
+#endif
   for (const Case& c : cases) {
     SCOPED_TRACE(c.name);
     HostileServer server(c.reply, c.hang);
     ASSERT_NE(server.port(), 0);
     const Ran r = run("sensor info 127.0.0.1 --ptc-port " + std::to_string(server.port()) + " --timeout 1");
     EXPECT_EQ(r.status, 2) << r.err;
-    EXPECT_LT(r.seconds, timeout + 1.0);
+    EXPECT_LT(r.seconds, timeout + slack);
     EXPECT_NE(r.err.find(c.message), std::string::npos) << r.err;
     EXPECT_NE(r.err.find("127.0.0.1:" + std::to_string(server.port()) + ": command 0x07 (inventory)"), std::string::npos)
         << r.err;
+#if !defined(HESAI_CLI_EMULATOR)  // under qemu-user the resident set is the emulator's
     // Memory: the program stays small whatever the sensor announces (4 GiB allocated nothing).
     EXPECT_LT(r.max_rss_kib, 32 * 1024);
+#endif
   }
 }
 

@@ -433,7 +433,8 @@ int SensorLink::fetch(const DecodeOptions& options, Pipeline& pipeline, std::str
 
 int SensorLink::start_session(const std::string& secret, Pipeline& pipeline, std::string& error) {
   if (model_ != Model::qt128c2x) {
-    std::fprintf(stderr, "signature: the %s signs no packets; no session started\n", model_name(model_));
+    if (model_ == Model::unknown) std::fprintf(stderr, "signature: the unit's inventory names no model we know; no session started\n");
+    else std::fprintf(stderr, "signature: the %s signs no packets; no session started\n", model_name(model_));
     return kExitOk;
   }
   std::uint8_t key[32];
