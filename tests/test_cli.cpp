@@ -510,6 +510,9 @@ TEST_P(CliRotationAuto, FirstPacketsInTheFrameOfTheirRotation) {
       const std::string what = std::string(cw ? "clockwise" : "mirrored") + " cut " + cut_arg;
       const CmdResult out = run("decode " + path + " --quiet --out - --rotation auto --cut-angle " + cut_arg);
       ASSERT_EQ(out.status, 0) << what << ": " << out.err;
+      // And the same rows, byte for byte, as with the direction given.
+      const CmdResult set = run("decode " + path + " --quiet --out - --rotation " + (cw ? "cw" : "ccw") + " --cut-angle " + cut_arg);
+      EXPECT_EQ(out.out, set.out) << what;
 
       // Unwrapped position of every block, past the first cut.
       std::vector<std::vector<double>> block_at(kHead);
@@ -569,6 +572,40 @@ INSTANTIATE_TEST_SUITE_P(Bundled, CliRotationAuto,
                                            HeadCase{"pandar_xt32.pcap", Model::pandar_xt32},
                                            HeadCase{"pandar_xt32m2x.pcap", Model::pandar_xt32m2x}),
                          [](const auto& i) { return std::string(model_name(i.param.model)); });
+
+// A sensor whose direction never shows (a stationary motor: every block azimuth the same) has its
+// packets held, then released in the assumed direction, clockwise: the oldest once the hold is
+// full (Pipeline::kHeldPackets), the rest at the end of the input. Either way every packet's
+// points come out, in packet order, as with --rotation cw: 20 packets (released while streaming)
+// and 5 (all at the end).
+TEST(Cli, UndecidedPacketsAreReleasedInOrder) {
+  const auto real = pcap_payloads("qt128c2x_dual.pcap");
+  ASSERT_GE(real.size(), 20u);
+  const std::string dir = temp_dir();
+  for (const std::size_t n : {std::size_t{20}, std::size_t{5}}) {
+    std::vector<std::vector<std::uint8_t>> still;
+    std::size_t raw_points = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+      std::vector<std::uint8_t> p = real[i];
+      for (std::size_t b = 0; b < 2; ++b) {
+        store_le16(&p[12 + b * 514], 1000);
+        for (std::size_t c = 0; c < 128; ++c) raw_points += load_le16(&p[12 + b * 514 + 2 + c * 4]) >= 2;
+      }
+      qt128_seal(p);
+      still.push_back(p);
+    }
+    const std::string path = dir + "/still" + std::to_string(n) + ".pcap";
+    write_pcap(path, still);
+    const CmdResult automatic = run("decode " + path + " --quiet --out - --rotation auto");
+    const CmdResult cw = run("decode " + path + " --quiet --out - --rotation cw");
+    ASSERT_EQ(automatic.status, 0) << automatic.err;
+    EXPECT_EQ(automatic.out, cw.out) << n << " packets";
+    EXPECT_EQ(static_cast<std::size_t>(std::count(automatic.out.begin(), automatic.out.end(), '\n')), raw_points + 1)
+        << n << " packets (rows and the header)";
+    const CmdResult text = run("stats " + path);
+    EXPECT_NE(text.out.find("clockwise (assumed: not detected)"), std::string::npos) << text.out;
+  }
+}
 
 TEST(Cli, PacketRangeAndRangeFilter) {
   const std::string dir = temp_dir();
