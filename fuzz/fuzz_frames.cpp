@@ -96,7 +96,7 @@ Totals run(hesai::ByteView in) {
     const bool stall = monitor.observe(info.safety, info.time_ns);
     check(!stall || monitor.stalled());
     hesai::count_safety(summed, info.safety, stall);
-    if (detect && detector.observe(info.block_azimuth[0])) {
+    if (detect && detector.observe(info)) {
       check(detector.known());
       frames.set_rotation(detector.rotation());
       for (hesai::Decoder& other : decoders) other.set_rotation(detector.rotation());

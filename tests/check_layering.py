@@ -33,7 +33,7 @@ HEADERS = {  # public header (under core/include/hesai/) -> concern
     'pandar64_packet.h': 'sensors', 'qt128_packet.h': 'sensors', 'xt_packet.h': 'sensors', 'tables/': 'sensors',
     'qt64_packet.h': 'sensors',
     'frame.h': 'streams', 'sequence.h': 'streams', 'stats.h': 'streams', 'safety.h': 'streams',
-    'rotation.h': 'streams',
+    'rotation.h': 'streams', 'held_packets.h': 'streams',
     'hesai.h': 'capi',
 }
 INCLUDE = re.compile(r'^\s*#\s*include\s+"([^"]+)"')

@@ -244,21 +244,45 @@ inline GpsBytes gps_rmc40() {
   return p;
 }
 
-/// A real packet as a counter-clockwise unit would have sent it: each block azimuth a replaced by
-/// 36000 - a (0 stays 0), so the azimuths fall packet after packet; the QT128's CRCs recomputed
-/// (its signature bytes, all zero in the bundled capture, are left as they are). Block layouts:
+/// Where a model's block azimuths lie: the first at `first`, then one every `stride` bytes.
 /// Pandar40 manual Section 3.1.2 (10 blocks of 124 bytes, azimuth after the 2-byte preamble; the
 /// 40P the same), Pandar64 manual Section 3.1.2 (8-byte header, 6 blocks of 194 bytes), QT128C2X
-/// manual Section 3.1.2 (12-byte header, 2 blocks of 514 bytes).
+/// manual Section 3.1.2 (12-byte header, 2 blocks of 514 bytes), PandarQT64 protocol 3.1 (12-byte
+/// header, 4 blocks of 2 + 64 x 4 bytes), PandarXT protocol 6.1 (12-byte header, blocks of 2 +
+/// lasers x 4 bytes: 8 of 66 on the XT16, 8 of 130 on the XT32, 6 of 130 on the XT32M2X).
+struct BlockLayout {
+  std::size_t first, stride, blocks;
+};
+inline BlockLayout block_layout(hesai::Model model) {
+  switch (model) {
+    case hesai::Model::pandar64: return {8, 194, 6};
+    case hesai::Model::qt128c2x: return {12, 514, 2};
+    case hesai::Model::pandar_qt64: return {12, 258, 4};
+    case hesai::Model::pandar_xt16: return {12, 66, 8};
+    case hesai::Model::pandar_xt32: return {12, 130, 8};
+    case hesai::Model::pandar_xt32m2x: return {12, 130, 6};
+    default: return {2, 124, 10};  // Pandar40, Pandar40P
+  }
+}
+
+/// A packet's block azimuths, 0.01 degree, read from its bytes.
+inline std::vector<std::uint16_t> block_azimuths(const std::vector<std::uint8_t>& packet, hesai::Model model) {
+  const BlockLayout l = block_layout(model);
+  std::vector<std::uint16_t> out;
+  for (std::size_t b = 0; b < l.blocks; ++b) out.push_back(hesai::load_le16(&packet[l.first + b * l.stride]));
+  return out;
+}
+
+/// A real packet as a counter-clockwise unit would have sent it: each block azimuth a replaced by
+/// 36000 - a (0 stays 0), so the azimuths fall packet after packet; the QT128's CRCs recomputed
+/// (its signature bytes, all zero in the bundled capture, are left as they are; the PandarQT64's
+/// protocol 3.1 and the PandarXT's 6.1 have no CRC). Layouts: block_layout().
 inline std::vector<std::uint8_t> counterclockwise_copy(const std::vector<std::uint8_t>& packet, hesai::Model model) {
   std::vector<std::uint8_t> p = packet;
-  std::size_t first = 2, stride = 124, blocks = 10;
-  if (model == hesai::Model::pandar64) { first = 8; stride = 194; blocks = 6; }
-  if (model == hesai::Model::qt128c2x) { first = 12; stride = 514; blocks = 2; }
-  if (model == hesai::Model::pandar_qt64) { first = 12; stride = 258; blocks = 4; }  // protocol 3.1: no CRC
-  for (std::size_t b = 0; b < blocks; ++b) {
-    const std::uint16_t a = hesai::load_le16(&p[first + b * stride]);
-    hesai::store_le16(&p[first + b * stride], static_cast<std::uint16_t>((36000 - a) % 36000));
+  const BlockLayout l = block_layout(model);
+  for (std::size_t b = 0; b < l.blocks; ++b) {
+    const std::uint16_t a = hesai::load_le16(&p[l.first + b * l.stride]);
+    hesai::store_le16(&p[l.first + b * l.stride], static_cast<std::uint16_t>((36000 - a) % 36000));
   }
   if (model == hesai::Model::qt128c2x) qt128_seal(p);
   return p;

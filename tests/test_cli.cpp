@@ -409,9 +409,10 @@ INSTANTIATE_TEST_SUITE_P(BundledXt, CliCapture,
 
 // A counter-clockwise unit: the QT128 capture mirrored (every block azimuth a -> 36000 - a).
 // --rotation ccw decodes every packet with the firing-time correction subtracted, as the library
-// does counter-clockwise; auto (the default) the same from the third packet on, the first two
-// (before three packets have shown the direction) with the clockwise correction; cw all of them.
-// The frames follow: stats counts the library's counter-clockwise frames with ccw and with auto.
+// does counter-clockwise; auto (the default) the same from the first packet on (the dual-return
+// QT128C2X's first two packets, which do not show the direction by themselves, are held until
+// the third does); cw all of them with the clockwise correction. The frames follow: stats counts
+// the library's counter-clockwise frames with ccw and with auto.
 TEST(Cli, RotationOption) {
   EXPECT_EQ(run("stats x.pcap --rotation left").status, 1);
   const auto real = pcap_payloads("qt128c2x_dual.pcap");
@@ -449,7 +450,7 @@ TEST(Cli, RotationOption) {
       const std::size_t p = std::stoul(col.at(1));
       if (p != packet) k = 0;
       packet = p;
-      const bool ccw = std::string(mode) == "ccw" || (std::string(mode) == "auto" && p >= 2);
+      const bool ccw = std::string(mode) != "cw";
       ASSERT_LT(k, by_packet[ccw][p].size());
       EXPECT_NEAR(std::stod(col.at(5)), by_packet[ccw][p][k++], 0.0006) << mode << " packet " << p;
       ++checked;
@@ -463,6 +464,147 @@ TEST(Cli, RotationOption) {
   }
   const CmdResult text = run("stats " + dir + "/ccw.pcap");
   EXPECT_NE(text.out.find("counterclockwise (detected)"), std::string::npos) << text.out;
+}
+
+// ---- --rotation auto from the first packet ----
+
+struct HeadCase {
+  const char* file;
+  Model model;
+};
+
+void PrintTo(const HeadCase& c, std::ostream* os) { *os << model_name(c.model); }
+
+class CliRotationAuto : public ::testing::TestWithParam<HeadCase> {};
+
+// With --rotation auto (the default), the frames of a stream are right from its first packet,
+// in either direction: the capture as recorded (clockwise) and mirrored (every block azimuth
+// a -> 36000 - a: a counter-clockwise unit) are cut at several angles, among them the captures'
+// own start and cuts that the first packets straddle, and every point of their first kHead
+// packets must be in the frame of its own rotation by this test's reckoning: it unwraps the
+// block azimuths read from the packets' bytes (each move forward in the direction the test made
+// the capture spin, from the first block's distance past the cut), places each point at its
+// block plus the short way to its own azimuth (the CSV's), and takes the rotation
+// floor(position / 360). Frame ids must be the rotations plus one offset, the same for every
+// point (a point within 0.001 degree of a cut may fall either side: the CSV has three decimals).
+TEST_P(CliRotationAuto, FirstPacketsInTheFrameOfTheirRotation) {
+  constexpr std::size_t kHead = 40;
+  const HeadCase& c = GetParam();
+  const auto recorded = pcap_payloads(c.file);
+  ASSERT_GE(recorded.size(), kHead);
+  const std::string dir = temp_dir();
+  for (const bool cw : {true, false}) {
+    std::vector<std::vector<std::uint8_t>> head;
+    for (std::size_t i = 0; i < kHead; ++i) head.push_back(cw ? recorded[i] : counterclockwise_copy(recorded[i], c.model));
+    const std::string path = dir + (cw ? "/cw.pcap" : "/ccw.pcap");
+    write_pcap(path, head);
+    auto forward = [cw](double from, double to) { return std::fmod((cw ? to - from : from - to) + 72000.0, 36000.0); };
+    // Cuts, 0.01 degree: 0; 0.3 degree behind and ahead of the first block (the stream starts
+    // just past the cut, or the first packets cross it); a quarter turn from the first block.
+    const double a0 = block_azimuths(head[0], c.model)[0];
+    const double sign = cw ? 1.0 : -1.0;
+    for (const double cut_cdeg : {0.0, a0 - sign * 30.0, a0 + sign * 30.0, a0 + 9000.0}) {
+      const double cut = std::fmod(cut_cdeg + 72000.0, 36000.0);
+      char cut_arg[32];
+      std::snprintf(cut_arg, sizeof cut_arg, "%.2f", cut / 100.0);
+      const std::string what = std::string(cw ? "clockwise" : "mirrored") + " cut " + cut_arg;
+      const CmdResult out = run("decode " + path + " --quiet --out - --rotation auto --cut-angle " + cut_arg);
+      ASSERT_EQ(out.status, 0) << what << ": " << out.err;
+      // And the same rows, byte for byte, as with the direction given.
+      const CmdResult set = run("decode " + path + " --quiet --out - --rotation " + (cw ? "cw" : "ccw") + " --cut-angle " + cut_arg);
+      EXPECT_EQ(out.out, set.out) << what;
+
+      // Unwrapped position of every block, past the first cut.
+      std::vector<std::vector<double>> block_at(kHead);
+      double at = 0, last = 0;
+      for (std::size_t i = 0; i < kHead; ++i) {
+        for (const std::uint16_t az : block_azimuths(head[i], c.model)) {
+          if (i == 0 && block_at[0].empty()) {
+            at = forward(cut, az);
+          } else {
+            const double move = forward(last, az);
+            ASSERT_LT(move, 18000.0) << "the captures only move forward";
+            at += move;
+          }
+          last = az;
+          block_at[i].push_back(at);
+        }
+      }
+
+      std::istringstream rows(out.out);
+      std::string line;
+      std::getline(rows, line);  // header
+      std::int64_t shift = 0;
+      bool have_shift = false;
+      std::size_t checked = 0;
+      while (std::getline(rows, line)) {
+        std::vector<std::string> col;
+        std::istringstream cells(line);
+        for (std::string cell; std::getline(cells, cell, ',');) col.push_back(cell);
+        ASSERT_GE(col.size(), 6u) << line;
+        const std::int64_t id = std::stoll(col[0]);
+        const std::size_t packet = std::stoul(col[1]);
+        const std::size_t block = std::stoul(col[2]);
+        ASSERT_LT(packet, kHead);
+        ASSERT_LT(block, block_at[packet].size());
+        const double block_az = block_azimuths(head[packet], c.model)[block];
+        const double off = std::fmod(std::stod(col[5]) * 100.0 - block_az + 54000.0, 36000.0) - 18000.0;  // clockwise, short way
+        const double point_at = block_at[packet][block] + (cw ? off : -off);
+        if (std::fabs(point_at - 36000.0 * std::round(point_at / 36000.0)) < 0.1) continue;  // on a cut
+        const std::int64_t rotation = static_cast<std::int64_t>(std::floor(point_at / 36000.0));
+        if (!have_shift) shift = id - rotation;
+        have_shift = true;
+        ASSERT_EQ(id - rotation, shift) << what << ": packet " << packet << " block " << block << " channel " << col[3]
+                                        << ", " << point_at / 100.0 << " degrees past the first cut";
+        ++checked;
+      }
+      EXPECT_GT(checked, 0u) << what;
+    }
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Bundled, CliRotationAuto,
+                         ::testing::Values(HeadCase{"pandar40p_dual.pcap", Model::pandar40p},
+                                           HeadCase{"pandar64_dual.pcap", Model::pandar64},
+                                           HeadCase{"qt128c2x_dual.pcap", Model::qt128c2x},
+                                           HeadCase{"pandar_qt64.pcap", Model::pandar_qt64},
+                                           HeadCase{"pandar_xt16.pcap", Model::pandar_xt16},
+                                           HeadCase{"pandar_xt32.pcap", Model::pandar_xt32},
+                                           HeadCase{"pandar_xt32m2x.pcap", Model::pandar_xt32m2x}),
+                         [](const auto& i) { return std::string(model_name(i.param.model)); });
+
+// A sensor whose direction never shows (a stationary motor: every block azimuth the same) has its
+// packets held, then released in the assumed direction, clockwise: the oldest once the hold is
+// full (Pipeline::kHeldPackets), the rest at the end of the input. Either way every packet's
+// points come out, in packet order, as with --rotation cw: 20 packets (released while streaming)
+// and 5 (all at the end).
+TEST(Cli, UndecidedPacketsAreReleasedInOrder) {
+  const auto real = pcap_payloads("qt128c2x_dual.pcap");
+  ASSERT_GE(real.size(), 20u);
+  const std::string dir = temp_dir();
+  for (const std::size_t n : {std::size_t{20}, std::size_t{5}}) {
+    std::vector<std::vector<std::uint8_t>> still;
+    std::size_t raw_points = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+      std::vector<std::uint8_t> p = real[i];
+      for (std::size_t b = 0; b < 2; ++b) {
+        store_le16(&p[12 + b * 514], 1000);
+        for (std::size_t c = 0; c < 128; ++c) raw_points += load_le16(&p[12 + b * 514 + 2 + c * 4]) >= 2;
+      }
+      qt128_seal(p);
+      still.push_back(p);
+    }
+    const std::string path = dir + "/still" + std::to_string(n) + ".pcap";
+    write_pcap(path, still);
+    const CmdResult automatic = run("decode " + path + " --quiet --out - --rotation auto");
+    const CmdResult cw = run("decode " + path + " --quiet --out - --rotation cw");
+    ASSERT_EQ(automatic.status, 0) << automatic.err;
+    EXPECT_EQ(automatic.out, cw.out) << n << " packets";
+    EXPECT_EQ(static_cast<std::size_t>(std::count(automatic.out.begin(), automatic.out.end(), '\n')), raw_points + 1)
+        << n << " packets (rows and the header)";
+    const CmdResult text = run("stats " + path);
+    EXPECT_NE(text.out.find("clockwise (assumed: not detected)"), std::string::npos) << text.out;
+  }
 }
 
 TEST(Cli, PacketRangeAndRangeFilter) {

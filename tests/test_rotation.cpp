@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "hesai/held_packets.h"
 #include "hesai/rotation.h"
 #include "packet_builder.h"
 #include "test_support.h"
@@ -114,30 +115,131 @@ TEST(RotationDetector, NotAnAzimuthIsIgnoredAndResetForgets) {
   EXPECT_FALSE(d.observe(1300));  // no move yet after the reset
 }
 
-// The bundled captures spin clockwise; mirrored, counter-clockwise. Either way the third packet
-// decides and nothing changes after it.
+// A PacketInfo with these block azimuths, `returns` blocks per firing.
+hesai::PacketInfo packet(std::vector<std::uint16_t> azimuths, std::uint8_t returns) {
+  hesai::PacketInfo info;
+  info.returns = returns;
+  info.blocks = static_cast<std::uint8_t>(azimuths.size());
+  for (std::size_t b = 0; b < azimuths.size(); ++b) info.block_azimuth[b] = azimuths[b];
+  return info;
+}
+
+TEST(RotationDetector, OnePacketDecidesByItsFirings) {
+  // Single return, 0.2 degree a firing: three moves of +20.
+  RotationDetector cw;
+  EXPECT_TRUE(cw.observe(packet({100, 120, 140, 160}, 1)));
+  EXPECT_EQ(cw.rotation(), Rotation::clockwise);
+  // Dual return: blocks 0, 2, 4 are the firings, 71 -> 35980 -> 35960 (-91, -20) across 0.
+  RotationDetector ccw;
+  EXPECT_TRUE(ccw.observe(packet({71, 71, 35980, 35980, 35960, 35960}, 2)));
+  EXPECT_EQ(ccw.rotation(), Rotation::counterclockwise);
+  // Triple return, two firings of three blocks: one move of -18 decides.
+  RotationDetector triple;
+  EXPECT_TRUE(triple.observe(packet({900, 900, 900, 882, 882, 882}, 3)));
+  EXPECT_EQ(triple.rotation(), Rotation::counterclockwise);
+}
+
+TEST(RotationDetector, OnePacketWithoutEvidenceDecidesNothing) {
+  // One firing (the dual-return QT128C2X): no move within the packet.
+  RotationDetector one;
+  EXPECT_FALSE(one.observe(packet({1000, 1000}, 2)));
+  EXPECT_FALSE(one.known());
+  // Moves both ways, a move below 0.05 degree, one beyond a quarter turn: no decision.
+  for (const auto& azimuths : {std::vector<std::uint16_t>{100, 120, 110, 130}, std::vector<std::uint16_t>{100, 104, 124, 144},
+                               std::vector<std::uint16_t>{100, 120, 9200, 9220}, std::vector<std::uint16_t>{100, 120, 36000, 140}}) {
+    RotationDetector d;
+    EXPECT_FALSE(d.observe(packet(azimuths, 1))) << azimuths[2];
+    EXPECT_FALSE(d.known());
+    EXPECT_EQ(d.rotation(), Rotation::clockwise);
+  }
+  // Such packets still count between packets: 1000, 1100, 1200 decide at the third.
+  RotationDetector between;
+  EXPECT_FALSE(between.observe(packet({1000, 1000}, 2)));
+  EXPECT_FALSE(between.observe(packet({1100, 1100}, 2)));
+  EXPECT_TRUE(between.observe(packet({1200, 1200}, 2)));
+  EXPECT_EQ(between.rotation(), Rotation::clockwise);
+}
+
+TEST(RotationDetector, AKnownDirectionChangesOnlyBetweenPackets) {
+  RotationDetector d;
+  EXPECT_TRUE(d.observe(packet({1000, 1020, 1040}, 1)));
+  // Packets whose firings fall (-20 each) do not overturn it by themselves; the moves between
+  // their first blocks do, at the eighth of -100 in a row (1000 -> 900 ... 300 -> 200).
+  for (int i = 1; i < 8; ++i)
+    EXPECT_FALSE(d.observe(packet({static_cast<std::uint16_t>(1000 - 100 * i), static_cast<std::uint16_t>(980 - 100 * i)}, 1)));
+  EXPECT_EQ(d.rotation(), Rotation::clockwise);
+  EXPECT_TRUE(d.observe(packet({200, 180}, 1)));
+  EXPECT_EQ(d.rotation(), Rotation::counterclockwise);
+}
+
+// The bundled captures spin clockwise; mirrored, counter-clockwise. By first block azimuths
+// alone the third packet decides; by whole packets the first, except on the dual-return
+// QT128C2X, whose packets are one firing each: the third. Nothing changes after.
 TEST(RotationDetector, BundledCapturesBothWays) {
   const struct {
     const char* file;
     hesai::Model model;
-    std::size_t azimuth;  // offset of block 1's azimuth in the payload
-  } cases[] = {{"pandar40p_dual.pcap", hesai::Model::pandar40p, 2},
-               {"pandar64_dual.pcap", hesai::Model::pandar64, 8},
-               {"qt128c2x_dual.pcap", hesai::Model::qt128c2x, 12}};
+    std::size_t by_packet;  // index of the packet that decides with observe(PacketInfo)
+  } cases[] = {{"pandar40p_dual.pcap", hesai::Model::pandar40p, 0},  {"pandar64_dual.pcap", hesai::Model::pandar64, 0},
+               {"qt128c2x_dual.pcap", hesai::Model::qt128c2x, 2},   {"pandar_qt64.pcap", hesai::Model::pandar_qt64, 0},
+               {"pandar_xt16.pcap", hesai::Model::pandar_xt16, 0},  {"pandar_xt32.pcap", hesai::Model::pandar_xt32, 0},
+               {"pandar_xt32m2x.pcap", hesai::Model::pandar_xt32m2x, 0}};
   for (const auto& c : cases) {
     for (const bool mirrored : {false, true}) {
-      RotationDetector d;
-      std::vector<std::size_t> decided;
+      RotationDetector first_blocks, packets;
+      std::vector<std::size_t> by_first_block, by_packet;
+      hesai::Decoder dec(c.model);
+      hesai::PacketInfo info;
+      hesai::PacketPoints pts;
       std::size_t i = 0;
       for (const auto& recorded : hesai_test::pcap_payloads(c.file)) {
         const auto p = mirrored ? hesai_test::counterclockwise_copy(recorded, c.model) : recorded;
-        if (d.observe(hesai::load_le16(&p[c.azimuth]))) decided.push_back(i);
+        if (first_blocks.observe(hesai_test::block_azimuths(p, c.model)[0])) by_first_block.push_back(i);
+        ASSERT_EQ(dec.decode(hesai_test::view(p), info, pts), hesai::Error::ok);
+        if (packets.observe(info)) by_packet.push_back(i);
         ++i;
       }
-      EXPECT_EQ(decided, (std::vector<std::size_t>{2})) << c.file << (mirrored ? " mirrored" : "");
-      EXPECT_EQ(d.rotation(), mirrored ? Rotation::counterclockwise : Rotation::clockwise) << c.file;
+      const Rotation expected = mirrored ? Rotation::counterclockwise : Rotation::clockwise;
+      EXPECT_EQ(by_first_block, (std::vector<std::size_t>{2})) << c.file << (mirrored ? " mirrored" : "");
+      EXPECT_EQ(first_blocks.rotation(), expected) << c.file;
+      EXPECT_EQ(by_packet, (std::vector<std::size_t>{c.by_packet})) << c.file << (mirrored ? " mirrored" : "");
+      EXPECT_EQ(packets.rotation(), expected) << c.file;
     }
   }
+}
+
+// HeldPackets: first in, first out, at most its capacity, each packet with its tag.
+TEST(HeldPackets, FirstInFirstOutWithinItsCapacity) {
+  hesai::HeldPackets<2> held;
+  const std::vector<std::uint8_t> a{1, 2, 3}, b{4, 5}, c{6};
+  const std::vector<std::uint8_t> too_long(hesai::kMaxPacketBytes + 1, 7);
+  EXPECT_TRUE(held.empty());
+  EXPECT_EQ(held.front().size, 0u);
+  EXPECT_FALSE(held.push(hesai_test::view(too_long), 9));
+  EXPECT_TRUE(held.push(hesai_test::view(a), 10));
+  EXPECT_TRUE(held.push(hesai_test::view(b), 11));
+  EXPECT_TRUE(held.full());
+  EXPECT_FALSE(held.push(hesai_test::view(c), 12));
+  ASSERT_EQ(held.front().size, 3u);
+  EXPECT_EQ(held.front()[2], 3);
+  EXPECT_EQ(held.front_tag(), 10u);
+  held.pop_front();
+  EXPECT_TRUE(held.push(hesai_test::view(c), 12));  // wraps round
+  ASSERT_EQ(held.front().size, 2u);
+  EXPECT_EQ(held.front()[0], 4);
+  EXPECT_EQ(held.front_tag(), 11u);
+  held.pop_front();
+  ASSERT_EQ(held.size(), 1u);
+  EXPECT_EQ(held.front()[0], 6);
+  EXPECT_EQ(held.front_tag(), 12u);
+  held.clear();
+  EXPECT_TRUE(held.empty());
+  held.pop_front();  // nothing to drop
+  EXPECT_EQ(held.size(), 0u);
+  // The longest packet fits.
+  const std::vector<std::uint8_t> longest(hesai::kMaxPacketBytes, 8);
+  EXPECT_TRUE(held.push(hesai_test::view(longest)));
+  EXPECT_EQ(held.front().size, hesai::kMaxPacketBytes);
 }
 
 }  // namespace

@@ -1,12 +1,16 @@
-// Peak memory of the hesai program on a capture of more than 1 GiB, made here from the bundled
-// QT128C2X packets and deleted after: reading it (stats) and decoding it to CSV, one PCD file, one
-// PLY file and one bird's-eye PNG must each stay under 256 MiB of peak resident memory, as the
-// kernel reports it for the child (wait4's rusage: ru_maxrss counts mapped file pages too). The
-// time of each run gives the throughput table of the README; a plain read() is the baseline.
+// Peak memory of the hesai program on captures made here from the bundled QT128C2X packets and
+// deleted after, of 256 MiB and then, the same file grown, of more than 1 GiB: reading each (stats)
+// and decoding it to CSV, one PCD file, one PLY file and one bird's-eye PNG must each stay under
+// 256 MiB of peak resident memory, as the kernel reports it for the child (wait4's rusage:
+// ru_maxrss counts mapped file pages too), and each run's peak on the large capture must lie
+// within 8 MiB of its peak on the small one: memory that grew with the input (a leak, a mapping
+// not released, points kept) would show as 4 x the capture's growth between the two. The time of
+// each run on the large capture gives the throughput table of the README; a plain read() is the
+// baseline.
 //
-// Label "slow" (ctest -L slow). Needs the capture's size free in the temporary directory. The
-// outputs but the PNG go to /dev/null, so that the disk's speed does not count; it is seekable,
-// so the PCD/PLY header is rewritten there as in a file. Native unsanitized builds only.
+// Label "slow" (ctest -L slow). Needs the large capture's size free in the temporary directory.
+// The outputs but the PNG go to /dev/null, so that the disk's speed does not count; it is
+// seekable, so the PCD/PLY header is rewritten there as in a file. Native unsanitized builds only.
 #include <gtest/gtest.h>
 
 #include <fcntl.h>
@@ -27,7 +31,9 @@
 namespace {
 
 constexpr long kMaxRssKb = 256 * 1024;
-constexpr std::uint64_t kCaptureBytes = std::uint64_t{1} << 30;  // at least this much
+constexpr long kMaxGrowthKb = 8 * 1024;  // peak RSS, large capture against small
+constexpr std::uint64_t kSmallBytes = std::uint64_t{1} << 28;  // at least this much: 256 MiB
+constexpr std::uint64_t kLargeBytes = std::uint64_t{1} << 30;  // 1 GiB
 
 struct Child {
   int exit_status = -1;
@@ -64,48 +70,37 @@ long long json_points(const std::string& json) {
   return at == std::string::npos ? -1 : std::stoll(json.substr(at + 9));
 }
 
-TEST(BoundedMemory, DecodesAOneGibCaptureInEveryFormatUnder256MiB) {
-  // The capture: the bundled file's header, then its records again and again.
+// Appends copies of the bundled capture's records to `path` (its header first when `copies_now`
+// is 0) until it holds `copies` of them.
+bool grow_capture(const std::string& path, const std::vector<std::uint8_t>& one, std::uint64_t copies_now, std::uint64_t copies) {
+  std::FILE* f = std::fopen(path.c_str(), copies_now == 0 ? "wb" : "ab");
+  if (f == nullptr) return false;
+  const std::size_t body = one.size() - 24;
+  bool ok = true;
+  if (copies_now == 0) {
+    ok = std::fwrite(one.data(), 1, one.size(), f) == one.size();
+    copies_now = 1;
+  }
+  for (std::uint64_t i = copies_now; ok && i < copies; ++i) ok = std::fwrite(one.data() + 24, 1, body, f) == body;
+  return std::fclose(f) == 0 && ok;
+}
+
+TEST(BoundedMemory, PeakMemoryUnder256MiBAndTheSameAt256MiBAnd1GiB) {
+  // The captures: the bundled file's header, then its records again and again.
   const std::vector<std::uint8_t> one = hesai_test::read_file(hesai_test::data_path("qt128c2x_dual.pcap"));
   ASSERT_GT(one.size(), 24u);
   const std::size_t body = one.size() - 24;
-  const std::uint64_t copies = (kCaptureBytes + body - 1) / body;
-  const std::uint64_t size = 24 + copies * body;
+  const std::uint64_t small_copies = (kSmallBytes + body - 1) / body;
+  const std::uint64_t large_copies = (kLargeBytes + body - 1) / body;
+  const std::uint64_t large_size = 24 + large_copies * body;
   std::string dir = ::testing::TempDir() + "hesai_slow_XXXXXX";
   ASSERT_NE(mkdtemp(&dir[0]), nullptr);
   struct statvfs fs {};
   ASSERT_EQ(statvfs(dir.c_str(), &fs), 0);
   const std::uint64_t free_bytes = std::uint64_t{fs.f_bavail} * fs.f_frsize;
-  ASSERT_GT(free_bytes, size + (std::uint64_t{256} << 20))
-      << "this test writes a " << size / 1048576 << " MiB capture into " << dir << ": free space there first";
+  ASSERT_GT(free_bytes, large_size + (std::uint64_t{256} << 20))
+      << "this test writes a " << large_size / 1048576 << " MiB capture into " << dir << ": free space there first";
   const std::string capture = dir + "/big.pcap";
-  {
-    std::FILE* f = std::fopen(capture.c_str(), "wb");
-    ASSERT_NE(f, nullptr);
-    bool ok = std::fwrite(one.data(), 1, one.size(), f) == one.size();
-    for (std::uint64_t i = 1; ok && i < copies; ++i) ok = std::fwrite(one.data() + 24, 1, body, f) == body;
-    ok = std::fclose(f) == 0 && ok;
-    ASSERT_TRUE(ok) << "cannot write " << capture;
-  }
-
-  // Baseline: read() of the whole file in 1 MiB blocks (from the page cache, as the runs below).
-  double read_seconds = 0, read_cpu = 0;
-  {
-    std::vector<char> buf(1 << 20);
-    rusage before{}, after{};
-    getrusage(RUSAGE_SELF, &before);
-    const auto start = std::chrono::steady_clock::now();
-    const int fd = ::open(capture.c_str(), O_RDONLY);
-    ASSERT_GE(fd, 0);
-    std::uint64_t total = 0;
-    for (ssize_t n; (n = ::read(fd, buf.data(), buf.size())) > 0;) total += static_cast<std::uint64_t>(n);
-    ::close(fd);
-    read_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    getrusage(RUSAGE_SELF, &after);
-    read_cpu = cpu_seconds(after) - cpu_seconds(before);
-    ASSERT_EQ(total, size);
-  }
-
   const std::string json = dir + "/stats.json";
   struct Case {
     const char* name;
@@ -119,28 +114,62 @@ TEST(BoundedMemory, DecodesAOneGibCaptureInEveryFormatUnder256MiB) {
       {"decode ply", {HESAI_CLI_PATH, "decode", capture, "--quiet", "--format", "ply", "--out", "/dev/null"}, "/dev/null"},
       {"decode png", {HESAI_CLI_PATH, "decode", capture, "--quiet", "--format", "png", "--out", dir + "/one.png"}, "/dev/null"},
   };
-  const double mb = static_cast<double>(size) / 1e6;
-  std::printf("%.0f MB capture (%llu copies of qt128c2x_dual.pcap)\n", mb, static_cast<unsigned long long>(copies));
-  // Throughput per CPU second (user + system): what one core gives, whatever else the machine runs.
-  std::printf("| %-10s | %6s | %6s | %11s | %15s | %12s |\n", "run", "wall s", "CPU s", "MB/s (CPU)", "points/s (CPU)",
-              "peak RSS MiB");
-  std::printf("| %-10s | %6.2f | %6.2f | %11.0f | %15s | %12s |\n", "read()", read_seconds, read_cpu, mb / read_cpu, "", "");
-  long long points = -1;
-  for (const Case& c : cases) {
-    const Child r = spawn(c.args, c.out);
-    EXPECT_EQ(r.exit_status, 0) << c.name;
-    EXPECT_GT(r.max_rss_kb, 0) << c.name;
-    EXPECT_LT(r.max_rss_kb, kMaxRssKb) << c.name << ": peak RSS " << r.max_rss_kb / 1024 << " MiB";
-    if (c.out == json) {
-      const std::vector<std::uint8_t> text = hesai_test::read_file(json);
-      points = json_points(std::string(text.begin(), text.end()));
+  std::vector<long> small_rss_kb;
+
+  for (const std::uint64_t copies : {small_copies, large_copies}) {
+    const bool large = copies == large_copies;
+    ASSERT_TRUE(grow_capture(capture, one, large ? small_copies : 0, copies)) << "cannot write " << capture;
+    const std::uint64_t size = 24 + copies * body;
+    const double mb = static_cast<double>(size) / 1e6;
+    std::printf("%.0f MB capture (%llu copies of qt128c2x_dual.pcap)\n", mb, static_cast<unsigned long long>(copies));
+
+    // Throughput per CPU second (user + system): what one core gives, whatever else the machine runs.
+    std::printf("| %-10s | %6s | %6s | %11s | %15s | %12s |\n", "run", "wall s", "CPU s", "MB/s (CPU)", "points/s (CPU)",
+                "peak RSS MiB");
+    if (large) {
+      // Baseline: read() of the whole file in 1 MiB blocks (from the page cache, as the runs below).
+      std::vector<char> buf(1 << 20);
+      rusage before{}, after{};
+      getrusage(RUSAGE_SELF, &before);
+      const auto start = std::chrono::steady_clock::now();
+      const int fd = ::open(capture.c_str(), O_RDONLY);
+      ASSERT_GE(fd, 0);
+      std::uint64_t total = 0;
+      for (ssize_t n; (n = ::read(fd, buf.data(), buf.size())) > 0;) total += static_cast<std::uint64_t>(n);
+      ::close(fd);
+      const double read_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      getrusage(RUSAGE_SELF, &after);
+      const double read_cpu = cpu_seconds(after) - cpu_seconds(before);
+      ASSERT_EQ(total, size);
+      std::printf("| %-10s | %6.2f | %6.2f | %11.0f | %15s | %12s |\n", "read()", read_seconds, read_cpu, mb / read_cpu, "", "");
     }
-    std::printf("| %-10s | %6.2f | %6.2f | %11.0f | %15.3g | %12.1f |\n", c.name, r.seconds, r.cpu_seconds,
-                mb / r.cpu_seconds, static_cast<double>(points) / r.cpu_seconds, static_cast<double>(r.max_rss_kb) / 1024.0);
-    ::testing::Test::RecordProperty(std::string(c.name) + " peak RSS kB", std::to_string(r.max_rss_kb));
+    long long points = -1;
+    for (std::size_t i = 0; i < cases.size(); ++i) {
+      const Case& c = cases[i];
+      const Child r = spawn(c.args, c.out);
+      EXPECT_EQ(r.exit_status, 0) << c.name;
+      EXPECT_GT(r.max_rss_kb, 0) << c.name;
+      EXPECT_LT(r.max_rss_kb, kMaxRssKb) << c.name << ": peak RSS " << r.max_rss_kb / 1024 << " MiB";
+      if (!large) {
+        small_rss_kb.push_back(r.max_rss_kb);
+      } else {
+        const long growth = r.max_rss_kb - small_rss_kb[i];
+        EXPECT_LT(growth < 0 ? -growth : growth, kMaxGrowthKb)
+            << c.name << ": peak RSS " << small_rss_kb[i] << " kB on " << small_copies << " copies, " << r.max_rss_kb
+            << " kB on " << large_copies;
+      }
+      if (c.out == json) {
+        const std::vector<std::uint8_t> text = hesai_test::read_file(json);
+        points = json_points(std::string(text.begin(), text.end()));
+      }
+      std::printf("| %-10s | %6.2f | %6.2f | %11.0f | %15.3g | %12.1f |\n", c.name, r.seconds, r.cpu_seconds,
+                  mb / r.cpu_seconds, static_cast<double>(points) / r.cpu_seconds, static_cast<double>(r.max_rss_kb) / 1024.0);
+      ::testing::Test::RecordProperty(std::string(c.name) + (large ? " 1 GiB" : " 256 MiB") + " peak RSS kB",
+                                      std::to_string(r.max_rss_kb));
+    }
+    // Every packet decodes: 337 108 points per copy (test_golden.cpp counts them in the bundled file).
+    EXPECT_EQ(points, static_cast<long long>(copies) * 337108);
   }
-  // Every packet decodes: 337 108 points per copy (test_golden.cpp counts them in the bundled file).
-  EXPECT_EQ(points, static_cast<long long>(copies) * 337108);
   std::remove(json.c_str());
   std::remove((dir + "/one.png").c_str());
   std::remove(capture.c_str());

@@ -38,4 +38,37 @@ bool RotationDetector::observe(std::uint16_t azimuth_cdeg) noexcept {
   return true;
 }
 
+bool RotationDetector::observe(const PacketInfo& info) noexcept {
+  const std::size_t blocks = info.blocks <= info.block_azimuth.size() ? info.blocks : info.block_azimuth.size();
+  if (blocks == 0) return false;
+  const bool changed = observe(info.block_azimuth[0]);
+  if (known_) return changed;
+
+  // Within the packet: the firings' azimuths, blocks 0, r, 2r... with r blocks per firing.
+  const std::size_t step = info.returns != 0 ? info.returns : 1;
+  int clockwise_moves = 0;
+  int counterclockwise_moves = 0;
+  for (std::size_t b = step; b < blocks; b += step) {
+    const std::uint16_t from = info.block_azimuth[b - step];
+    const std::uint16_t to = info.block_azimuth[b];
+    if (from >= kTurn || to >= kTurn) return false;
+    const std::int32_t move = shortest_move(from, to);
+    const std::int32_t size = move < 0 ? -move : move;
+    if (size < kMinMoveCdeg || size > kMaxMoveCdeg) return false;
+    if (move > 0) {
+      ++clockwise_moves;
+    } else {
+      ++counterclockwise_moves;
+    }
+  }
+  if (clockwise_moves + counterclockwise_moves == 0) return false;  // one firing: no evidence
+  if (clockwise_moves != 0 && counterclockwise_moves != 0) return false;
+  const bool clockwise = clockwise_moves != 0;
+  known_ = true;
+  rotation_ = clockwise ? Rotation::clockwise : Rotation::counterclockwise;
+  if (run_clockwise_ != clockwise) run_ = 0;  // moves the other way so far count for no change
+  run_clockwise_ = clockwise;
+  return true;
+}
+
 }  // namespace hesai

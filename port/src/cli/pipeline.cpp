@@ -95,6 +95,8 @@ Pipeline::Source* Pipeline::source_for(std::uint64_t key, Model model) {
   auto it = sources_.find(key);
   if (it != sources_.end()) {
     if (it->second.decoder->model() == model) return &it->second;
+    while (!it->second.held.empty())  // the old sensor's packets, in the direction assumed
+      if (!release_held(it->second)) return nullptr;
     it->second.decoder->clear_session_key();
     if (last_source_ == &it->second) last_source_ = nullptr;
     sources_.erase(it);  // another sensor now sends from this address: start over
@@ -192,34 +194,66 @@ bool Pipeline::feed(ByteView payload, std::uint64_t source_key) {
   if (src == nullptr) return false;
 
   PacketInfo info;
-  Decoder& decoder = *src->decoder;
-  e = decoder.decode(payload, info, points_);
-  // --rotation auto: the packet that decides the direction is decoded again in it; the packets
-  // before it keep the clockwise correction (see README, "Frames and rotation").
-  if (e == Error::ok && options_.detect_rotation && src->rotation.observe(info.block_azimuth[0])) {
-    const Rotation r = src->rotation.rotation();
-    src->frames.set_rotation(r);
-    if (r != decoder.rotation()) {
-      decoder.set_rotation(r);
-      e = decoder.decode(payload, info, points_);
-    }
-  }
+  e = src->decoder->decode(payload, info, points_);
   if (e != Error::ok) {
     count_error(stats_, e);
     ++rejections_[e];
     return true;
   }
+  const std::uint64_t index = point_packet_index_++;
+  if (options_.detect_rotation) {
+    // --rotation auto: a packet is decoded for good only in a known direction. Until one is
+    // known, packets are held (the oldest decoded as assumed when the hold is full); the packet
+    // that decides releases them, each decoded again in the direction it decided.
+    const bool decided = src->rotation.observe(info);
+    if (!src->rotation.known()) {
+      if (src->held.full() && !release_held(*src)) return false;
+      if (src->held.push(payload, index)) return true;
+      // decode() accepted it, so it fits: not reached, but the packet is not lost either.
+    } else if (decided) {
+      const Rotation r = src->rotation.rotation();
+      src->frames.set_rotation(r);
+      if (r != src->decoder->rotation() || !src->held.empty()) {
+        src->decoder->set_rotation(r);
+        while (!src->held.empty())
+          if (!release_held(*src)) return false;
+        e = src->decoder->decode(payload, info, points_);
+        if (e != Error::ok) {  // the packet decoded once: a fault of ours, but counted as bad input
+          count_error(stats_, e);
+          ++rejections_[e];
+          return true;
+        }
+      }
+    }
+  }
+  return process(*src, index, info);
+}
+
+bool Pipeline::release_held(Source& src) {
+  const ByteView payload = src.held.front();
+  const std::uint64_t index = src.held.front_tag();
+  PacketInfo info;
+  const Error e = src.decoder->decode(payload, info, points_);
+  src.held.pop_front();
+  if (e != Error::ok) {  // it decoded when it came: a fault of ours, but counted as bad input
+    count_error(stats_, e);
+    ++rejections_[e];
+    return true;
+  }
+  return process(src, index, info);
+}
+
+bool Pipeline::process(Source& src, std::uint64_t index, const PacketInfo& info) {
   // The decoder's spread lies within (-180, 180] with min <= max: a refusal is a fault of ours.
-  if (const Error e_spread = src->frames.set_beam_spread(decoder.beam_spread()); e_spread != Error::ok) {
+  if (const Error e_spread = src.frames.set_beam_spread(src.decoder->beam_spread()); e_spread != Error::ok) {
     error_ = std::string("frame assembly refused the decoder's beam spread: ") + error_name(e_spread);
     return false;
   }
-  last_source_ = src;
-  const std::uint64_t index = point_packet_index_++;
-  count_model(stats_, model);
-  if (session_ && !src->signed_seen && info.signature == SignatureStatus::valid) {
-    src->signed_seen = true;
-    decoder.set_allow_unsigned(options_.allow_unsigned);
+  last_source_ = &src;
+  count_model(stats_, info.model);
+  if (session_ && !src.signed_seen && info.signature == SignatureStatus::valid) {
+    src.signed_seen = true;
+    src.decoder->set_allow_unsigned(options_.allow_unsigned);
   }
   switch (info.signature) {
     case SignatureStatus::valid: ++stats_.signature_valid; break;
@@ -233,15 +267,15 @@ bool Pipeline::feed(ByteView payload, std::uint64_t source_key) {
   stats_.return_mode_last = info.return_mode;
   count_status(stats_, info);
   // The sensor's own monitor finds its stalls; the run's counters sum every sensor's sections.
-  count_safety(stats_.safety, info.safety, src->safety.observe(info.safety, info.time_ns));
+  count_safety(stats_.safety, info.safety, src.safety.observe(info.safety, info.time_ns));
 
   std::uint32_t lost_before = 0;
   if (info.has_sequence) {
     // Only this source's counters move: add their change. `lost` can fall (a late packet);
     // unsigned arithmetic (modulo 2^64) adds a negative change as well.
-    const SequenceCounts before = src->sequence.counts();
-    lost_before = src->sequence.observe(info.sequence);
-    const SequenceCounts& after = src->sequence.counts();
+    const SequenceCounts before = src.sequence.counts();
+    lost_before = src.sequence.observe(info.sequence);
+    const SequenceCounts& after = src.sequence.counts();
     stats_.lost += after.lost - before.lost;
     stats_.duplicates += after.duplicates - before.duplicates;
     stats_.reordered += after.reordered - before.reordered;
@@ -251,7 +285,7 @@ bool Pipeline::feed(ByteView payload, std::uint64_t source_key) {
   // Each point goes to the frame of its own azimuth; frames close when the blocks have moved
   // far enough past their end that no later point can reach them.
   const bool keep = index >= options_.first_packet && index < options_.end_packet;
-  FrameAssembler& frames = src->frames;
+  FrameAssembler& frames = src.frames;
   frames.begin_packet(index, lost_before);
   std::size_t next = 0;
   for (std::size_t b = 0; b < info.blocks; ++b) {
@@ -278,6 +312,8 @@ std::string Pipeline::rotation_text() const {
 
 void Pipeline::finish() {
   for (auto& [key, s] : sources_) {
+    // The direction never became known: the held packets are decoded in the assumed one.
+    while (!s.held.empty()) (void)release_held(s);
     s.frames.finish();
     close_frames(s.frames);
   }

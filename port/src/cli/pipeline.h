@@ -12,6 +12,7 @@
 
 #include "hesai/decoder.h"
 #include "hesai/frame.h"
+#include "hesai/held_packets.h"
 #include "hesai/rotation.h"
 #include "hesai/safety.h"
 #include "hesai/sequence.h"
@@ -27,7 +28,7 @@ struct DecodeOptions {
   Reflectivity reflectivity = Reflectivity::raw;  ///< --reflectivity (nonlinear: Pandar64 only)
   bool firetime_azimuth = true;     ///< off with --no-firetime-azimuth
   bool detect_rotation = true;      ///< --rotation auto (default): per sensor, by a RotationDetector
-  Rotation rotation = Rotation::clockwise;  ///< --rotation cw|ccw; with auto, until the direction is known
+  Rotation rotation = Rotation::clockwise;  ///< --rotation cw|ccw; with auto, the direction assumed for packets released undecided
   std::uint64_t first_packet = 0;   ///< --packets FIRST:END, point-cloud packet indices
   std::uint64_t end_packet = UINT64_MAX;
   FrameAssembler frames;            ///< --cut-angle and --fov set; each source starts from a copy
@@ -61,6 +62,13 @@ class Sink {
 
 /// Decodes datagrams. One decoder, sequence tracker, frame assembler and functional-safety
 /// monitor per source (the sensor's address and port), created on its first packet.
+///
+/// With --rotation auto, a source's point-cloud packets are held (up to kHeldPackets) until its
+/// RotationDetector knows the direction, then decoded in it, in their order and with the indices
+/// they came with: the points and frames of the first packets are those of a stream whose
+/// direction was set. A source whose direction is still unknown when kHeldPackets are held
+/// releases its oldest packet decoded in the assumed direction (a stationary motor); so does
+/// finish(). A Pandar40 GPS packet that comes while packets are held sets their time base too.
 class Pipeline {
  public:
   Pipeline(const DecodeOptions& options, Sink* sink);
@@ -90,7 +98,7 @@ class Pipeline {
   /// fatal configuration error: a calibration file that does not parse, does not fit the model or
   /// holds a value the decoder refuses (message in error(), naming the file and the Error).
   bool feed(ByteView payload, std::uint64_t source);
-  /// Closes the open frames at the end of the input.
+  /// Decodes the packets still held and closes the open frames at the end of the input.
   void finish();
 
   const Stats& stats() const { return stats_; }
@@ -102,6 +110,10 @@ class Pipeline {
   /// before any point-cloud packet.
   std::string rotation_text() const;
 
+ /// Packets held per source while its direction is not known. A dual-return QT128C2X, whose
+  /// packets show no direction by themselves, holds two; the other bundled captures none.
+  static constexpr std::size_t kHeldPackets = 8;
+
  private:
   struct Source {
     std::unique_ptr<Decoder> decoder;
@@ -109,9 +121,14 @@ class Pipeline {
     FrameAssembler frames;
     SafetyMonitor safety;
     RotationDetector rotation;
-    bool signed_seen = false;  // a valid signature arrived (start_session)
+    HeldPackets<kHeldPackets> held;  // decoded, not yet processed: the direction is not known
+    bool signed_seen = false;        // a valid signature arrived (start_session)
   };
   Source* source_for(std::uint64_t key, Model model);
+  // Decodes the oldest held packet in the decoder's direction and processes it.
+  bool release_held(Source& src);
+  // Accounts one decoded packet (points_ holds its points) and gives its points to the frames.
+  bool process(Source& src, std::uint64_t index, const PacketInfo& info);
   void close_frames(FrameAssembler& frames);
 
   DecodeOptions options_;
