@@ -32,9 +32,9 @@
 #include "hesai/frame.h"
 #include "hesai/hkdf.h"
 #include "hesai/sequence.h"
-#include "hesai/tables/pandar64_tables.h"
 #include "hesai_port/udp.h"
 #include "packet_builder.h"
+#include "pandar64_manual.h"
 #include "safety_stream.h"
 #include "test_support.h"
 #include "udp_support.h"
@@ -645,8 +645,9 @@ TEST(Cli, ChannelConfigAppliesToCustomisedPackets) {
 }
 
 // --reflectivity nonlinear: a Pandar64's intensity is its reflectivity byte mapped by the manual's
-// Appendix D (tables/pandar64_tables.h, checked entry by entry in test_sensor_settings.cpp) to the
-// nearest whole percent; raw (the default) is the byte as sent. No other manual gives a mapping.
+// Appendix D (as typed in tests/pandar64_manual.h, in hundredths of a percent) to the nearest whole
+// percent, halves up; 255, which the manual leaves without a value, stays 255. raw (the default)
+// is the byte as sent. No other manual gives a mapping.
 TEST(Cli, ReflectivityMapping) {
   const auto packets = pcap_payloads("pandar64_dual.pcap");
   for (const bool nonlinear : {false, true}) {
@@ -664,8 +665,7 @@ TEST(Cli, ReflectivityMapping) {
       ASSERT_EQ(f.size(), 13u);
       const std::size_t packet = std::stoul(f[1]), block = std::stoul(f[2]), channel = std::stoul(f[3]);
       const std::uint8_t raw = packets[packet][8 + block * 194 + 2 + (channel - 1) * 3 + 2];
-      const double pct = hesai::tables::pandar64_nonlinear_reflectivity_pct[raw];
-      const int want = !nonlinear ? raw : raw == 255 ? 255 : static_cast<int>(std::floor(pct + 0.5));
+      const int want = !nonlinear || raw == 255 ? raw : (pandar64_manual::kNonlinearReflectivityHundredths[raw] + 50) / 100;
       ASSERT_EQ(std::stoi(f[11]), want) << "raw " << int(raw);
       ++rows;
       mapped += want != raw;

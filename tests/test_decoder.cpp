@@ -8,8 +8,8 @@
 
 #include "hesai/decoder.h"
 #include "hesai/hkdf.h"
-#include "hesai/tables/pandar64_tables.h"
 #include "packet_builder.h"
+#include "pandar64_manual.h"
 #include "test_support.h"
 
 using namespace hesai;
@@ -134,8 +134,11 @@ TEST(ManualExample, Pandar64Channel5Block3CounterClockwise) {
   EXPECT_NEAR(pts.points[0].azimuth_deg, 100.0 - 1.042 - 0.0646704, 1e-4);
 }
 
-// beam_spread(): the smallest and largest channel offset + firing-time correction, recomputed
-// from the manual's tables here, for each direction and spin rate, and without the correction.
+// beam_spread(): the smallest and largest channel offset + firing-time correction, from the
+// Pandar64 manual's Appendix A (azimuth offsets) and B.4 (firing offsets) as typed in
+// tests/pandar64_manual.h, for each direction and spin rate, and without the correction.
+// By hand, clockwise at 600 rpm (0.0036 deg/us): the least is Channel 40, -5.208 - 54.668 x 0.0036
+// = -5.4048048; the greatest Channel 51, 5.208 - 3.62 x 0.0036 = 5.194968.
 TEST(ManualExample, BeamSpreadFromTheTables) {
   const Stamp s;
   Decoder dec(Model::pandar64);
@@ -149,12 +152,16 @@ TEST(ManualExample, BeamSpreadFromTheTables) {
       const double deg_per_us = (r == Rotation::clockwise ? 1 : -1) * rpm * 360.0 / 60e6;
       double lo = 360, hi = -360;
       for (std::size_t ch = 0; ch < 64; ++ch) {
-        const double a = tables::pandar64_channel_angles[ch].azimuth_deg + tables::pandar64_firetime_us[ch] * deg_per_us;
+        const double a = pandar64_manual::kAzimuthOffsetDeg[ch] + pandar64_manual::kFiringOffsetUs[ch] * deg_per_us;
         lo = std::min(lo, a);
         hi = std::max(hi, a);
       }
       EXPECT_NEAR(dec.beam_spread().min_deg, lo, 1e-4) << rpm;
       EXPECT_NEAR(dec.beam_spread().max_deg, hi, 1e-4) << rpm;
+      if (r == Rotation::clockwise && rpm == 600) {
+        EXPECT_NEAR(lo, -5.4048048, 1e-9);
+        EXPECT_NEAR(hi, 5.194968, 1e-9);
+      }
     }
   }
   dec.set_firetime_correction(false);
