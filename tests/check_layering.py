@@ -34,7 +34,7 @@ HEADERS = {  # public header (under core/include/hesai/) -> concern
     'qt64_packet.h': 'sensors',
     'frame.h': 'streams', 'sequence.h': 'streams', 'stats.h': 'streams', 'safety.h': 'streams',
     'rotation.h': 'streams', 'held_packets.h': 'streams',
-    'hesai.h': 'capi',
+    'hesai.h': 'capi', 'packet_info_list.h': 'capi',
 }
 INCLUDE = re.compile(r'^\s*#\s*include\s+"([^"]+)"')
 

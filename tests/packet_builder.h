@@ -9,7 +9,6 @@
 #include <vector>
 
 #include "hesai/bytes.h"
-#include "hesai/crc32.h"
 #include "hesai/hmac.h"
 #include "hesai/model.h"
 #include "hesai/qt128_packet.h"
@@ -129,18 +128,31 @@ inline void qt128_point(std::vector<std::uint8_t>& p, int block, int channel, st
   p[at + 2] = refl;
   if (o.unit == 4) p[at + 3] = confidence;
 }
-/// Fills CRC1, CRC2 and CRC3 (hesai::qt128::seal, itself checked on the sensor's own packets in
-/// test_decoder.cpp) and, with a key, the signature.
-inline void qt128_seal(std::vector<std::uint8_t>& p, const std::uint8_t* key = nullptr) {
-  ASSERT_EQ(hesai::qt128::seal(p.data(), p.size()), hesai::Error::ok) << "a QT128 packet of " << p.size() << " bytes";
-  // And the CRCs are where this file's own offsets put them, over the bytes they give: seal() is
-  // checked on every packet a test builds (3-byte units and customised channels included).
-  const QtOffsets o = qt128_offsets(p);
-  ASSERT_EQ(hesai::load_le32(&p[o.crc1]), hesai::crc32_mpeg2(hesai::ByteView{&p[12], o.crc1 - 12}));
-  if (o.fs) {
-    ASSERT_EQ(hesai::load_le32(&p[o.fs + 13]), hesai::crc32_mpeg2(hesai::ByteView{&p[o.fs + 1], 12}));
+/// CRC-32/MPEG-2 of n bytes by its definition, one bit at a time (QT128C2X manual, Section 3.1.2,
+/// "CRC 1": poly 0x04C11DB7, init 0xFFFFFFFF, most significant bit first, no final xor), written
+/// here so that the CRCs of built packets come from neither the core's CRC code nor its QT128 layout.
+constexpr std::uint32_t crc32_mpeg2_reference(const std::uint8_t* p, std::size_t n) {
+  std::uint32_t c = 0xFFFFFFFFu;
+  for (std::size_t i = 0; i < n; ++i) {
+    c ^= std::uint32_t{p[i]} << 24;
+    for (int b = 0; b < 8; ++b) c = (c & 0x80000000u) ? (c << 1) ^ 0x04C11DB7u : c << 1;
   }
-  ASSERT_EQ(hesai::load_le32(&p[o.crc3]), hesai::crc32_mpeg2(hesai::ByteView{&p[o.tail], o.crc3 - o.tail}));
+  return c;
+}
+inline constexpr std::uint8_t kCrcCheckString[9] = {'1', '2', '3', '4', '5', '6', '7', '8', '9'};
+static_assert(crc32_mpeg2_reference(kCrcCheckString, 9) == 0x0376E6E7u, "the CRC catalogue's check value");
+
+/// Fills CRC1, CRC2 and CRC3 at this file's own offsets (qt128_offsets), with this file's own CRC,
+/// and, with a key, the signature. What each covers (QT128C2X manual, Section 3.1.2, and
+/// /work/shared/docs/protocol-notes.md): CRC1 the body, bytes 12 up to CRC1; CRC2 the 12
+/// functional-safety bytes after FS Version (Lidar State up to the reserved bytes); CRC3 the tail
+/// up to CRC3 (the UDP sequence included). hesai::qt128::seal is compared with this in test_decoder.cpp.
+inline void qt128_seal(std::vector<std::uint8_t>& p, const std::uint8_t* key = nullptr) {
+  const QtOffsets o = qt128_offsets(p);
+  ASSERT_EQ(p.size(), o.total) << "a QT128 packet of " << p.size() << " bytes for its laser num and flags";
+  hesai::store_le32(&p[o.crc1], crc32_mpeg2_reference(&p[12], o.crc1 - 12));
+  if (o.fs) hesai::store_le32(&p[o.fs + 13], crc32_mpeg2_reference(&p[o.fs + 1], 12));
+  hesai::store_le32(&p[o.crc3], crc32_mpeg2_reference(&p[o.tail], o.crc3 - o.tail));
   if (o.sig && key) hesai::hmac_sha256(hesai::ByteView{key, 32}, hesai::ByteView{p.data(), o.sig}, &p[o.sig]);
 }
 

@@ -29,12 +29,10 @@
 #include <vector>
 
 #include "hesai/decoder.h"
-#include "hesai/frame.h"
 #include "hesai/hkdf.h"
-#include "hesai/sequence.h"
-#include "hesai/tables/pandar64_tables.h"
 #include "hesai_port/udp.h"
 #include "packet_builder.h"
+#include "pandar64_manual.h"
 #include "safety_stream.h"
 #include "test_support.h"
 #include "udp_support.h"
@@ -292,8 +290,11 @@ struct CaptureCase {
   Model model;
   long long packets;
   long long points;
-  long long lost = 0;  // UDP sequence numbers missing from the capture
+  long long lost;    // UDP sequence numbers missing from the capture
+  long long frames;  // clockwise, cut at 0: the rotations the points span (at the instantiations)
 };
+
+void PrintTo(const CaptureCase& c, std::ostream* os) { *os << c.file; }
 
 class CliCapture : public ::testing::TestWithParam<CaptureCase> {};
 
@@ -324,7 +325,7 @@ TEST_P(CliCapture, StatsJsonOnRealCapture) {
   EXPECT_EQ(j["lost"], c.lost);
   EXPECT_EQ(j["duplicates"], 0);
   EXPECT_EQ(j["reordered"], 0);
-  EXPECT_GE(j["frames"], 2);
+  EXPECT_EQ(j["frames"], c.frames);
   EXPECT_EQ(j["high_temperature"], 0);  // the Pandar captures' flag bytes are 0
   EXPECT_EQ(j["gps_unlocked"], 0);      // no GPS packets
   // Functional safety: QT128 only; the capture is in state Init throughout, without a stall.
@@ -334,49 +335,74 @@ TEST_P(CliCapture, StatsJsonOnRealCapture) {
   EXPECT_EQ(j["fs_counter_stalls"], 0);
 }
 
-// The library's frames of a stream of one sensor's packets, as frame id -> points (every frame
-// that closed is listed, with 0 points if it had none).
-std::map<std::uint64_t, std::uint64_t> library_frames(const std::vector<std::vector<std::uint8_t>>& packets, Model model,
-                                                      Rotation rotation) {
+// The frames of a stream of one sensor's packets by this test's own reckoning (the cut at 0
+// degrees; as tests/test_frame.cpp reckons them, without FrameAssembler): the block azimuths
+// unwrapped, each block moved forward from the one before (across a gap in the capture, by the
+// whole turns the packet times and motor speed give), each point placed at its block plus the
+// short way to its own azimuth, and a frame per rotation, floor(position / 360 degrees). As
+// rotation -> points, the first rotation 0 being the one the first block lies in.
+std::map<std::int64_t, std::uint64_t> reckoned_frames(const std::vector<std::vector<std::uint8_t>>& packets,
+                                                      Model model, Rotation rotation) {
+  const bool cw = rotation == Rotation::clockwise;
   Decoder dec(model);
   dec.set_rotation(rotation);
-  FrameAssembler frames;
-  frames.set_rotation(rotation);
   PacketPoints pts;
   PacketInfo info;
-  std::map<std::uint64_t, std::uint64_t> out;
-  std::uint64_t index = 0;
-  SequenceTracker sequence;  // packets lost before each (the XT32M2X capture has gaps)
+  std::map<std::int64_t, std::uint64_t> out;
+  // Positions in 0.01 degree past the cut before the first block, in the direction of rotation.
+  const auto forward = [cw](double from, double to) { return std::fmod((cw ? to - from : from - to) + 72000.0, 36000.0); };
+  double block_at = 0, last_az = 0;
+  std::int64_t last_ns = 0;
+  bool first = true;
   for (const auto& p : packets) {
     EXPECT_EQ(dec.decode(view(p), info, pts), Error::ok);
-    EXPECT_EQ(frames.set_beam_spread(dec.beam_spread()), Error::ok);
-    frames.begin_packet(index++, info.has_sequence ? sequence.observe(info.sequence) : 0);
+    std::size_t next = 0;
     for (std::size_t b = 0; b < info.blocks; ++b) {
-      frames.block(info.block_azimuth[b]);
-      for (FrameInfo f; frames.pop_closed(f);) out[f.id] += 0;
-      for (const Point& q : pts)
-        if (q.block == b) ++out[frames.point(q.azimuth_deg)];
+      const double az = info.block_azimuth[b];
+      if (first) {
+        block_at = forward(0, az);
+        first = false;
+      } else {
+        double move = forward(last_az, az);
+        if (b == 0) {  // whole turns a gap may hide: those the time since the last packet spun
+          const double spun = static_cast<double>(info.time_ns - last_ns) * 1e-9 * info.motor_rpm / 60.0 * 36000.0;
+          move += 36000.0 * std::round((spun - move) / 36000.0);
+        }
+        block_at += move;
+      }
+      last_az = az;
+      for (; next < pts.count && pts.points[next].block == b; ++next) {
+        const double off = std::fmod(pts.points[next].azimuth_deg * 100.0 - az + 54000.0, 36000.0) - 18000.0;
+        ++out[static_cast<std::int64_t>(std::floor((block_at + (cw ? off : -off)) / 36000.0))];
+      }
     }
+    last_ns = info.time_ns;
   }
-  frames.finish();
-  for (FrameInfo f; frames.pop_closed(f);) out[f.id] += 0;
   return out;
 }
 
-// The frames of `decode --per-frame` hold exactly the points the decoder API gives per frame.
-TEST_P(CliCapture, PerFrameCsvEqualsDecoderApi) {
+// The frames of `decode --per-frame`: one file per rotation of this test's reckoning
+// (reckoned_frames), numbered from 1 in rotation order, each with exactly its rotation's points,
+// and no other; stats counts as many.
+TEST_P(CliCapture, PerFrameCsvHoldsEachRotationsPoints) {
   const CaptureCase& c = GetParam();
   const auto packets = pcap_payloads(c.file);
   ASSERT_FALSE(packets.empty());
-  const auto expected = library_frames(packets, c.model, Rotation::clockwise);
+  const auto rotations = reckoned_frames(packets, c.model, Rotation::clockwise);
+  ASSERT_EQ(static_cast<long long>(rotations.size()), c.frames);
+  ASSERT_EQ(rotations.rbegin()->first - rotations.begin()->first + 1, c.frames) << "a rotation without points";
   const std::string dir = temp_dir();
   const CmdResult r = run("decode " + data_path(c.file) + " --per-frame --format csv --quiet --out " + dir);
   ASSERT_EQ(r.status, 0);
-  for (const auto& [id, n] : expected) {
+  const auto file_of = [&dir](long long id) {
     char name[64];
-    std::snprintf(name, sizeof name, "/frame_%06llu.csv", static_cast<unsigned long long>(id));
-    std::ifstream f(dir + name);
-    ASSERT_TRUE(f) << name;
+    std::snprintf(name, sizeof name, "/frame_%06lld.csv", id);
+    return dir + name;
+  };
+  for (const auto& [rotation, n] : rotations) {
+    const long long id = rotation - rotations.begin()->first + 1;
+    std::ifstream f(file_of(id));
+    ASSERT_TRUE(f) << file_of(id);
     std::string line;
     std::getline(f, line);
     EXPECT_EQ(line, "frame,packet,block,channel,return,azimuth_deg,elevation_deg,distance_m,x,y,z,intensity,time_ns");
@@ -388,23 +414,33 @@ TEST_P(CliCapture, PerFrameCsvEqualsDecoderApi) {
     EXPECT_EQ(rows, n) << "frame " << id;
     EXPECT_EQ(other, 0u) << "rows of frame " << id << " with another frame number";
   }
+  EXPECT_FALSE(std::ifstream(file_of(0))) << "a frame 0";
+  EXPECT_FALSE(std::ifstream(file_of(c.frames + 1))) << "a frame after the last rotation";
   const CmdResult s = run("stats " + data_path(c.file) + " --json");
-  EXPECT_EQ(json_numbers(s.out)["frames"], static_cast<long long>(expected.size()));
+  EXPECT_EQ(json_numbers(s.out)["frames"], c.frames);
 }
 
+// frames, by hand (clockwise, cut at 0; the first and last block azimuths and the turns between
+// them read from the raw bytes, as tests/golden/count_points.py reads them): Pandar40P blocks
+// 1.47 deg -> 4 turns -> 1.42, Pandar64 0.71 -> 4 -> 0.84, PandarQT64 1.20 -> 4 -> 0.60: the first
+// blocks' beams reach back past the cut (the spread behind is larger than the first azimuth), so
+// rotations -1..4: 6. QT128C2X 10.80 -> 2 -> 10.40, less than its spread: rotations 0..2: 3.
+// PandarXT16 269.64 -> 3.25 -> 0.18, XT32 1.08 -> 4 -> 0.90, XT32M2X 0.72 -> 4 (across its gaps,
+// by the packet times) -> 0.72: the XT's design offsets are 0, and no beam reaches back past the
+// cut: rotations 0..4: 5.
 INSTANTIATE_TEST_SUITE_P(Bundled, CliCapture,
-                         ::testing::Values(CaptureCase{"pandar40p_dual.pcap", Model::pandar40p, 1439, 434934},
-                                           CaptureCase{"pandar64_dual.pcap", Model::pandar64, 2400, 716622},
-                                           CaptureCase{"qt128c2x_dual.pcap", Model::qt128c2x, 1800, 337108},
-                                           CaptureCase{"pandar_qt64.pcap", Model::pandar_qt64, 1200, 299376}),
+                         ::testing::Values(CaptureCase{"pandar40p_dual.pcap", Model::pandar40p, 1439, 434934, 0, 6},
+                                           CaptureCase{"pandar64_dual.pcap", Model::pandar64, 2400, 716622, 0, 6},
+                                           CaptureCase{"qt128c2x_dual.pcap", Model::qt128c2x, 1800, 337108, 0, 3},
+                                           CaptureCase{"pandar_qt64.pcap", Model::pandar_qt64, 1200, 299376, 0, 6}),
                          [](const auto& i) { return std::string(model_name(i.param.model)); });
 
 // The PandarXT family (protocol 6.1); the XT32M2X capture skips 852 UDP sequence numbers in three
 // gaps (counted from its raw tails in test_xt.cpp).
 INSTANTIATE_TEST_SUITE_P(BundledXt, CliCapture,
-                         ::testing::Values(CaptureCase{"pandar_xt16.pcap", Model::pandar_xt16, 1626, 165138},
-                                           CaptureCase{"pandar_xt32.pcap", Model::pandar_xt32, 2000, 486606},
-                                           CaptureCase{"pandar_xt32m2x.pcap", Model::pandar_xt32m2x, 1815, 223372, 852}),
+                         ::testing::Values(CaptureCase{"pandar_xt16.pcap", Model::pandar_xt16, 1626, 165138, 0, 5},
+                                           CaptureCase{"pandar_xt32.pcap", Model::pandar_xt32, 2000, 486606, 0, 5},
+                                           CaptureCase{"pandar_xt32m2x.pcap", Model::pandar_xt32m2x, 1815, 223372, 852, 5}),
                          [](const auto& i) { return std::string(model_name(i.param.model)); });
 
 // A counter-clockwise unit: the QT128 capture mirrored (every block azimuth a -> 36000 - a).
@@ -457,10 +493,13 @@ TEST(Cli, RotationOption) {
     }
     EXPECT_GT(checked, 7000u) << mode;
   }
-  const auto frames = library_frames(mirrored, Model::qt128c2x, Rotation::counterclockwise);
+  // The mirror image of the clockwise capture: the blocks 10.80 deg before the cut (349.20), 2 turns
+  // back, 10.40 before it (349.60): rotations 0..2, 3 frames.
+  const auto frames = reckoned_frames(mirrored, Model::qt128c2x, Rotation::counterclockwise);
+  EXPECT_EQ(frames.size(), 3u);
   for (const char* mode : {"ccw", "auto"}) {
     const CmdResult s = run("stats " + dir + "/ccw.pcap --json --rotation " + std::string(mode));
-    EXPECT_EQ(json_numbers(s.out)["frames"], static_cast<long long>(frames.size())) << mode;
+    EXPECT_EQ(json_numbers(s.out)["frames"], 3) << mode;
   }
   const CmdResult text = run("stats " + dir + "/ccw.pcap");
   EXPECT_NE(text.out.find("counterclockwise (detected)"), std::string::npos) << text.out;
@@ -787,8 +826,9 @@ TEST(Cli, ChannelConfigAppliesToCustomisedPackets) {
 }
 
 // --reflectivity nonlinear: a Pandar64's intensity is its reflectivity byte mapped by the manual's
-// Appendix D (tables/pandar64_tables.h, checked entry by entry in test_sensor_settings.cpp) to the
-// nearest whole percent; raw (the default) is the byte as sent. No other manual gives a mapping.
+// Appendix D (as typed in tests/pandar64_manual.h, in hundredths of a percent) to the nearest whole
+// percent, halves up; 255, which the manual leaves without a value, stays 255. raw (the default)
+// is the byte as sent. No other manual gives a mapping.
 TEST(Cli, ReflectivityMapping) {
   const auto packets = pcap_payloads("pandar64_dual.pcap");
   for (const bool nonlinear : {false, true}) {
@@ -806,8 +846,7 @@ TEST(Cli, ReflectivityMapping) {
       ASSERT_EQ(f.size(), 13u);
       const std::size_t packet = std::stoul(f[1]), block = std::stoul(f[2]), channel = std::stoul(f[3]);
       const std::uint8_t raw = packets[packet][8 + block * 194 + 2 + (channel - 1) * 3 + 2];
-      const double pct = hesai::tables::pandar64_nonlinear_reflectivity_pct[raw];
-      const int want = !nonlinear ? raw : raw == 255 ? 255 : static_cast<int>(std::floor(pct + 0.5));
+      const int want = !nonlinear || raw == 255 ? raw : (pandar64_manual::kNonlinearReflectivityHundredths[raw] + 50) / 100;
       ASSERT_EQ(std::stoi(f[11]), want) << "raw " << int(raw);
       ++rows;
       mapped += want != raw;

@@ -8,8 +8,8 @@
 
 #include "hesai/decoder.h"
 #include "hesai/hkdf.h"
-#include "hesai/tables/pandar64_tables.h"
 #include "packet_builder.h"
+#include "pandar64_manual.h"
 #include "test_support.h"
 
 using namespace hesai;
@@ -134,8 +134,11 @@ TEST(ManualExample, Pandar64Channel5Block3CounterClockwise) {
   EXPECT_NEAR(pts.points[0].azimuth_deg, 100.0 - 1.042 - 0.0646704, 1e-4);
 }
 
-// beam_spread(): the smallest and largest channel offset + firing-time correction, recomputed
-// from the manual's tables here, for each direction and spin rate, and without the correction.
+// beam_spread(): the smallest and largest channel offset + firing-time correction, from the
+// Pandar64 manual's Appendix A (azimuth offsets) and B.4 (firing offsets) as typed in
+// tests/pandar64_manual.h, for each direction and spin rate, and without the correction.
+// By hand, clockwise at 600 rpm (0.0036 deg/us): the least is Channel 40, -5.208 - 54.668 x 0.0036
+// = -5.4048048; the greatest Channel 51, 5.208 - 3.62 x 0.0036 = 5.194968.
 TEST(ManualExample, BeamSpreadFromTheTables) {
   const Stamp s;
   Decoder dec(Model::pandar64);
@@ -149,12 +152,16 @@ TEST(ManualExample, BeamSpreadFromTheTables) {
       const double deg_per_us = (r == Rotation::clockwise ? 1 : -1) * rpm * 360.0 / 60e6;
       double lo = 360, hi = -360;
       for (std::size_t ch = 0; ch < 64; ++ch) {
-        const double a = tables::pandar64_channel_angles[ch].azimuth_deg + tables::pandar64_firetime_us[ch] * deg_per_us;
+        const double a = pandar64_manual::kAzimuthOffsetDeg[ch] + pandar64_manual::kFiringOffsetUs[ch] * deg_per_us;
         lo = std::min(lo, a);
         hi = std::max(hi, a);
       }
       EXPECT_NEAR(dec.beam_spread().min_deg, lo, 1e-4) << rpm;
       EXPECT_NEAR(dec.beam_spread().max_deg, hi, 1e-4) << rpm;
+      if (r == Rotation::clockwise && rpm == 600) {
+        EXPECT_NEAR(lo, -5.4048048, 1e-9);
+        EXPECT_NEAR(hi, 5.194968, 1e-9);
+      }
     }
   }
   dec.set_firetime_correction(false);
@@ -605,20 +612,11 @@ TEST(Reject, Pandar40PBlockPreamble) {
 
 // ---- qt128::seal ----
 
-// CRC-32/MPEG-2 written out here, independently of core/ (poly 0x04C11DB7, init 0xFFFFFFFF,
-// most significant bit first, no final xor).
-std::uint32_t reference_crc(const std::uint8_t* p, std::size_t n) {
-  std::uint32_t c = 0xFFFFFFFFu;
-  for (std::size_t i = 0; i < n; ++i) {
-    c ^= std::uint32_t{p[i]} << 24;
-    for (int b = 0; b < 8; ++b) c = (c & 0x80000000u) ? (c << 1) ^ 0x04C11DB7u : c << 1;
-  }
-  return c;
-}
+// The CRC-32/MPEG-2 of tests/packet_builder.h, written there independently of core/.
+std::uint32_t reference_crc(const std::uint8_t* p, std::size_t n) { return crc32_mpeg2_reference(p, n); }
 
 TEST(Qt128Seal, ReproducesTheSensorsCrcsAndResealsAChangedTail) {
-  const std::uint8_t check[] = {'1', '2', '3', '4', '5', '6', '7', '8', '9'};
-  ASSERT_EQ(reference_crc(check, 9), 0x0376E6E7u);  // the catalogue's check value
+  ASSERT_EQ(reference_crc(kCrcCheckString, 9), 0x0376E6E7u);  // the catalogue's check value
   // Packet 0 of the bundled capture: flags 0x1D (sequence, functional safety, signature), so by
   // manual 3.1.2 header 12 + body 1028 + CRC1 4 + functional safety 17: the tail starts at 1061;
   // its UDP sequence at 1061 + 26, CRC3 over the 30 bytes before it at 1091; 1127 bytes in all.
@@ -646,6 +644,36 @@ TEST(Qt128Seal, ReproducesTheSensorsCrcsAndResealsAChangedTail) {
       ASSERT_EQ(p[i], real[i]) << "byte " << i;
     }
   }
+}
+
+// qt128::seal writes the bytes the builder's own qt128_seal writes (its offsets, its CRC) on built
+// packets of every flags combination (sequence, functional safety, signature, 4-byte units) and
+// with customised channels (3-byte units, fewer lasers); the decoder accepts the former (the
+// latter need the channel configuration).
+TEST(Qt128Seal, AgreesWithTheBuildersOwnCrcsOnEveryLayout) {
+  const Stamp s;
+  std::size_t checked = 0;
+  for (unsigned bits = 0; bits < 16; ++bits) {
+    const std::uint8_t flags = static_cast<std::uint8_t>(((bits & 1) ? 0x01 : 0) | ((bits & 2) ? 0x04 : 0) |
+                                                         ((bits & 4) ? 0x08 : 0) | ((bits & 8) ? 0x10 : 0));
+    auto p = qt128_packet(flags, 0x37, 0, s, 600, 1234);
+    qt128_point(p, 1, 5, 1000, 77, 3);
+    qt128_point(p, 2, 128, 2000, 99, 1);
+    auto q = p;
+    qt128_seal(p);
+    ASSERT_EQ(qt128::seal(q.data(), q.size()), Error::ok);
+    EXPECT_EQ(q, p) << "flags " << int(flags);
+    Decoder dec(Model::qt128c2x);
+    PacketInfo info;
+    EXPECT_EQ(dec.validate(view(p), info), Error::ok) << "flags " << int(flags);
+    // With customised channels: the first 40 units of each block, cut to 3 bytes.
+    auto c = qt128_rebuild(p, 40, static_cast<std::uint8_t>((flags & ~0x10) | 0x40), {first_units(40), first_units(40)});
+    auto d = c;
+    ASSERT_EQ(qt128::seal(d.data(), d.size()), Error::ok);
+    EXPECT_EQ(d, c) << "customised, flags " << int(flags);
+    checked += 2;
+  }
+  EXPECT_EQ(checked, 32u);
 }
 
 TEST(Qt128Seal, RefusesWhatIsNotAQt128PacketOfItsFlagsLength) {

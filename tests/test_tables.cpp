@@ -15,6 +15,7 @@
 #include "hesai/tables/pandar40_tables.h"
 #include "hesai/tables/pandar64_tables.h"
 #include "hesai/tables/qt128_tables.h"
+#include "pandar64_manual.h"
 
 namespace {
 
@@ -150,6 +151,19 @@ TEST(Pandar64Tables, NonlinearReflectivity) {
   EXPECT_DOUBLE_EQ(r[254], 242.0);
   // 255: the manual prints "- -".
   EXPECT_DOUBLE_EQ(r[255], hesai::tables::pandar64_reflectivity_undefined);
+}
+
+// Every entry of the core's Appendix A offsets, B.4 firing times and Appendix D mapping against
+// the tests' own transcription of the manual (tests/pandar64_manual.h).
+TEST(Pandar64Tables, EveryEntryMatchesTheTestsTranscription) {
+  namespace manual = hesai_test::pandar64_manual;
+  for (std::size_t ch = 0; ch < 64; ++ch) {
+    EXPECT_DOUBLE_EQ(hesai::tables::pandar64_channel_angles[ch].azimuth_deg, manual::kAzimuthOffsetDeg[ch]) << ch + 1;
+    EXPECT_DOUBLE_EQ(hesai::tables::pandar64_firetime_us[ch], manual::kFiringOffsetUs[ch]) << ch + 1;
+  }
+  for (std::size_t b = 0; b < manual::kNonlinearReflectivityHundredths.size(); ++b)
+    EXPECT_NEAR(hesai::tables::pandar64_nonlinear_reflectivity_pct[b] * 100.0,
+                manual::kNonlinearReflectivityHundredths[b], 1e-9) << b;
 }
 
 TEST(Pandar64Tables, MatchesVendorFiretimeFile) {

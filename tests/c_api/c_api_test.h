@@ -30,6 +30,10 @@ hesai_error c_feed(const uint8_t* payload, size_t size, hesai_packet_info* info,
  * member in declaration order (12), then sizeof and alignment of hesai_decoder,
  * hesai_calibration_scratch and hesai_packet_info. Returns the number of values written. */
 size_t c_layout(size_t* out, size_t room);
+/* The offset of every member of hesai_packet_info, then of hesai_date_time, then of
+ * hesai_functional_safety, in the order hesai/packet_info_list.h lists them, then the three
+ * structs' sizes, as a C compiler sees them. Returns the number of values written. */
+size_t c_packet_info_layout(size_t* out, size_t room);
 
 /* Checks of behaviour the header promises, each on its own packet copy; they print what fails to
  * stderr and return the number of failures.

@@ -52,39 +52,27 @@ Decoder cpp_decoder(const Capture& c) {
   return d;
 }
 
-void expect_same_info(const hesai_packet_info& c, const PacketInfo& i, std::size_t n) {
-  EXPECT_EQ(c.time_ns, i.time_ns) << n;
-  EXPECT_EQ(c.date_time.year, i.date_time.year) << n;
-  EXPECT_EQ(c.date_time.month, i.date_time.month) << n;
-  EXPECT_EQ(c.date_time.day, i.date_time.day) << n;
-  EXPECT_EQ(c.date_time.hour, i.date_time.hour) << n;
-  EXPECT_EQ(c.date_time.minute, i.date_time.minute) << n;
-  EXPECT_EQ(c.date_time.second, i.date_time.second) << n;
-  EXPECT_EQ(c.timestamp_us, i.timestamp_us) << n;
-  EXPECT_EQ(c.sequence, i.sequence) << n;
-  EXPECT_EQ(c.motor_rpm, i.motor_rpm) << n;
-  for (std::size_t b = 0; b < i.block_azimuth.size(); ++b) EXPECT_EQ(c.block_azimuth[b], i.block_azimuth[b]) << n;
-  EXPECT_EQ(c.model, static_cast<std::uint8_t>(i.model)) << n;
-  EXPECT_EQ(c.return_mode, i.return_mode) << n;
-  EXPECT_EQ(c.returns, i.returns) << n;
-  EXPECT_EQ(c.blocks, i.blocks) << n;
-  EXPECT_EQ(c.dis_unit_mm, i.dis_unit_mm) << n;
-  EXPECT_EQ(c.time_reference, static_cast<std::uint8_t>(i.time_reference)) << n;
-  EXPECT_EQ(c.has_sequence, i.has_sequence ? 1 : 0) << n;
-  EXPECT_EQ(c.high_temperature, i.high_temperature) << n;
-  EXPECT_EQ(c.factory_info, i.factory_info) << n;
-  EXPECT_EQ(c.flags, i.flags) << n;
-  EXPECT_EQ(c.mode_flag, i.mode_flag) << n;
-  EXPECT_EQ(c.signature, static_cast<std::uint8_t>(i.signature)) << n;
-  EXPECT_EQ(c.safety.present, i.safety.present ? 1 : 0) << n;
-  EXPECT_EQ(c.safety.version, i.safety.version) << n;
-  EXPECT_EQ(c.safety.lidar_state, i.safety.lidar_state) << n;
-  EXPECT_EQ(c.safety.fault_code_type, i.safety.fault_code_type) << n;
-  EXPECT_EQ(c.safety.rolling_counter, i.safety.rolling_counter) << n;
-  EXPECT_EQ(c.safety.total_fault_codes, i.safety.total_fault_codes) << n;
-  EXPECT_EQ(c.safety.fault_code_id, i.safety.fault_code_id) << n;
-  EXPECT_EQ(c.safety.fault_code, i.safety.fault_code) << n;
+// Every member of the C structs equals the C++ member of the same name, as
+// hesai/packet_info_list.h lists them (the list that declares the C structs and that the library
+// copies by): a member cannot be left out of the comparison.
+#define HESAI_EXPECT_FIELD(type, name) EXPECT_EQ(c.name, static_cast<type>(i.name)) << "packet " << n << ": " #name;
+#define HESAI_EXPECT_ARRAY(type, name, count)                                                             \
+  ASSERT_EQ(i.name.size(), std::size_t{count});                                                           \
+  for (std::size_t k = 0; k < (count); ++k)                                                               \
+    EXPECT_EQ(c.name[k], static_cast<type>(i.name[k])) << "packet " << n << ": " #name "[" << k << "]";
+#define HESAI_EXPECT_NESTED(type, name, list) expect_same_info(c.name, i.name, n);
+void expect_same_info(const hesai_date_time& c, const hesai::DateTime& i, std::size_t n) {
+  HESAI_DATE_TIME_LIST(HESAI_EXPECT_FIELD)
 }
+void expect_same_info(const hesai_functional_safety& c, const hesai::FunctionalSafety& i, std::size_t n) {
+  HESAI_FUNCTIONAL_SAFETY_LIST(HESAI_EXPECT_FIELD)
+}
+void expect_same_info(const hesai_packet_info& c, const PacketInfo& i, std::size_t n) {
+  HESAI_PACKET_INFO_LIST(HESAI_EXPECT_FIELD, HESAI_EXPECT_ARRAY, HESAI_EXPECT_NESTED)
+}
+#undef HESAI_EXPECT_FIELD
+#undef HESAI_EXPECT_ARRAY
+#undef HESAI_EXPECT_NESTED
 
 // Exactly the same values: the same computation, so not even a rounding apart.
 ::testing::AssertionResult same_point(const hesai_point& c, const Point& w) {
@@ -251,6 +239,29 @@ TEST(CApi, LayoutSeenByTheCCompiler) {
   EXPECT_EQ(v[16], alignof(hesai_calibration_scratch));
   EXPECT_EQ(v[17], sizeof(hesai_packet_info));
   EXPECT_EQ(v[18], alignof(hesai_packet_info));
+}
+
+// The offset of every member of hesai_packet_info, hesai_date_time and hesai_functional_safety
+// as the C compiler lays them out (c_packet_info_layout) equals the C++ compiler's, member by
+// member from the list (the library's static_asserts pin the same offsets by hand).
+TEST(CApi, PacketInfoLayoutSeenByTheCCompiler) {
+#define HESAI_OFFSET_INFO(type, name) offsetof(hesai_packet_info, name),
+#define HESAI_OFFSET_INFO_ARRAY(type, name, count) offsetof(hesai_packet_info, name),
+#define HESAI_OFFSET_INFO_NESTED(type, name, list) offsetof(hesai_packet_info, name),
+#define HESAI_OFFSET_DATE_TIME(type, name) offsetof(hesai_date_time, name),
+#define HESAI_OFFSET_SAFETY(type, name) offsetof(hesai_functional_safety, name),
+  const std::size_t cpp[] = {
+      HESAI_PACKET_INFO_LIST(HESAI_OFFSET_INFO, HESAI_OFFSET_INFO_ARRAY, HESAI_OFFSET_INFO_NESTED)
+      HESAI_DATE_TIME_LIST(HESAI_OFFSET_DATE_TIME) HESAI_FUNCTIONAL_SAFETY_LIST(HESAI_OFFSET_SAFETY)
+      sizeof(hesai_packet_info), sizeof(hesai_date_time), sizeof(hesai_functional_safety)};
+#undef HESAI_OFFSET_INFO
+#undef HESAI_OFFSET_INFO_ARRAY
+#undef HESAI_OFFSET_INFO_NESTED
+#undef HESAI_OFFSET_DATE_TIME
+#undef HESAI_OFFSET_SAFETY
+  std::size_t c[64];
+  ASSERT_EQ(c_packet_info_layout(c, 64), std::size(cpp));
+  for (std::size_t k = 0; k < std::size(cpp); ++k) EXPECT_EQ(c[k], cpp[k]) << "value " << k;
 }
 
 TEST(CApi, Errors) {

@@ -88,6 +88,27 @@ size_t c_layout(size_t* out, size_t room) {
   return n;
 }
 
+#define OFFSET_INFO(type, name) offsetof(hesai_packet_info, name),
+#define OFFSET_INFO_ARRAY(type, name, count) offsetof(hesai_packet_info, name),
+#define OFFSET_INFO_NESTED(type, name, list) offsetof(hesai_packet_info, name),
+#define OFFSET_DATE_TIME(type, name) offsetof(hesai_date_time, name),
+#define OFFSET_SAFETY(type, name) offsetof(hesai_functional_safety, name),
+size_t c_packet_info_layout(size_t* out, size_t room) {
+  const size_t v[] = {HESAI_PACKET_INFO_LIST(OFFSET_INFO, OFFSET_INFO_ARRAY, OFFSET_INFO_NESTED)
+                          HESAI_DATE_TIME_LIST(OFFSET_DATE_TIME) HESAI_FUNCTIONAL_SAFETY_LIST(OFFSET_SAFETY)
+                              sizeof(hesai_packet_info),
+                      sizeof(hesai_date_time), sizeof(hesai_functional_safety)};
+  const size_t n = sizeof v / sizeof v[0];
+  size_t i;
+  for (i = 0; i < n && i < room; ++i) out[i] = v[i];
+  return n;
+}
+#undef OFFSET_INFO
+#undef OFFSET_INFO_ARRAY
+#undef OFFSET_INFO_NESTED
+#undef OFFSET_DATE_TIME
+#undef OFFSET_SAFETY
+
 /* ---- Errors ------------------------------------------------------------------------------------ */
 
 /* QT128C2X protocol 3.2 (manual section 3.1.2): a 12-byte header (flags at byte 11), then two

@@ -88,6 +88,11 @@ std::uint32_t crc32_mpeg2_update(CrcPath path, std::uint32_t crc, ByteView data)
 /// (x86-64: detected once by CPUID; AArch64: chosen at compile time by __ARM_FEATURE_CRYPTO/AES).
 bool crc32_hardware_available() noexcept;
 
+/// The code crc32_mpeg2() runs on this CPU for inputs of 256 bytes and more: "vpclmulqdq"
+/// (512-bit folding, x86-64 with AVX-512), "pclmulqdq" (x86-64), "pmull" (AArch64), "slicing"
+/// (kCrc32Mpeg2Slices tables) or "table" (HESAI_CRC_SLICING 1). A static string.
+const char* crc32_path_name() noexcept;
+
 /// Streaming CRC-32/MPEG-2 over pieces of a message. No heap; copy freely.
 class Crc32Mpeg2 {
  public:

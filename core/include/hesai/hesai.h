@@ -27,6 +27,7 @@
 #include <stdint.h>
 
 #include "hesai/error_list.h"
+#include "hesai/packet_info_list.h"
 
 #ifdef __cplusplus
 #define HESAI_NOEXCEPT noexcept
@@ -148,47 +149,25 @@ typedef struct hesai_point_columns {
   size_t capacity;
 } hesai_point_columns;
 
-/* A tail's date-time, UTC. */
+/* The packet-level structs, declared from hesai/packet_info_list.h (each member's meaning is
+ * given there): hesai_date_time (a tail's date-time, UTC), hesai_functional_safety (the QT128
+ * functional-safety section, header flags bit 2) and hesai_packet_info (hesai::PacketInfo: the
+ * packet-level fields, filled by validate and decode). */
+#define HESAI_DECLARE_FIELD(type, name) type name;
+#define HESAI_DECLARE_ARRAY(type, name, count) type name[count];
+#define HESAI_DECLARE_NESTED(type, name, list) type name;
 typedef struct hesai_date_time {
-  int32_t year; /* full year, e.g. 2024 */
-  uint8_t month, day, hour, minute, second;
+  HESAI_DATE_TIME_LIST(HESAI_DECLARE_FIELD)
 } hesai_date_time;
-
-/* QT128 functional-safety section (header flags bit 2). */
 typedef struct hesai_functional_safety {
-  uint8_t present;           /* 1 when the packet has the section */
-  uint8_t version;           /* FS version (0x01) */
-  uint8_t lidar_state;       /* 0 init, 1 normal, 2 report fault, 3 pre-degradation, 4 degradation,
-                                5 pre-shutdown, 6 shutdown, 7 standby */
-  uint8_t fault_code_type;   /* 1 current fault, 2 past fault */
-  uint8_t rolling_counter;   /* 0..7 */
-  uint8_t total_fault_codes; /* 0..15 */
-  uint8_t fault_code_id;     /* 0..15 */
-  uint16_t fault_code;       /* outgoing fault code */
+  HESAI_FUNCTIONAL_SAFETY_LIST(HESAI_DECLARE_FIELD)
 } hesai_functional_safety;
-
-/* Packet-level fields (hesai::PacketInfo), filled by validate and decode. */
 typedef struct hesai_packet_info {
-  int64_t time_ns;              /* packet time t0 = date-time + timestamp, ns */
-  hesai_date_time date_time;    /* the tail's date-time (Pandar40: from the last GPS packet) */
-  uint32_t timestamp_us;        /* the tail's timestamp field as sent */
-  uint32_t sequence;            /* UDP sequence, when has_sequence */
-  uint16_t motor_rpm;           /* spin rate as sent */
-  uint16_t block_azimuth[10];   /* per block, 0.01 degree */
-  uint8_t model;                /* a hesai_model */
-  uint8_t return_mode;          /* the return-mode byte (0x37 strongest, 0x38 last, 0x39 ...) */
-  uint8_t returns;              /* 1 single return, 2 dual return, 3 triple return */
-  uint8_t blocks;               /* blocks in the packet */
-  uint8_t dis_unit_mm;          /* distance step, mm */
-  uint8_t time_reference;       /* HESAI_TIME_utc or HESAI_TIME_hour_relative */
-  uint8_t has_sequence;         /* 1 when the packet carries a UDP sequence */
-  uint8_t high_temperature;     /* Pandar40/40P/64 shutdown flag */
-  uint8_t factory_info;         /* factory byte as sent */
-  uint8_t flags;                /* QT128 header flags */
-  uint8_t mode_flag;            /* QT128 tail mode flag */
-  uint8_t signature;            /* a HESAI_SIGNATURE_ value */
-  hesai_functional_safety safety; /* QT128 only */
+  HESAI_PACKET_INFO_LIST(HESAI_DECLARE_FIELD, HESAI_DECLARE_ARRAY, HESAI_DECLARE_NESTED)
 } hesai_packet_info;
+#undef HESAI_DECLARE_FIELD
+#undef HESAI_DECLARE_ARRAY
+#undef HESAI_DECLARE_NESTED
 
 /* ---- Recognition ------------------------------------------------------------------------- */
 

@@ -23,6 +23,9 @@ enum class Sha256Path : std::uint8_t { portable, hardware };
 bool sha256_hardware_available() noexcept;
 /// The fastest available path: hardware when available, else portable.
 Sha256Path sha256_best_path() noexcept;
+/// The compression function sha256_best_path() runs on this CPU: "sha-ni" (x86-64),
+/// "armv8-sha2" (AArch64) or "portable". A static string.
+const char* sha256_path_name() noexcept;
 
 /// Runs the compression function over `nblocks` consecutive 64-byte blocks, updating `state`.
 /// `hardware` falls back to portable when the CPU lacks the instructions. For tests and benchmarks.

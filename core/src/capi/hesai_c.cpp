@@ -5,6 +5,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <limits>
 #include <new>
 #include <type_traits>
 
@@ -95,6 +96,58 @@ HESAI_SAME_MEMBER(confidence)
 HESAI_SAME_MEMBER(block)
 #undef HESAI_SAME_MEMBER
 
+// ---- hesai_packet_info's layout ----------------------------------------------------------------
+
+// The offsets compiled C callers rely on, worked out by hand from the C layout rules (each member
+// at the next multiple of its alignment): a reordered or retyped member in
+// hesai/packet_info_list.h breaks them, and with them binary compatibility.
+static_assert(offsetof(hesai_date_time, year) == 0 && offsetof(hesai_date_time, month) == 4 &&
+              offsetof(hesai_date_time, day) == 5 && offsetof(hesai_date_time, hour) == 6 &&
+              offsetof(hesai_date_time, minute) == 7 && offsetof(hesai_date_time, second) == 8 &&
+              sizeof(hesai_date_time) == 12 && alignof(hesai_date_time) == 4);
+static_assert(offsetof(hesai_functional_safety, present) == 0 && offsetof(hesai_functional_safety, version) == 1 &&
+              offsetof(hesai_functional_safety, lidar_state) == 2 &&
+              offsetof(hesai_functional_safety, fault_code_type) == 3 &&
+              offsetof(hesai_functional_safety, rolling_counter) == 4 &&
+              offsetof(hesai_functional_safety, total_fault_codes) == 5 &&
+              offsetof(hesai_functional_safety, fault_code_id) == 6 &&
+              offsetof(hesai_functional_safety, fault_code) == 8 && sizeof(hesai_functional_safety) == 10);
+static_assert(offsetof(hesai_packet_info, time_ns) == 0 && offsetof(hesai_packet_info, date_time) == 8 &&
+              offsetof(hesai_packet_info, timestamp_us) == 20 && offsetof(hesai_packet_info, sequence) == 24 &&
+              offsetof(hesai_packet_info, motor_rpm) == 28 && offsetof(hesai_packet_info, block_azimuth) == 30 &&
+              offsetof(hesai_packet_info, model) == 50 && offsetof(hesai_packet_info, return_mode) == 51 &&
+              offsetof(hesai_packet_info, returns) == 52 && offsetof(hesai_packet_info, blocks) == 53 &&
+              offsetof(hesai_packet_info, dis_unit_mm) == 54 && offsetof(hesai_packet_info, time_reference) == 55 &&
+              offsetof(hesai_packet_info, has_sequence) == 56 && offsetof(hesai_packet_info, high_temperature) == 57 &&
+              offsetof(hesai_packet_info, factory_info) == 58 && offsetof(hesai_packet_info, flags) == 59 &&
+              offsetof(hesai_packet_info, mode_flag) == 60 && offsetof(hesai_packet_info, signature) == 61 &&
+              offsetof(hesai_packet_info, safety) == 62 && sizeof(hesai_packet_info) == 72);
+// Every C member has a C++ member of the same name and a type that holds its values.
+#define HESAI_WIDE_ENOUGH(c_type, cpp_type)                                                        \
+  (std::is_same_v<cpp_type, bool> ||                                                                \
+   (std::is_enum_v<cpp_type> && sizeof(cpp_type) <= sizeof(c_type)) ||                             \
+   (std::is_integral_v<cpp_type> && std::numeric_limits<cpp_type>::digits <= std::numeric_limits<c_type>::digits && \
+    std::is_signed_v<cpp_type> == std::is_signed_v<c_type>))
+#define HESAI_FITS_DATE_TIME(type, name) \
+  static_assert(HESAI_WIDE_ENOUGH(type, decltype(hesai::DateTime::name)), "hesai_date_time::" #name);
+#define HESAI_FITS_SAFETY(type, name) \
+  static_assert(HESAI_WIDE_ENOUGH(type, decltype(hesai::FunctionalSafety::name)), "hesai_functional_safety::" #name);
+#define HESAI_FITS_INFO(type, name) \
+  static_assert(HESAI_WIDE_ENOUGH(type, decltype(hesai::PacketInfo::name)), "hesai_packet_info::" #name);
+#define HESAI_FITS_INFO_ARRAY(type, name, count) \
+  static_assert(HESAI_WIDE_ENOUGH(type, decltype(hesai::PacketInfo::name)::value_type), "hesai_packet_info::" #name);
+#define HESAI_FITS_NESTED(type, name, list) \
+  static_assert(sizeof(decltype(hesai::PacketInfo::name)) > 0, "hesai_packet_info::" #name);
+HESAI_DATE_TIME_LIST(HESAI_FITS_DATE_TIME)
+HESAI_FUNCTIONAL_SAFETY_LIST(HESAI_FITS_SAFETY)
+HESAI_PACKET_INFO_LIST(HESAI_FITS_INFO, HESAI_FITS_INFO_ARRAY, HESAI_FITS_NESTED)
+#undef HESAI_FITS_DATE_TIME
+#undef HESAI_FITS_SAFETY
+#undef HESAI_FITS_INFO
+#undef HESAI_FITS_INFO_ARRAY
+#undef HESAI_FITS_NESTED
+#undef HESAI_WIDE_ENOUGH
+
 // ---- Helpers -----------------------------------------------------------------------------------
 
 // The decoder hesai_decoder_init() built in the storage (at its start, aligned as checked above).
@@ -139,40 +192,24 @@ hesai::ParseResult parse_channel_config(ByteView text, std::size_t, hesai::Chann
   return hesai::parse_channel_config_csv(text, out);
 }
 
-void copy_info(const hesai::PacketInfo& i, hesai_packet_info& o) noexcept {
-  o.time_ns = i.time_ns;
-  o.date_time.year = i.date_time.year;
-  o.date_time.month = i.date_time.month;
-  o.date_time.day = i.date_time.day;
-  o.date_time.hour = i.date_time.hour;
-  o.date_time.minute = i.date_time.minute;
-  o.date_time.second = i.date_time.second;
-  o.timestamp_us = i.timestamp_us;
-  o.sequence = i.sequence;
-  o.motor_rpm = i.motor_rpm;
-  static_assert(sizeof o.block_azimuth / sizeof o.block_azimuth[0] == std::tuple_size_v<decltype(i.block_azimuth)>);
-  for (std::size_t b = 0; b < i.block_azimuth.size(); ++b) o.block_azimuth[b] = i.block_azimuth[b];
-  o.model = static_cast<std::uint8_t>(i.model);
-  o.return_mode = i.return_mode;
-  o.returns = i.returns;
-  o.blocks = i.blocks;
-  o.dis_unit_mm = i.dis_unit_mm;
-  o.time_reference = static_cast<std::uint8_t>(i.time_reference);
-  o.has_sequence = i.has_sequence ? 1 : 0;
-  o.high_temperature = i.high_temperature;
-  o.factory_info = i.factory_info;
-  o.flags = i.flags;
-  o.mode_flag = i.mode_flag;
-  o.signature = static_cast<std::uint8_t>(i.signature);
-  o.safety.present = i.safety.present ? 1 : 0;
-  o.safety.version = i.safety.version;
-  o.safety.lidar_state = i.safety.lidar_state;
-  o.safety.fault_code_type = i.safety.fault_code_type;
-  o.safety.rolling_counter = i.safety.rolling_counter;
-  o.safety.total_fault_codes = i.safety.total_fault_codes;
-  o.safety.fault_code_id = i.safety.fault_code_id;
-  o.safety.fault_code = i.safety.fault_code;
+// The C structs from the C++ ones, member by member as hesai/packet_info_list.h lists them: each
+// C member from the C++ member of the same name, converted to the C type (enums to their value,
+// bools to 0 or 1).
+#define HESAI_COPY_FIELD(type, name) o.name = static_cast<type>(i.name);
+#define HESAI_COPY_ARRAY(type, name, count)                                   \
+  static_assert(std::tuple_size_v<decltype(i.name)> == (count));              \
+  for (std::size_t k = 0; k < (count); ++k) o.name[k] = static_cast<type>(i.name[k]);
+#define HESAI_COPY_NESTED(type, name, list) copy_info(i.name, o.name);
+void copy_info(const hesai::DateTime& i, hesai_date_time& o) noexcept { HESAI_DATE_TIME_LIST(HESAI_COPY_FIELD) }
+void copy_info(const hesai::FunctionalSafety& i, hesai_functional_safety& o) noexcept {
+  HESAI_FUNCTIONAL_SAFETY_LIST(HESAI_COPY_FIELD)
 }
+void copy_info(const hesai::PacketInfo& i, hesai_packet_info& o) noexcept {
+  HESAI_PACKET_INFO_LIST(HESAI_COPY_FIELD, HESAI_COPY_ARRAY, HESAI_COPY_NESTED)
+}
+#undef HESAI_COPY_FIELD
+#undef HESAI_COPY_ARRAY
+#undef HESAI_COPY_NESTED
 
 bool known_model(hesai_model m) noexcept {
   return m > HESAI_MODEL_unknown && static_cast<std::size_t>(m) < hesai::kModelCount;

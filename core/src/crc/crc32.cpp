@@ -136,6 +136,15 @@ bool crc32_hardware_available() noexcept {
 #endif
 }
 
+const char* crc32_path_name() noexcept {
+#if defined(HESAI_CRC32_FOLD_X86)
+  if (crc32_fold::fold_available()) return crc32_fold::fold512_available() ? "vpclmulqdq" : "pclmulqdq";
+#elif defined(HESAI_CRC32_FOLD_ARM)
+  if (crc32_fold::fold_available()) return "pmull";
+#endif
+  return kCrc32Mpeg2Slices == 1 ? "table" : "slicing";
+}
+
 std::uint32_t crc32_mpeg2_update(CrcPath path, std::uint32_t crc, ByteView data) noexcept {
   if (data.size == 0) return crc;  // data.data may be null
   switch (path) {

@@ -218,6 +218,15 @@ bool sha256_hardware_available() noexcept {
 
 Sha256Path sha256_best_path() noexcept { return usable(Sha256Path::hardware); }
 
+const char* sha256_path_name() noexcept {
+  if (sha256_best_path() == Sha256Path::portable) return "portable";
+#if defined(HESAI_SHA256_ARM)
+  return "armv8-sha2";
+#else
+  return "sha-ni";
+#endif
+}
+
 void sha256_compress(Sha256Path path, std::uint32_t state[8], const std::uint8_t* blocks,
                      std::size_t nblocks) noexcept {
   if (nblocks == 0) return;
