@@ -106,11 +106,15 @@ TEST(Qt128ThreeByteUnits, EveryCapturePacketDecodesToTheOriginalPoints) {
 }
 
 // The capture's confidence bytes are all zero: give them values, so that the 4-byte decode shows
-// them and the 3-byte one (the same units without that byte) cannot.
+// them and the 3-byte one (the same units without that byte) cannot. Units the sensor left all
+// zero stay so: they include the resting channels', whose four bytes the manual fixes at 0 (3.1.2).
 TEST(Qt128ThreeByteUnits, ConfidenceByteOnlyWithBit4) {
   auto p = qt128_packets().at(0);
   for (std::size_t b = 0; b < 2; ++b)
-    for (std::size_t c = 0; c < 128; ++c) p[12 + b * 514 + 2 + c * 4 + 3] = static_cast<std::uint8_t>(c + 1);
+    for (std::size_t c = 0; c < 128; ++c) {
+      std::uint8_t* u = &p[12 + b * 514 + 2 + c * 4];
+      if ((u[0] | u[1] | u[2]) != 0) u[3] = static_cast<std::uint8_t>(c + 1);
+    }
   qt128_seal(p);
   Decoder dec(Model::qt128c2x);
   const Decoded four = decode(dec, p);

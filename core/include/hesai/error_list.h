@@ -29,6 +29,8 @@
   X(bad_timestamp)            /* microsecond field beyond its manual's range (999 999; QT128 1 000 000) */     \
   X(bad_motor_speed)          /* motor speed above 1500 rpm (the sensors spin at 600 or 1200) */               \
   X(dual_block_mismatch)      /* the two blocks of one dual-return firing disagree in azimuth */               \
+  X(resting_channel_data)     /* QT128: a channel that rests in its block's firing sequence has non-zero */    \
+                              /* bytes (manual 3.1.2: a resting channel's four bytes are 0) */                 \
   /* Integrity. */                                                                                             \
   X(crc_body)                 /* QT128 CRC1 (body) does not match */                                           \
   X(crc_functional_safety)    /* QT128 CRC2 (functional safety) does not match */                              \

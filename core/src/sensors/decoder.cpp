@@ -30,6 +30,12 @@ constexpr std::size_t kGpsBytes = 512;
 /// (55.56 us Pandar, 111.11 us QT128); keeps the ns value in range of an int32.
 constexpr double kMaxFiretimeUs = 1000.0;
 
+/// Marks 0-based channel `ch` as resting, or not, in one loop's mask of Decoder::resting_.
+void set_resting(std::array<std::uint8_t, kMaxChannels / 8>& mask, std::size_t ch, bool rests) {
+  const auto bit = static_cast<unsigned>(1u << (ch % 8));
+  mask[ch / 8] = static_cast<std::uint8_t>(rests ? mask[ch / 8] | bit : mask[ch / 8] & ~bit);
+}
+
 }  // namespace
 
 Error identify(ByteView p, Model& model, PacketKind& kind) noexcept {
@@ -90,6 +96,8 @@ Decoder::Decoder(Model model) noexcept : model_(model) {
         set_channel_angle(i, tables::qt128_channel_angles[i].elevation_deg,
                           tables::qt128_channel_angles[i].azimuth_deg);
         set_channel_firetime(i, tables::qt128_firetime_us_loop1[i], tables::qt128_firetime_us_loop2[i]);
+        set_resting(resting_[0], i, !tables::qt128_fires_in_loop1[i]);
+        set_resting(resting_[1], i, !tables::qt128_fires_in_loop2[i]);
       }
       break;
     case Model::pandar_qt64:
@@ -318,6 +326,8 @@ Error Decoder::set_firetimes(const FiretimeCorrection& f) noexcept {
       us[loop] = f.fires[src][i] ? f.firetime_us[src][i] : 0.0;
     }
     set_channel_firetime(i, us[0], us[1]);
+    if (two_loops)
+      for (std::size_t loop = 0; loop < 2; ++loop) set_resting(resting_[loop], i, !f.fires[loop][i]);
   }
   return Error::ok;
 }
