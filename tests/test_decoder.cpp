@@ -810,6 +810,9 @@ TEST_F(Qt128Resting, TheFiretimeFileNamesTheRestingChannels) {
   const auto it = std::find_if(pts.begin(), pts.end(), [](const Point& q) { return q.channel == 40; });
   ASSERT_NE(it, pts.end());
   EXPECT_FLOAT_EQ(it->distance_m, 1.024f);
+  // Its neighbours still rest (sequence 2 now rests 33..39 and 41..64: two runs).
+  for (const std::size_t channel : {std::size_t{39}, std::size_t{41}, std::size_t{64}})
+    EXPECT_EQ(dec.decode(view(with_unit(1, channel, 256)), info, pts), Error::resting_channel_data) << channel;
 }
 
 // ---- Signatures (QT128) ----

@@ -40,8 +40,8 @@
 // Memory (the caller owns every object; the core has no static RAM but the one CPUID byte on
 // x86-64; sizes checked by static_assert in tests/test_contract.cpp on every CI target, 32- and
 // 64-bit, and in the firmware image):
-// - Decoder: 7 200 bytes (6 976 with HESAI_SIGNATURE 0): per-channel geometry and the per-rate
-//   cache for 128 channels, the QT128 channel configuration (256 bytes) and resting channels (32
+// - Decoder: 7 208 bytes (6 980 with HESAI_SIGNATURE 0): per-channel geometry and the per-rate
+//   cache for 128 channels, the QT128 channel configuration (256 bytes) and resting channels (36
 //   bytes), the HMAC key states (224 bytes), the GPS time base.
 // - PacketPoints: 16 008 bytes (400 points of 40 bytes); PacketColumns<N>: 19 N + a size_t;
 //   PacketInfo: 88 bytes.
@@ -184,7 +184,7 @@ struct BlockRef;  // one block of a packet, for the per-point code (core/src/sen
 
 /// Decoder state for one sensor: per-channel geometry from the built-in tables or a
 /// calibration file, the per-spin-rate point constants, the session key, the Pandar40 GPS
-/// time base and the QT128 channel configuration. 7 200 bytes; one per sensor per thread (see the
+/// time base and the QT128 channel configuration. 7 208 bytes; one per sensor per thread (see the
 /// contract at the top).
 class Decoder {
  public:
@@ -294,6 +294,8 @@ class Decoder {
 
   void set_channel_angle(std::size_t ch, double elevation_deg, double azimuth_deg) noexcept;
   void set_channel_firetime(std::size_t ch, double loop1_us, double loop2_us) noexcept;
+  // Sets resting_first_ and resting_count_ from resting_.
+  void find_resting_runs() noexcept;
   template <std::size_t N>
   void set_design_tables(const std::array<float, N>& elevation_deg, const float* azimuth_deg,
                          const std::array<float, N>& firetime_us) noexcept;
@@ -338,8 +340,12 @@ class Decoder {
   // QT128 channel configuration: the 0-based channel of each unit, [loop][unit] (256 bytes).
   std::array<std::array<std::uint8_t, kMaxChannels>, 2> custom_channel_{};
   // QT128: the channels that rest in each firing sequence, bit (ch % 8) of byte ch / 8 for the
-  // 0-based channel ch, [loop] (32 bytes): the manual's bank rule, or the firetime file's.
+  // 0-based channel ch, [loop] (32 bytes): the manual's bank rule, or the firetime file's. When
+  // they are one run of channels (the manual's banks), validate() reads that run of units at
+  // once: its first channel and length, [loop]; length kRestingScattered when they are not.
+  static constexpr std::uint8_t kRestingScattered = 0xFF;
   std::array<std::array<std::uint8_t, kMaxChannels / 8>, 2> resting_{};
+  std::array<std::uint8_t, 2> resting_first_{}, resting_count_{};
 #if HESAI_SIGNATURE
   HmacSha256Key key_;
 #endif

@@ -99,6 +99,7 @@ Decoder::Decoder(Model model) noexcept : model_(model) {
         set_resting(resting_[0], i, !tables::qt128_fires_in_loop1[i]);
         set_resting(resting_[1], i, !tables::qt128_fires_in_loop2[i]);
       }
+      find_resting_runs();
       break;
     case Model::pandar_qt64:
       set_design_tables(tables::qt64_elevation_deg, tables::qt64_azimuth_deg.data(), tables::qt64_firetime_us);
@@ -140,6 +141,21 @@ void Decoder::set_channel_firetime(std::size_t ch, double loop1_us, double loop2
   geo_.fire_ns[0][ch] = detail::round_to_int(loop1_us * 1000);
   geo_.fire_ns[1][ch] = detail::round_to_int(loop2_us * 1000);
   spin_.rpm = SpinCache::kStale;
+}
+
+void Decoder::find_resting_runs() noexcept {
+  for (std::size_t loop = 0; loop < 2; ++loop) {
+    std::size_t first = 0, count = 0, runs = 0;
+    bool before = false;
+    for (std::size_t ch = 0; ch < kMaxChannels; ++ch) {
+      const bool rests = ((resting_[loop][ch / 8] >> (ch % 8)) & 1) != 0;
+      if (rests && !before && runs++ == 0) first = ch;
+      count += rests ? 1 : 0;
+      before = rests;
+    }
+    resting_first_[loop] = static_cast<std::uint8_t>(first);
+    resting_count_[loop] = runs <= 1 ? static_cast<std::uint8_t>(count) : kRestingScattered;
+  }
 }
 
 void Decoder::set_rotation(Rotation rotation) noexcept {
@@ -329,6 +345,7 @@ Error Decoder::set_firetimes(const FiretimeCorrection& f) noexcept {
     if (two_loops)
       for (std::size_t loop = 0; loop < 2; ++loop) set_resting(resting_[loop], i, !f.fires[loop][i]);
   }
+  find_resting_runs();
   return Error::ok;
 }
 

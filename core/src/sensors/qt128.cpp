@@ -39,9 +39,12 @@ CrcField crc_field(ByteView p, const qt128::Layout& l, std::size_t i) noexcept {
   }
 }
 
+// True when the n bytes at p are all zero (read 8 at a time: the order of the bytes does not matter).
 bool all_zero(const std::uint8_t* p, std::size_t n) {
-  std::uint8_t acc = 0;
-  for (std::size_t i = 0; i < n; ++i) acc = static_cast<std::uint8_t>(acc | p[i]);
+  std::uint64_t acc = 0;
+  std::size_t i = 0;
+  for (; n - i >= 8; i += 8) acc |= load_le64(p + i);
+  for (; i < n; ++i) acc |= p[i];
   return acc == 0;
 }
 
@@ -56,29 +59,13 @@ std::size_t block_loop(std::uint8_t mode_flag, bool dual, std::size_t b) {
 bool rests(const std::uint8_t* mask, std::size_t ch) { return ((mask[ch / 8] >> (ch % 8)) & 1) != 0; }
 
 // True when every unit of a block whose channel rests (bit set in `mask`, 16 bytes) is all zero:
-// unit j is channel j, or channel_of[j] with customised channels. Without a map, 8 channels per
-// mask byte: a byte with no resting channel is skipped, one with 8 is checked as one run.
+// unit j is channel j, or channel_of[j] with customised channels.
 bool resting_units_zero(const std::uint8_t* units, const qt128::Layout& l, const std::uint8_t* channel_of,
                         const std::uint8_t* mask) {
   std::uint8_t acc = 0;
-  if (channel_of != nullptr) {
-    for (std::size_t j = 0; j < l.lasers; ++j)
-      if (rests(mask, channel_of[j]))
-        for (std::size_t k = 0; k < l.unit; ++k) acc = static_cast<std::uint8_t>(acc | units[j * l.unit + k]);
-    return acc == 0;
-  }
-  for (std::size_t g = 0; g < qt128::kChannels / 8; ++g) {
-    const std::uint8_t m = mask[g];
-    if (m == 0) continue;
-    const std::uint8_t* u = units + g * 8 * l.unit;
-    if (m == 0xFF) {
-      if (!all_zero(u, 8 * l.unit)) return false;
-      continue;
-    }
-    for (std::size_t c = 0; c < 8; ++c)
-      if ((m >> c) & 1)
-        for (std::size_t k = 0; k < l.unit; ++k) acc = static_cast<std::uint8_t>(acc | u[c * l.unit + k]);
-  }
+  for (std::size_t j = 0; j < l.lasers; ++j)
+    if (rests(mask, channel_of != nullptr ? channel_of[j] : j))
+      for (std::size_t k = 0; k < l.unit; ++k) acc = static_cast<std::uint8_t>(acc | units[j * l.unit + k]);
   return acc == 0;
 }
 
@@ -191,12 +178,17 @@ Error Decoder::validate_qt128(ByteView p, PacketInfo& info) noexcept {
   // four bytes are filled with 0." Data there is no measurement of that channel (it did not fire):
   // the block was not fired as the mode flag says, or the sensor wrote bytes the manual does not
   // define; either way no firing time of the packet can be trusted, so the packet is rejected.
+  // Without customised channels unit j is channel j, so resting channels that form one run (the
+  // manual's banks) are one span of units.
   const bool custom = (info.flags & kFlagChannelCustom) != 0;
   for (std::size_t b = 0; b < kBlocks; ++b) {
     const std::size_t loop = block_loop(info.mode_flag, info.returns == 2, b);
-    if (!resting_units_zero(p.data + kBody + b * layout.block + kBlockPoints, layout,
-                            custom ? custom_channel_[loop].data() : nullptr, resting_[loop].data()))
-      return Error::resting_channel_data;
+    const std::uint8_t* units = p.data + kBody + b * layout.block + kBlockPoints;
+    const bool zero = !custom && resting_count_[loop] != kRestingScattered
+                          ? all_zero(units + resting_first_[loop] * layout.unit, resting_count_[loop] * layout.unit)
+                          : resting_units_zero(units, layout, custom ? custom_channel_[loop].data() : nullptr,
+                                               resting_[loop].data());
+    if (!zero) return Error::resting_channel_data;
   }
   // Date & Time: year - 1900 (>= 70), or with a year byte of 0 Unix seconds, big-endian, in bytes
   // 2..5 (the vendor SDK's reading; byte 1 is not read); Timestamp: us, 0..1000000 (the manual's range).
