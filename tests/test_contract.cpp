@@ -18,7 +18,7 @@ namespace {
 
 using namespace hesai;
 
-static_assert(sizeof(Decoder) == (HESAI_SIGNATURE ? 7168 : 6944), "decoder.h: Memory");
+static_assert(sizeof(Decoder) == (HESAI_SIGNATURE ? 7208 : 6980), "decoder.h: Memory");
 static_assert(sizeof(PacketPoints) == 16008 && sizeof(Point) == 40, "decoder.h: Memory");
 static_assert(sizeof(PacketColumns<256>) == 19 * 256 + sizeof(std::size_t) && sizeof(PacketColumns<400>) == 19 * 400 + sizeof(std::size_t), "point.h: PacketColumns");
 static_assert(sizeof(PacketInfo) == 88, "decoder.h: Memory");

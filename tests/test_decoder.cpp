@@ -8,6 +8,7 @@
 
 #include "hesai/decoder.h"
 #include "hesai/hkdf.h"
+#include "hesai/stats.h"
 #include "packet_builder.h"
 #include "pandar64_manual.h"
 #include "test_support.h"
@@ -416,6 +417,15 @@ TEST(CallerStorage, WorstCaseFitsOneLessIsRefused) {
   for (const auto& c : cases) {
     const auto p = full_packet(c.model);
     Decoder dec(c.model);
+    if (c.model == Model::qt128c2x) {
+      // The manual's banks rest 32 channels per sequence (at most 2 x 96 points); a firetime file
+      // that fires every channel in both sequences lets all 128 carry data.
+      FiretimeCorrection all;
+      all.channels = 128;
+      all.loops = 2;
+      for (auto& loop : all.fires) loop.fill(true);
+      ASSERT_EQ(dec.set_firetimes(all), Error::ok);
+    }
     EXPECT_EQ(max_points(c.model), c.most);
     PacketInfo info;
     PacketPoints whole;
@@ -691,6 +701,146 @@ TEST(Qt128Seal, RefusesWhatIsNotAQt128PacketOfItsFlagsLength) {
   p[0] = 0xEE;
   p[1] = 0xFF;
   EXPECT_EQ(p, before);  // nothing written
+}
+
+// ---- QT128 resting channels ----
+
+// Manual 3.1.2: "If a channel does not fire in the current firing sequence, its corresponding four
+// bytes are filled with 0"; App. II: sequence 1 rests bank A, sequence 2 bank B; App. I: bank A is
+// channels 1..32, bank B 33..64, C 65..96. Packet 0 of the capture: mode flag (tail byte 5, at
+// 1066) 0, so block 1 fired sequence 2, and in dual return (header byte 10 = 2) block 2 shares
+// that firing: channels 33..64 rest in both blocks. Block b's unit of channel c starts at
+// 12 + 514 b + 2 + 4 (c - 1).
+class Qt128Resting : public ::testing::Test {
+ protected:
+  static std::size_t unit_at(std::size_t block, std::size_t channel) { return 12 + 514 * block + 2 + 4 * (channel - 1); }
+
+  // CRC1 (at 1040, over the body 12..1039) and CRC3 (at 1091, over the tail 1061..1090) by
+  // reference_crc, little-endian (manual 3.1.2).
+  static void reseal(std::vector<std::uint8_t>& p) {
+    for (const auto& [at, from] : {std::pair<std::size_t, std::size_t>{1040, 12}, {1091, 1061}}) {
+      const std::uint32_t c = reference_crc(&p[from], at - from);
+      for (std::size_t i = 0; i < 4; ++i) p[at + i] = static_cast<std::uint8_t>(c >> (8 * i));
+    }
+  }
+
+  // The real packet with one unit's distance (and optionally reflectivity) set, re-sealed.
+  std::vector<std::uint8_t> with_unit(std::size_t block, std::size_t channel, std::uint16_t raw,
+                                      std::uint8_t reflectivity = 0) const {
+    auto p = real;
+    const std::size_t at = unit_at(block, channel);
+    p[at] = static_cast<std::uint8_t>(raw & 0xFF);
+    p[at + 1] = static_cast<std::uint8_t>(raw >> 8);
+    p[at + 2] = reflectivity;
+    reseal(p);
+    return p;
+  }
+
+  void SetUp() override {
+    real = pcap_payloads("qt128c2x_dual.pcap").at(0);
+    ASSERT_EQ(real.size(), 1127u);
+    ASSERT_EQ(real[11], 0x1D);
+    ASSERT_EQ(real[1066] & 1, 0);  // block 1: firing sequence 2
+    ASSERT_EQ(real[10], 2);        // dual return: block 2 the same firing
+    // The sensor's own bytes: every unit of bank B is zero in both blocks, and so is channel 87
+    // (bank C, fires in both sequences: no return in this packet).
+    for (std::size_t b = 0; b < 2; ++b) {
+      for (std::size_t ch = 33; ch <= 64; ++ch)
+        for (std::size_t k = 0; k < 4; ++k) ASSERT_EQ(real[unit_at(b, ch) + k], 0) << b << " " << ch;
+      for (std::size_t k = 0; k < 4; ++k) ASSERT_EQ(real[unit_at(b, 87) + k], 0);
+    }
+    auto copy = real;
+    reseal(copy);
+    ASSERT_EQ(copy, real);  // reseal() reproduces the sensor's CRCs
+    ASSERT_EQ(dec.decode(view(real), info, pts), Error::ok);
+    real_points = pts.count;
+  }
+
+  bool has_channel(std::uint8_t channel, std::uint8_t block) const {
+    return std::any_of(pts.begin(), pts.end(), [&](const Point& q) { return q.channel == channel && q.block == block; });
+  }
+
+  std::vector<std::uint8_t> real;
+  Decoder dec{Model::qt128c2x};
+  PacketInfo info;
+  PacketPoints pts;
+  std::size_t real_points = 0;
+};
+
+// Distance 256 (1.024 m at 4 mm) in a resting unit: without the check it became a point of that
+// channel with the firing time of a sequence it did not fire in.
+TEST_F(Qt128Resting, DataInARestingChannelRejectsThePacket) {
+  for (const auto& [block, channel] : {std::pair<std::size_t, std::size_t>{0, 33}, {0, 40}, {0, 64}, {1, 33}, {1, 50}}) {
+    const auto p = with_unit(block, channel, 256);
+    EXPECT_EQ(dec.decode(view(p), info, pts), Error::resting_channel_data) << block << " " << channel;
+    EXPECT_EQ(pts.count, 0u);
+    EXPECT_EQ(dec.decode(view(p), info, pts, DecodePath::portable), Error::resting_channel_data);
+    PacketColumns<kMaxPointsPerPacket> cols;
+    EXPECT_EQ(dec.decode(view(p), info, cols), Error::resting_channel_data);
+    EXPECT_EQ(cols.count, 0u);
+    EXPECT_EQ(dec.validate(view(p), info), Error::resting_channel_data);
+    Stats s{};
+    count_error(s, Error::resting_channel_data);
+    EXPECT_EQ(s.malformed, 1u);
+  }
+  // "four bytes are filled with 0": a reflectivity or confidence byte alone is data too.
+  EXPECT_EQ(dec.decode(view(with_unit(0, 40, 0, 7)), info, pts), Error::resting_channel_data);
+  auto p = real;
+  p[unit_at(1, 64) + 3] = 1;
+  reseal(p);
+  EXPECT_EQ(dec.decode(view(p), info, pts), Error::resting_channel_data);
+}
+
+// The same edit in a channel that fires (87, bank C) is a point, in the block edited.
+TEST_F(Qt128Resting, TheSameEditInAFiringChannelIsAPoint) {
+  for (std::uint8_t block = 0; block < 2; ++block) {
+    const auto p = with_unit(block, 87, 256);
+    ASSERT_EQ(dec.decode(view(p), info, pts), Error::ok);
+    EXPECT_EQ(pts.count, real_points + 1);
+    EXPECT_TRUE(has_channel(87, block));
+  }
+}
+
+// Single return: block 2 fires the other sequence (manual 3.1.2), here sequence 1, which rests
+// bank A. Turned into a single-return packet (header return num 1, tail return mode 0x38 last at
+// 1073), packet 0's block 2 holds bank A data from a sequence-2 firing: rejected; with block 2's
+// bank A units zeroed and bank B's (which fire in sequence 1) left as they are, accepted.
+TEST_F(Qt128Resting, SingleReturnBlockTwoRestsTheOtherBank) {
+  auto p = real;
+  p[10] = 1;
+  p[1073] = 0x38;
+  reseal(p);
+  EXPECT_EQ(dec.decode(view(p), info, pts), Error::resting_channel_data);
+  for (std::size_t ch = 1; ch <= 32; ++ch)
+    for (std::size_t k = 0; k < 4; ++k) p[unit_at(1, ch) + k] = 0;
+  reseal(p);
+  ASSERT_EQ(dec.decode(view(p), info, pts), Error::ok);
+  EXPECT_EQ(info.returns, 1);
+  for (const Point& q : pts) EXPECT_FALSE(q.block == 1 && q.channel <= 32) << int(q.channel);
+}
+
+// The firetime file decides which channels rest: the shipped file's Loop2 leaves out 33..64 as
+// the manual does, so the edit is rejected; a file that fires channel 40 in sequence 2 (at 50 us)
+// makes the same unit a point of channel 40 at 1.024 m.
+TEST_F(Qt128Resting, TheFiretimeFileNamesTheRestingChannels) {
+  const auto text = read_file(data_path("calibration/qt128c2x_firetimes.csv"));
+  FiretimeCorrection f;
+  ASSERT_EQ(parse_firetime_csv(view(text), 128, f).error, Error::ok);
+  ASSERT_EQ(dec.set_firetimes(f), Error::ok);
+  const auto p = with_unit(0, 40, 256);
+  EXPECT_EQ(dec.decode(view(p), info, pts), Error::resting_channel_data);
+  ASSERT_FALSE(f.fires[1][40 - 1]);
+  f.fires[1][40 - 1] = true;
+  f.firetime_us[1][40 - 1] = 50.0;
+  ASSERT_EQ(dec.set_firetimes(f), Error::ok);
+  ASSERT_EQ(dec.decode(view(p), info, pts), Error::ok);
+  EXPECT_EQ(pts.count, real_points + 1);
+  const auto it = std::find_if(pts.begin(), pts.end(), [](const Point& q) { return q.channel == 40; });
+  ASSERT_NE(it, pts.end());
+  EXPECT_FLOAT_EQ(it->distance_m, 1.024f);
+  // Its neighbours still rest (sequence 2 now rests 33..39 and 41..64: two runs).
+  for (const std::size_t channel : {std::size_t{39}, std::size_t{41}, std::size_t{64}})
+    EXPECT_EQ(dec.decode(view(with_unit(1, channel, 256)), info, pts), Error::resting_channel_data) << channel;
 }
 
 // ---- Signatures (QT128) ----

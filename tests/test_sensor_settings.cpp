@@ -106,11 +106,15 @@ TEST(Qt128ThreeByteUnits, EveryCapturePacketDecodesToTheOriginalPoints) {
 }
 
 // The capture's confidence bytes are all zero: give them values, so that the 4-byte decode shows
-// them and the 3-byte one (the same units without that byte) cannot.
+// them and the 3-byte one (the same units without that byte) cannot. Units the sensor left all
+// zero stay so: they include the resting channels', whose four bytes the manual fixes at 0 (3.1.2).
 TEST(Qt128ThreeByteUnits, ConfidenceByteOnlyWithBit4) {
   auto p = qt128_packets().at(0);
   for (std::size_t b = 0; b < 2; ++b)
-    for (std::size_t c = 0; c < 128; ++c) p[12 + b * 514 + 2 + c * 4 + 3] = static_cast<std::uint8_t>(c + 1);
+    for (std::size_t c = 0; c < 128; ++c) {
+      std::uint8_t* u = &p[12 + b * 514 + 2 + c * 4];
+      if ((u[0] | u[1] | u[2]) != 0) u[3] = static_cast<std::uint8_t>(c + 1);
+    }
   qt128_seal(p);
   Decoder dec(Model::qt128c2x);
   const Decoded four = decode(dec, p);
@@ -230,6 +234,40 @@ TEST(Qt128ChannelCustomisation, OneLoopConfigurationMapsBothSequences) {
     if (o.channel >= 49) want.push_back(o);
   ASSERT_EQ(got.points.size(), want.size());
   for (std::size_t i = 0; i < want.size(); ++i) EXPECT_TRUE(same_point(want[i], got.points[i], 0));
+}
+
+// Customised units are checked as the channel the configuration names: with the one-loop
+// configuration (49..128) a sequence-2 block's units 0..15 are channels 49..64, which rest in
+// sequence 2 (bank B, manual App. II); data there rejects the packet, in unit 38 (channel 87,
+// bank C, no return in this packet) it is a point.
+TEST(Qt128ChannelCustomisation, DataInAUnitOfARestingChannel) {
+  ChannelConfig c = bundled_config();
+  c.loops = 1;
+  Decoder custom(Model::qt128c2x);
+  ASSERT_EQ(custom.set_channel_config(c), Error::ok);
+  const auto& p = qt128_packets().at(0);
+  ASSERT_EQ(block_loop(p, 0), 1u);
+  ASSERT_EQ(block_loop(p, 1), 1u);
+  std::vector<std::size_t> keep = listed_channels(0);
+  ASSERT_EQ(keep.at(0), 49u);
+  ASSERT_EQ(keep.at(38), 87u);
+  for (std::size_t& k : keep) --k;
+  const auto q = qt128_rebuild(p, 80, 0x5D, {keep, keep});
+  const Decoded base = decode(custom, q);
+  ASSERT_EQ(base.error, Error::ok);
+  for (const std::size_t unit : {std::size_t{0}, std::size_t{15}}) {
+    auto r = q;
+    r[12 + 2 + 4 * unit] = 0x40;  // block 1, distance 64 (0.256 m)
+    qt128_seal(r);
+    EXPECT_EQ(decode(custom, r).error, Error::resting_channel_data) << unit;
+  }
+  auto r = q;
+  ASSERT_EQ(r[12 + 2 + 4 * 38] | r[12 + 2 + 4 * 38 + 1], 0);  // channel 87: no return in this packet
+  r[12 + 2 + 4 * 38] = 0x40;
+  qt128_seal(r);
+  const Decoded one_more = decode(custom, r);
+  ASSERT_EQ(one_more.error, Error::ok);
+  EXPECT_EQ(one_more.points.size(), base.points.size() + 1);
 }
 
 TEST(Qt128ChannelCustomisation, Rejections) {

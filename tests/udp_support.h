@@ -1,18 +1,25 @@
 // Test-only helpers for the live UDP tests, on plain POSIX sockets (not the port's code): whether
-// this machine's loopback carries multicast, and the kernel's receive-buffer limit.
+// this machine's loopback carries multicast, a network namespace of the test's own whose loopback
+// does, and the kernel's receive-buffer limit.
 #pragma once
 
 #include <arpa/inet.h>
+#include <net/if.h>
 #include <netinet/in.h>
 #include <poll.h>
+#include <sys/ioctl.h>
 #include <sys/socket.h>
 #include <unistd.h>
+#if defined(__linux__)
+#include <sched.h>
+#endif
 
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
 #include <fstream>
 #include <string>
+#include <thread>
 
 namespace hesai_test {
 
@@ -53,6 +60,68 @@ inline std::string loopback_multicast_missing(const char* group) {
   return why.empty() ? why : "no multicast on the loopback here (" + why + ")";
 }
 
+/// Where multicast_loopback() ran a test body.
+enum class MulticastNet { none, private_namespace, host_loopback };
+
+inline const char* multicast_net_name(MulticastNet n) {
+  switch (n) {
+    case MulticastNet::private_namespace: return "a network namespace of the test's own";
+    case MulticastNet::host_loopback: return "the host's loopback";
+    case MulticastNet::none: break;
+  }
+  return "nowhere";
+}
+
+/// Runs `body` where IPv4 multicast to `group` through 127.0.0.1 works, and says where:
+/// - first in a network namespace of its own (Linux, root or CAP_SYS_ADMIN): a thread that
+///   unshare(CLONE_NEWNET)s, sets that namespace's loopback up with IFF_MULTICAST (SIOCSIFFLAGS)
+///   and checks it with loopback_multicast_missing(); `body` runs on that thread, so the sockets
+///   it opens and the processes it starts (fork copies the thread's namespace) live there and
+///   reach nothing else; the namespace goes when the thread has ended and they are closed. The
+///   host's interfaces and routes are not touched.
+/// - else on the host's loopback, when loopback_multicast_missing() finds it carries multicast.
+/// MulticastNet::none and `why` (for GTEST_SKIP) when neither does; then `body` did not run.
+/// Inside `body` gtest's EXPECT and ASSERT work as on the test's own thread (ASSERT returns from
+/// `body`); read /proc/thread-self/net, not /proc/net (the main thread's namespace).
+template <typename F>
+MulticastNet multicast_loopback(const char* group, F&& body, std::string& why) {
+  std::string private_why = "network namespaces are Linux's";
+#if defined(__linux__)
+  bool ran = false;
+  std::thread own([&] {
+    if (unshare(CLONE_NEWNET) != 0) {
+      private_why = std::string("unshare(CLONE_NEWNET): ") + std::strerror(errno);
+      return;
+    }
+    const int fd = socket(AF_INET, SOCK_DGRAM, 0);
+    ifreq lo{};
+    std::strncpy(lo.ifr_name, "lo", IFNAMSIZ - 1);
+    if (fd < 0 || ioctl(fd, SIOCGIFFLAGS, &lo) != 0) {
+      private_why = std::string("the namespace's loopback: ") + std::strerror(errno);
+    } else {
+      lo.ifr_flags = static_cast<short>(lo.ifr_flags | IFF_UP | IFF_MULTICAST);
+      if (ioctl(fd, SIOCSIFFLAGS, &lo) != 0)
+        private_why = std::string("loopback up with multicast: ") + std::strerror(errno);
+      else
+        private_why = loopback_multicast_missing(group);
+    }
+    if (fd >= 0) close(fd);
+    if (!private_why.empty()) return;
+    ran = true;
+    body();
+  });
+  own.join();
+  if (ran) return MulticastNet::private_namespace;
+#endif
+  const std::string host_why = loopback_multicast_missing(group);
+  if (host_why.empty()) {
+    body();
+    return MulticastNet::host_loopback;
+  }
+  why = "no network namespace of our own (" + private_why + "), and " + host_why;
+  return MulticastNet::none;
+}
+
 /// net.core.rmem_max, the most SO_RCVBUF grants (socket(7); only SO_RCVBUFFORCE, which the port
 /// does not use, goes beyond); 0 when /proc does not tell.
 inline std::size_t rmem_max() {
@@ -91,8 +160,11 @@ inline bool wait_for_listener(int port, const char* address = "127.0.0.1") {
   char local[32], local_swapped[32];
   std::snprintf(local, sizeof local, "%08X:%04X", raw, port);
   std::snprintf(local_swapped, sizeof local_swapped, "%08X:%04X", swapped, port);
+  // The calling thread's namespace (multicast_loopback may have given it one of its own);
+  // /proc/net is the main thread's. Kernels before 3.17 have no thread-self.
+  const char* table = access("/proc/thread-self/net/udp", R_OK) == 0 ? "/proc/thread-self/net/udp" : "/proc/net/udp";
   for (int i = 0; i < 400; ++i) {
-    std::ifstream f("/proc/net/udp");
+    std::ifstream f(table);
     std::string line;
     while (std::getline(f, line))
       if (line.find(local) != std::string::npos || line.find(local_swapped) != std::string::npos) return true;

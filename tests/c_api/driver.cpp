@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cstddef>
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -196,6 +197,36 @@ TEST_P(CApi, CalibrationArraysGiveTheSamePointsAsTheFiles) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Captures, CApi, ::testing::ValuesIn(kCaptures));
+
+// The firing-time arrays do not say which channels rest: for the QT128 the manual's bank rule
+// still does (hesai.h). Every channel given a time in both loops, packet 0 of the capture (mode
+// flag 0, dual: sequence 2, bank B = channels 33..64 rests, manual App. I/II) decodes as before,
+// and with data in channel 40's unit (CRC1 at 1040 over bytes 12..1039, re-sealed by a bitwise
+// CRC-32/MPEG-2 written here) it is resting_channel_data.
+TEST(CApiQt128, FiretimeArraysKeepTheBankRule) {
+  auto p = pcap_payloads("qt128c2x_dual.pcap").at(0);
+  ASSERT_EQ(p[1066] & 1, 0);
+  ASSERT_EQ(p[10], 2);
+  const std::vector<double> elevation(128, 0.0), azimuth(128, 0.0), us(128, 10.0);
+  ASSERT_EQ(c_open_arrays(HESAI_MODEL_qt128c2x, elevation.data(), azimuth.data(), us.data(), us.data(), 128),
+            HESAI_ERROR_ok);
+  hesai_packet_info info;
+  const hesai_point* points = nullptr;
+  std::size_t count = 0;
+  ASSERT_EQ(c_feed(p.data(), p.size(), &info, &points, &count), HESAI_ERROR_ok);
+  EXPECT_GT(count, 0u);
+  const std::size_t unit = 12 + 2 + 4 * (40 - 1);
+  ASSERT_EQ(p[unit] | p[unit + 1] | p[unit + 2] | p[unit + 3], 0);
+  p[unit + 1] = 1;  // distance 256
+  std::uint32_t crc = 0xFFFFFFFFu;
+  for (std::size_t i = 12; i < 1040; ++i) {
+    crc ^= std::uint32_t{p[i]} << 24;
+    for (int b = 0; b < 8; ++b) crc = (crc & 0x80000000u) ? (crc << 1) ^ 0x04C11DB7u : crc << 1;
+  }
+  for (std::size_t i = 0; i < 4; ++i) p[1040 + i] = static_cast<std::uint8_t>(crc >> (8 * i));
+  EXPECT_EQ(c_feed(p.data(), p.size(), &info, &points, &count), HESAI_ERROR_resting_channel_data);
+  EXPECT_EQ(count, 0u);
+}
 
 // Design values (no calibration), a Pandar40 stream (the Pandar40P packets' first 1256 bytes,
 // as tests/firmware does: no Pandar40 capture is at hand) with a GPS packet amid it.

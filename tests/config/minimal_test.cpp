@@ -31,8 +31,9 @@ using hesai_test::qt128_seal;
 ByteView view(const std::vector<std::uint8_t>& v) { return {v.data(), v.size()}; }
 
 // A QT128 packet (flags 0x0D: sequence, functional safety, signature) with its CRCs, signed or not.
+// Mode flag 0: block 1 fires sequence 2, in which channel 1 (bank A) fires (manual App. II).
 std::vector<std::uint8_t> qt128(const std::uint8_t* key) {
-  auto p = qt128_packet(0x0D, 0x37, 1, hesai_test::Stamp{});
+  auto p = qt128_packet(0x0D, 0x37, 0, hesai_test::Stamp{});
   hesai_test::qt128_point(p, 1, 1, 1000, 50);
   qt128_seal(p, key);
   return p;

@@ -48,7 +48,7 @@ using hesai::Model;
 int failures = 0;
 
 // The figure decoder.h states ("Memory"), on the target.
-static_assert(sizeof(hesai::Decoder) == (HESAI_SIGNATURE ? 7168 : 6944), "decoder.h: Memory");
+static_assert(sizeof(hesai::Decoder) == (HESAI_SIGNATURE ? 7208 : 6980), "decoder.h: Memory");
 
 // ---- Output ---------------------------------------------------------------------------------
 

@@ -29,7 +29,8 @@
 // - identify(): a fixed number of header reads.
 // - validate(): the length and header checks, CRC-32/MPEG-2 over at most the packet (QT128C2X:
 //   three sections, 1 070 of its 1 127 bytes), and, with a session key, one HMAC-SHA256 over at
-//   most 1 095 bytes (19 SHA-256 compressions; the key schedule is precomputed by set_session_key).
+//   most 1 095 bytes (19 SHA-256 compressions; the key schedule is precomputed by set_session_key);
+//   QT128C2X: a read of each resting channel's unit (2 x 32 units with the manual's banks).
 // - decode(): validate(), then a constant amount of float arithmetic per channel of each block:
 //   at most kMaxPointsPerPacket (400) points. When the spin rate differs from the previous packet's
 //   (the first packet, a speed change), the per-rate cache is rebuilt first: at most 2 x 128
@@ -39,9 +40,9 @@
 // Memory (the caller owns every object; the core has no static RAM but the one CPUID byte on
 // x86-64; sizes checked by static_assert in tests/test_contract.cpp on every CI target, 32- and
 // 64-bit, and in the firmware image):
-// - Decoder: 7 168 bytes (6 944 with HESAI_SIGNATURE 0): per-channel geometry and the per-rate
-//   cache for 128 channels, the QT128 channel configuration (256 bytes), the HMAC key states (224
-//   bytes), the GPS time base.
+// - Decoder: 7 208 bytes (6 980 with HESAI_SIGNATURE 0): per-channel geometry and the per-rate
+//   cache for 128 channels, the QT128 channel configuration (256 bytes) and resting channels (36
+//   bytes), the HMAC key states (224 bytes), the GPS time base.
 // - PacketPoints: 16 008 bytes (400 points of 40 bytes); PacketColumns<N>: 19 N + a size_t;
 //   PacketInfo: 88 bytes.
 // - Calibration input: AngleCorrection 2 056 bytes, FiretimeCorrection 2 312 bytes (only while
@@ -183,7 +184,7 @@ struct BlockRef;  // one block of a packet, for the per-point code (core/src/sen
 
 /// Decoder state for one sensor: per-channel geometry from the built-in tables or a
 /// calibration file, the per-spin-rate point constants, the session key, the Pandar40 GPS
-/// time base and the QT128 channel configuration. 7 168 bytes; one per sensor per thread (see the
+/// time base and the QT128 channel configuration. 7 208 bytes; one per sensor per thread (see the
 /// contract at the top).
 class Decoder {
  public:
@@ -198,7 +199,10 @@ class Decoder {
   [[nodiscard]] Error set_angles(const AngleCorrection& angles) noexcept;
   /// Uses a firing-time file. Error::calib_channel_count if the channel count differs, or if a
   /// QT128 decoder is given a one-loop file; Error::invalid_argument (and no change) if a firing
-  /// time lies outside [-1000, 1000] us.
+  /// time lies outside [-1000, 1000] us. QT128: the channels the file leaves out of a loop are the
+  /// ones that rest in that firing sequence (until then, the manual's bank rule: sequence 1 rests
+  /// channels 1..32, sequence 2 channels 33..64); validate() rejects a packet whose resting
+  /// channels carry data (Error::resting_channel_data).
   [[nodiscard]] Error set_firetimes(const FiretimeCorrection& firetimes) noexcept;
   /// Azimuth firing-time correction (on by default): adds firing time x spin rate to each point,
   /// in the direction of rotation (subtracts it for a counter-clockwise unit).
@@ -240,7 +244,10 @@ class Decoder {
   /// Pandar40: takes the date and hour from a GPS packet for the packets that follow.
   void update_gps(const GpsPacket& gps) noexcept;
 
-  /// Runs every check (length, header, flags, CRCs, signature, fields) and fills `info`.
+  /// Runs every check (length, header, flags, CRCs, signature, fields) and fills `info`. QT128:
+  /// the units of the channels that rest in a block's firing sequence must be all zero (manual
+  /// 3.1.2, "If a channel does not fire in the current firing sequence, its corresponding four
+  /// bytes are filled with 0"); otherwise Error::resting_channel_data, and no point of the packet.
   [[nodiscard]] Error validate(ByteView payload, PacketInfo& info) noexcept;
   /// validate(), then the points: distance 0 yields no point. On error out.count is 0. `path`: the
   /// vector code the CPU has, or the portable scalar code (see DecodePath).
@@ -287,6 +294,8 @@ class Decoder {
 
   void set_channel_angle(std::size_t ch, double elevation_deg, double azimuth_deg) noexcept;
   void set_channel_firetime(std::size_t ch, double loop1_us, double loop2_us) noexcept;
+  // Sets resting_first_ and resting_count_ from resting_.
+  void find_resting_runs() noexcept;
   template <std::size_t N>
   void set_design_tables(const std::array<float, N>& elevation_deg, const float* azimuth_deg,
                          const std::array<float, N>& firetime_us) noexcept;
@@ -330,6 +339,13 @@ class Decoder {
   SpinCache spin_;
   // QT128 channel configuration: the 0-based channel of each unit, [loop][unit] (256 bytes).
   std::array<std::array<std::uint8_t, kMaxChannels>, 2> custom_channel_{};
+  // QT128: the channels that rest in each firing sequence, bit (ch % 8) of byte ch / 8 for the
+  // 0-based channel ch, [loop] (32 bytes): the manual's bank rule, or the firetime file's. When
+  // they are one run of channels (the manual's banks), validate() reads that run of units at
+  // once: its first channel and length, [loop]; length kRestingScattered when they are not.
+  static constexpr std::uint8_t kRestingScattered = 0xFF;
+  std::array<std::array<std::uint8_t, kMaxChannels / 8>, 2> resting_{};
+  std::array<std::uint8_t, 2> resting_first_{}, resting_count_{};
 #if HESAI_SIGNATURE
   HmacSha256Key key_;
 #endif

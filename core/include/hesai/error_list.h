@@ -55,6 +55,9 @@
   X(ptc_command_mismatch)     /* the response echoes another command than the request's */                     \
   X(ptc_length_exceeds_bound) /* the announced payload length is above the caller's bound for the command */   \
   X(ptc_sensor_error)         /* the sensor answered with a non-zero return code */                            \
-  X(ptc_payload_length)       /* a payload shorter than its command's layout, or not the size it fixes */
+  X(ptc_payload_length)       /* a payload shorter than its command's layout, or not the size it fixes */      \
+  /* Field validation, added after the rest: every code keeps its value. */                                    \
+  X(resting_channel_data)     /* QT128: a channel that rests in its block's firing sequence has non-zero */    \
+                              /* bytes (manual 3.1.2: a resting channel's four bytes are 0) */
 
 #endif /* HESAI_ERROR_LIST_H */

@@ -201,8 +201,10 @@ hesai_error hesai_decoder_set_firetimes_csv(hesai_decoder* decoder, const uint8_
  * else calib_channel_count). Angles in degrees: elevation in [-90, 90], azimuth offset in
  * [-360, 360]. Firing times in microseconds, in [-1000, 1000], as the vendor files give them:
  * loop2_us NULL for the Pandars' one firing sequence, both loops for the QT128 (any value in
- * range, 0 say, where a channel rests). invalid_argument for a value out of range. On any error
- * the decoder is unchanged. */
+ * range, 0 say, where a channel rests). The QT128 arrays do not say which channels rest: the
+ * manual's bank rule does (sequence 1 rests channels 1..32, sequence 2 channels 33..64; their
+ * values are not used; a firetime CSV names them itself). invalid_argument for a value out of
+ * range. On any error the decoder is unchanged. */
 hesai_error hesai_decoder_set_angles(hesai_decoder* decoder, const double* elevation_deg, const double* azimuth_deg,
                                      size_t channels, hesai_calibration_scratch* scratch) HESAI_NOEXCEPT;
 hesai_error hesai_decoder_set_firetimes(hesai_decoder* decoder, const double* loop1_us, const double* loop2_us,

@@ -15,6 +15,7 @@
 #include "hesai/hkdf.h"
 #include "hesai/model.h"
 #include "hesai/point.h"
+#include "hesai/tables/qt128_tables.h"
 
 namespace {
 
@@ -291,10 +292,13 @@ hesai_error hesai_decoder_set_firetimes(hesai_decoder* decoder, const double* lo
   firetimes.channels = static_cast<std::uint16_t>(channels);
   firetimes.loops = loop2_us != nullptr ? 2 : 1;
   const double* const loops[2] = {loop1_us, loop2_us};
+  // The arrays do not say which channels rest: for the QT128 the manual's bank rule does.
+  const bool qt128 = d.model() == hesai::Model::qt128c2x;
   for (std::size_t loop = 0; loop < firetimes.loops; ++loop) {
     for (std::size_t i = 0; i < channels; ++i) {
       firetimes.firetime_us[loop][i] = loops[loop][i];
-      firetimes.fires[loop][i] = true;
+      firetimes.fires[loop][i] = !qt128 || (loop == 0 ? hesai::tables::qt128_fires_in_loop1[i]
+                                                       : hesai::tables::qt128_fires_in_loop2[i]);
     }
   }
   return c_error(d.set_firetimes(firetimes));

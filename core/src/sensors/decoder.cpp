@@ -30,6 +30,12 @@ constexpr std::size_t kGpsBytes = 512;
 /// (55.56 us Pandar, 111.11 us QT128); keeps the ns value in range of an int32.
 constexpr double kMaxFiretimeUs = 1000.0;
 
+/// Marks 0-based channel `ch` as resting, or not, in one loop's mask of Decoder::resting_.
+void set_resting(std::array<std::uint8_t, kMaxChannels / 8>& mask, std::size_t ch, bool rests) {
+  const auto bit = static_cast<unsigned>(1u << (ch % 8));
+  mask[ch / 8] = static_cast<std::uint8_t>(rests ? mask[ch / 8] | bit : mask[ch / 8] & ~bit);
+}
+
 }  // namespace
 
 Error identify(ByteView p, Model& model, PacketKind& kind) noexcept {
@@ -90,7 +96,10 @@ Decoder::Decoder(Model model) noexcept : model_(model) {
         set_channel_angle(i, tables::qt128_channel_angles[i].elevation_deg,
                           tables::qt128_channel_angles[i].azimuth_deg);
         set_channel_firetime(i, tables::qt128_firetime_us_loop1[i], tables::qt128_firetime_us_loop2[i]);
+        set_resting(resting_[0], i, !tables::qt128_fires_in_loop1[i]);
+        set_resting(resting_[1], i, !tables::qt128_fires_in_loop2[i]);
       }
+      find_resting_runs();
       break;
     case Model::pandar_qt64:
       set_design_tables(tables::qt64_elevation_deg, tables::qt64_azimuth_deg.data(), tables::qt64_firetime_us);
@@ -132,6 +141,21 @@ void Decoder::set_channel_firetime(std::size_t ch, double loop1_us, double loop2
   geo_.fire_ns[0][ch] = detail::round_to_int(loop1_us * 1000);
   geo_.fire_ns[1][ch] = detail::round_to_int(loop2_us * 1000);
   spin_.rpm = SpinCache::kStale;
+}
+
+void Decoder::find_resting_runs() noexcept {
+  for (std::size_t loop = 0; loop < 2; ++loop) {
+    std::size_t first = 0, count = 0, runs = 0;
+    bool before = false;
+    for (std::size_t ch = 0; ch < kMaxChannels; ++ch) {
+      const bool rests = ((resting_[loop][ch / 8] >> (ch % 8)) & 1) != 0;
+      if (rests && !before && runs++ == 0) first = ch;
+      count += rests ? 1 : 0;
+      before = rests;
+    }
+    resting_first_[loop] = static_cast<std::uint8_t>(first);
+    resting_count_[loop] = runs <= 1 ? static_cast<std::uint8_t>(count) : kRestingScattered;
+  }
 }
 
 void Decoder::set_rotation(Rotation rotation) noexcept {
@@ -318,7 +342,10 @@ Error Decoder::set_firetimes(const FiretimeCorrection& f) noexcept {
       us[loop] = f.fires[src][i] ? f.firetime_us[src][i] : 0.0;
     }
     set_channel_firetime(i, us[0], us[1]);
+    if (two_loops)
+      for (std::size_t loop = 0; loop < 2; ++loop) set_resting(resting_[loop], i, !f.fires[loop][i]);
   }
+  find_resting_runs();
   return Error::ok;
 }
 

@@ -40,9 +40,33 @@ CrcField crc_field(ByteView p, const qt128::Layout& l, std::size_t i) noexcept {
   }
 }
 
+// True when the n bytes at p are all zero (read 8 at a time: the order of the bytes does not matter).
 bool all_zero(const std::uint8_t* p, std::size_t n) {
+  std::uint64_t acc = 0;
+  std::size_t i = 0;
+  for (; n - i >= 8; i += 8) acc |= load_le64(p + i);
+  for (; i < n; ++i) acc |= p[i];
+  return acc == 0;
+}
+
+// The firing sequence (0: sequence 1, Loop1; 1: sequence 2) of block b. Mode flag bit 0: block 1
+// uses sequence 1 when set, sequence 2 otherwise; in single return block 2 uses the other
+// sequence, in dual return both blocks share one firing (manual 3.1.2, Tail; App. II).
+std::size_t block_loop(std::uint8_t mode_flag, bool dual, std::size_t b) {
+  const std::size_t loop1 = (mode_flag & 1) ? 0 : 1;
+  return (dual || b == 0) ? loop1 : 1 - loop1;
+}
+
+bool rests(const std::uint8_t* mask, std::size_t ch) { return ((mask[ch / 8] >> (ch % 8)) & 1) != 0; }
+
+// True when every unit of a block whose channel rests (bit set in `mask`, 16 bytes) is all zero:
+// unit j is channel j, or channel_of[j] with customised channels.
+bool resting_units_zero(const std::uint8_t* units, const qt128::Layout& l, const std::uint8_t* channel_of,
+                        const std::uint8_t* mask) {
   std::uint8_t acc = 0;
-  for (std::size_t i = 0; i < n; ++i) acc = static_cast<std::uint8_t>(acc | p[i]);
+  for (std::size_t j = 0; j < l.lasers; ++j)
+    if (rests(mask, channel_of != nullptr ? channel_of[j] : j))
+      for (std::size_t k = 0; k < l.unit; ++k) acc = static_cast<std::uint8_t>(acc | units[j * l.unit + k]);
   return acc == 0;
 }
 
@@ -151,6 +175,22 @@ Error Decoder::validate_qt128(ByteView p, PacketInfo& info) noexcept {
   if (const Error e = detail::motor_speed(info); e != Error::ok) return e;
 
   if (const Error e = detail::block_azimuths(p.data + kBody, layout.block, info); e != Error::ok) return e;
+  // Manual 3.1.2: "If a channel does not fire in the current firing sequence, its corresponding
+  // four bytes are filled with 0." Data there is no measurement of that channel (it did not fire):
+  // the block was not fired as the mode flag says, or the sensor wrote bytes the manual does not
+  // define; either way no firing time of the packet can be trusted, so the packet is rejected.
+  // Without customised channels unit j is channel j, so resting channels that form one run (the
+  // manual's banks) are one span of units.
+  const bool custom = (info.flags & kFlagChannelCustom) != 0;
+  for (std::size_t b = 0; b < kBlocks; ++b) {
+    const std::size_t loop = block_loop(info.mode_flag, info.returns == 2, b);
+    const std::uint8_t* units = p.data + kBody + b * layout.block + kBlockPoints;
+    const bool zero = !custom && resting_count_[loop] != kRestingScattered
+                          ? all_zero(units + resting_first_[loop] * layout.unit, resting_count_[loop] * layout.unit)
+                          : resting_units_zero(units, layout, custom ? custom_channel_[loop].data() : nullptr,
+                                               resting_[loop].data());
+    if (!zero) return Error::resting_channel_data;
+  }
   // Date & Time: year - 1900 (>= 70), or with a year byte of 0 Unix seconds, big-endian, in bytes
   // 2..5 (the vendor SDK's reading; byte 1 is not read); Timestamp: us, 0..1000000 (the manual's range).
   const std::uint8_t* dt = tail + kTailDateTime;
@@ -162,13 +202,10 @@ void Decoder::decode_qt128(const std::uint8_t* p, const PacketInfo& info, Output
   const Layout layout = Layout::from_header(p[kLaserNum], info.flags);
   const bool custom = (info.flags & kFlagChannelCustom) != 0;
   const std::size_t dual = info.returns == 2 ? 1 : 0;
-  // Mode flag bit 0: block 1 uses firing sequence 1 (loop 0) when set, sequence 2 otherwise;
-  // in single return block 2 uses the other sequence, in dual return both blocks share one firing.
-  // Customised channels: the configuration's column for that loop names each unit's channel.
-  const std::size_t loop1 = (info.mode_flag & 1) ? 0 : 1;
+  // Customised channels: the configuration's column for the block's loop names each unit's channel.
   detail::BlockRef blocks[kBlocks];
   for (std::size_t b = 0; b < kBlocks; ++b) {
-    const std::size_t loop = (dual || b == 0) ? loop1 : 1 - loop1;
+    const std::size_t loop = block_loop(info.mode_flag, dual != 0, b);
     blocks[b] = {p + kBody + b * layout.block + kBlockPoints, custom ? custom_channel_[loop].data() : nullptr,
                  kBlockNs[dual][b], static_cast<std::uint8_t>(loop)};
   }
