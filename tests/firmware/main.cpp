@@ -28,6 +28,7 @@
 #include "hesai/qt64_packet.h"
 #include "hesai/sha256.h"
 #include "hesai/xt_packet.h"
+#include "alt_hooks.h"
 #include "c_path.h"
 #include "semihost.h"
 
@@ -280,6 +281,19 @@ void real_packets() {
 #if HESAI_SIGNATURE
   check(decoders[3].set_session_key(key) == Error::ok, "QT128 session key");
   check(decoders[3].decode(bqt, info, points) == Error::signature_missing, "QT128 unsigned packet with a key");
+#if HESAI_CRC32_ALT && HESAI_SHA256_ALT
+  // The platform hooks: a signed packet validates through them, three CRCs (body, functional
+  // safety, tail) and 19 SHA-256 compressions (the inner hash of the 1 095 signed bytes after the
+  // precomputed key block, 18; the outer one, 1).
+  std::memcpy(shifted, kQt128, sizeof kQt128);
+  check(hesai::qt128::sign(shifted, sizeof kQt128, key) == Error::ok, "QT128 signed by the hooks");
+  const std::size_t crc_before = firmware_crc_hook_calls, sha_before = firmware_sha_hook_blocks;
+  check(decoders[3].validate({shifted, sizeof kQt128}, info) == Error::ok &&
+            info.signature == hesai::SignatureStatus::valid,
+        "QT128 signature valid through the hooks");
+  check(firmware_crc_hook_calls - crc_before == 3, "three CRCs through the CRC hook");
+  check(firmware_sha_hook_blocks - sha_before == 19, "19 compressions through the SHA-256 hook");
+#endif
   decoders[3].clear_session_key();
 #else
   check(decoders[3].set_session_key(key) == Error::unsupported_feature, "no session key without HESAI_SIGNATURE");

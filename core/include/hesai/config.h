@@ -52,6 +52,35 @@
 #define HESAI_ASSERT(x) ((void)sizeof((x) ? 1 : 0))
 #endif
 
+/// HESAI_CRC32_ALT: define it to 1 when the platform computes CRC-32/MPEG-2 itself, as Mbed TLS's
+/// MBEDTLS_SHA256_ALT lets a platform replace a primitive. The platform then provides
+///     extern "C" uint32_t hesai_crc32_mpeg2_alt(uint32_t crc, const uint8_t* data, size_t size);
+/// which feeds `size` bytes (size >= 1) into the register `crc` (most significant bit first, no
+/// reflection, no final xor; the register starts at 0xFFFFFFFF) and returns the new register. Every
+/// CRC the decoder checks (crc32_mpeg2(), crc32_mpeg2_update() and CrcPath::hardware) then runs it;
+/// the other CrcPath values keep the core's own code. An STM32 CRC unit in its reset configuration
+/// (polynomial 0x04C11DB7, initial value all ones, no reversal, no final xor) computes exactly
+/// this, a 32-bit word at a time.
+#if !defined(HESAI_CRC32_ALT)
+#define HESAI_CRC32_ALT 0
+#endif
+#if HESAI_CRC32_ALT != 0 && HESAI_CRC32_ALT != 1
+#error "HESAI_CRC32_ALT must be 0 or 1"
+#endif
+
+/// HESAI_SHA256_ALT: define it to 1 when the platform computes the SHA-256 compression function
+/// (a hash accelerator). The platform then provides
+///     extern "C" void hesai_sha256_compress_alt(uint32_t state[8], const uint8_t* blocks, size_t nblocks);
+/// which runs the FIPS 180-4 compression over `nblocks` (>= 1) consecutive 64-byte blocks, updating
+/// `state`. Sha256Path::hardware (the default path of SHA-256, HMAC, HKDF and the signature check)
+/// then runs it; Sha256Path::portable keeps the core's own code.
+#if !defined(HESAI_SHA256_ALT)
+#define HESAI_SHA256_ALT 0
+#endif
+#if HESAI_SHA256_ALT != 0 && HESAI_SHA256_ALT != 1
+#error "HESAI_SHA256_ALT must be 0 or 1"
+#endif
+
 /// HESAI_NO_GNU_EXTENSIONS: define it to take the ISO C++ path of every GNU extension the core
 /// uses (inline-asm barriers, always_inline, the x86-64 SHA-NI and PCLMULQDQ paths) with a
 /// compiler that defines __GNUC__ but lacks them. Other compilers take those paths anyway.

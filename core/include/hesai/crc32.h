@@ -14,6 +14,12 @@
 #include "hesai/bytes.h"
 #include "hesai/config.h"
 
+#if HESAI_CRC32_ALT
+/// The platform's CRC-32/MPEG-2 (hesai/config.h, HESAI_CRC32_ALT): feeds `size` >= 1 bytes into the
+/// register `crc` and returns the new register.
+extern "C" std::uint32_t hesai_crc32_mpeg2_alt(std::uint32_t crc, const std::uint8_t* data, std::size_t size) noexcept;
+#endif
+
 namespace hesai {
 
 /// Generator polynomial, x^32 implied (x^32 + x^26 + x^23 + ... + x + 1).
@@ -85,12 +91,14 @@ enum class CrcPath : std::uint8_t {
 std::uint32_t crc32_mpeg2_update(CrcPath path, std::uint32_t crc, ByteView data) noexcept;
 
 /// True when CrcPath::hardware really uses carry-less multiplication on this CPU
-/// (x86-64: detected once by CPUID; AArch64: chosen at compile time by __ARM_FEATURE_CRYPTO/AES).
+/// (x86-64: detected once by CPUID; AArch64: chosen at compile time by __ARM_FEATURE_CRYPTO/AES),
+/// or the platform's function (HESAI_CRC32_ALT).
 bool crc32_hardware_available() noexcept;
 
 /// The code crc32_mpeg2() runs on this CPU for inputs of 256 bytes and more: "vpclmulqdq"
 /// (512-bit folding, x86-64 with AVX-512), "pclmulqdq" (x86-64), "pmull" (AArch64), "slicing"
-/// (kCrc32Mpeg2Slices tables) or "table" (HESAI_CRC_SLICING 1). A static string.
+/// (kCrc32Mpeg2Slices tables), "table" (HESAI_CRC_SLICING 1) or "alt" (the platform's function,
+/// HESAI_CRC32_ALT). A static string.
 const char* crc32_path_name() noexcept;
 
 /// Streaming CRC-32/MPEG-2 over pieces of a message. No heap; copy freely.

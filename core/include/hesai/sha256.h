@@ -10,6 +10,12 @@
 
 #include "hesai/bytes.h"
 
+#if HESAI_SHA256_ALT
+/// The platform's SHA-256 compression function (hesai/config.h, HESAI_SHA256_ALT): `nblocks` >= 1
+/// consecutive 64-byte blocks into `state`.
+extern "C" void hesai_sha256_compress_alt(std::uint32_t state[8], const std::uint8_t* blocks, std::size_t nblocks) noexcept;
+#endif
+
 namespace hesai {
 
 inline constexpr std::size_t kSha256Size = 32;       ///< digest, bytes
@@ -24,7 +30,8 @@ bool sha256_hardware_available() noexcept;
 /// The fastest available path: hardware when available, else portable.
 Sha256Path sha256_best_path() noexcept;
 /// The compression function sha256_best_path() runs on this CPU: "sha-ni" (x86-64),
-/// "armv8-sha2" (AArch64) or "portable". A static string.
+/// "armv8-sha2" (AArch64), "alt" (the platform's function, HESAI_SHA256_ALT) or "portable". A
+/// static string.
 const char* sha256_path_name() noexcept;
 
 /// Runs the compression function over `nblocks` consecutive 64-byte blocks, updating `state`.

@@ -109,6 +109,10 @@ static_assert(model_update(0x89ABCDEFu, kSample.bytes + 5, 287, true) ==
 // Folding by the widest kernel this CPU has (`widest`: the 512-bit one where there is one; else
 // the 128-bit one), the last 0..15 bytes by slicing.
 std::uint32_t hardware_update(std::uint32_t crc, const std::uint8_t* p, std::size_t n, bool widest) noexcept {
+#if HESAI_CRC32_ALT
+  (void)widest;
+  return hesai_crc32_mpeg2_alt(crc, p, n);  // callers pass n >= 1
+#else
 #if defined(HESAI_CRC32_FOLD_X86) || defined(HESAI_CRC32_FOLD_ARM)
   if (n >= crc32_fold::kMinBytes && crc32_fold::fold_available()) {
     const std::size_t folded = n & ~std::size_t{15};
@@ -124,12 +128,15 @@ std::uint32_t hardware_update(std::uint32_t crc, const std::uint8_t* p, std::siz
 #endif
   (void)widest;
   return slicing_update(crc, p, n);
+#endif
 }
 
 }  // namespace
 
 bool crc32_hardware_available() noexcept {
-#if defined(HESAI_CRC32_FOLD_X86) || defined(HESAI_CRC32_FOLD_ARM)
+#if HESAI_CRC32_ALT
+  return true;
+#elif defined(HESAI_CRC32_FOLD_X86) || defined(HESAI_CRC32_FOLD_ARM)
   return crc32_fold::fold_available();
 #else
   return false;
@@ -137,7 +144,9 @@ bool crc32_hardware_available() noexcept {
 }
 
 const char* crc32_path_name() noexcept {
-#if defined(HESAI_CRC32_FOLD_X86)
+#if HESAI_CRC32_ALT
+  return "alt";
+#elif defined(HESAI_CRC32_FOLD_X86)
   if (crc32_fold::fold_available()) return crc32_fold::fold512_available() ? "vpclmulqdq" : "pclmulqdq";
 #elif defined(HESAI_CRC32_FOLD_ARM)
   if (crc32_fold::fold_available()) return "pmull";

@@ -21,7 +21,9 @@
 #include "hesai/bytes.h"
 #include "hesai/crc32.h"
 
-#if defined(__x86_64__) && HESAI_GNU
+// With HESAI_CRC32_ALT the platform's function replaces the folding kernels.
+#if HESAI_CRC32_ALT
+#elif defined(__x86_64__) && HESAI_GNU
 #define HESAI_CRC32_FOLD_X86 1  // PCLMULQDQ, chosen at run time by CPUID (GNU target attributes)
 #elif defined(__aarch64__) && (defined(__ARM_FEATURE_CRYPTO) || defined(__ARM_FEATURE_AES)) && \
     !defined(__ARM_BIG_ENDIAN)

@@ -7,7 +7,9 @@
 #include "../base/compiler.h"
 #include "hesai/ct.h"
 
-#if defined(__x86_64__) && HESAI_GNU
+// With HESAI_SHA256_ALT the platform's function replaces the instructions.
+#if HESAI_SHA256_ALT
+#elif defined(__x86_64__) && HESAI_GNU
 #define HESAI_SHA256_X86 1
 #include <immintrin.h>
 
@@ -207,7 +209,9 @@ Sha256Path usable(Sha256Path path) noexcept {
 }  // namespace
 
 bool sha256_hardware_available() noexcept {
-#if defined(HESAI_SHA256_X86)
+#if HESAI_SHA256_ALT
+  return true;
+#elif defined(HESAI_SHA256_X86)
   return detail::x86_has(detail::X86Feature::sha_ni);
 #elif defined(HESAI_SHA256_ARM)
   return true;
@@ -220,7 +224,9 @@ Sha256Path sha256_best_path() noexcept { return usable(Sha256Path::hardware); }
 
 const char* sha256_path_name() noexcept {
   if (sha256_best_path() == Sha256Path::portable) return "portable";
-#if defined(HESAI_SHA256_ARM)
+#if HESAI_SHA256_ALT
+  return "alt";
+#elif defined(HESAI_SHA256_ARM)
   return "armv8-sha2";
 #else
   return "sha-ni";
@@ -230,7 +236,9 @@ const char* sha256_path_name() noexcept {
 void sha256_compress(Sha256Path path, std::uint32_t state[8], const std::uint8_t* blocks,
                      std::size_t nblocks) noexcept {
   if (nblocks == 0) return;
-#if defined(HESAI_SHA256_X86)
+#if HESAI_SHA256_ALT
+  if (path == Sha256Path::hardware) return hesai_sha256_compress_alt(state, blocks, nblocks);
+#elif defined(HESAI_SHA256_X86)
   if (usable(path) == Sha256Path::hardware) return compress_x86(state, blocks, nblocks);
 #elif defined(HESAI_SHA256_ARM)
   if (path == Sha256Path::hardware) return compress_arm(state, blocks, nblocks);
