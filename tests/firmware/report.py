@@ -85,6 +85,7 @@ COMPONENTS = [
     ('streams/: frames, rotation, sequence, safety monitor, stats', 'streams',
      ['frame', 'rotation', 'sequence', 'safety', 'stats']),
     ('capi/: the C interface (hesai.h)', 'capi', ['hesai_c']),
+    ('ptc/: PTC framing and payloads (hesai/ptc.h)', 'ptc', ['ptc']),
 ]
 IN_BUDGET = {'sensors/: identify, validate, decode (every sensor)', 'base/: error names, x86-64 CPU features', 'crc/: CRC-32/MPEG-2',
              'crypto/: SHA-256 + HMAC-SHA256'}
