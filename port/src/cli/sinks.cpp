@@ -63,14 +63,11 @@ OutputSink::Frame& OutputSink::open_frame(std::uint64_t id) {
 }
 
 namespace {
-// The QoS rosbag2 records for a reliable, volatile publisher keeping the last 10 messages (its
-// YAML as ROS 2 Humble writes it; infinite durations as its largest value).
-constexpr const char* kQosProfiles =
-    "- history: 1\n  depth: 10\n  reliability: 1\n  durability: 2\n"
-    "  deadline:\n    sec: 9223372036\n    nsec: 854775807\n"
-    "  lifespan:\n    sec: 9223372036\n    nsec: 854775807\n  liveliness: 1\n"
-    "  liveliness_lease_duration:\n    sec: 9223372036\n    nsec: 854775807\n"
-    "  avoid_ros_namespace_conventions: false";
+// The channel's offered_qos_profiles (the ros2 profile's one required metadata key), empty: the QoS
+// YAML changed between rosbag2 versions (integers up to Humble, names since Jazzy, read by the
+// version of a rosbag2 metadata record this file does not have), and every version reads an empty
+// value as "not recorded" and plays back with its default profile.
+constexpr const char* kQosProfiles = "";
 }  // namespace
 
 int OutputSink::open_mcap(std::string& error) {
