@@ -38,65 +38,86 @@ def main():
                            capture_output=True, text=True)
         if r.returncode != 0:
             fail(f"hesai decode --format {fmt} failed ({r.returncode}): {r.stderr}")
-    r = subprocess.run(["node", reader, mcap_path, modules], capture_output=True, text=True)
-    if r.returncode != 0:
-        fail(f"read.mjs failed ({r.returncode}): {r.stderr}")
-
-    frames = {}  # frame -> rows, in file order
-    order = []
+    # Pass 1 over the CSV: the frames, and the row at which each is complete (near a cut the rows
+    # of two frames interleave). Pass 2 keeps only the rows of frames not yet compared.
     with open(csv_path, newline="") as f:
-        for row in csv.DictReader(f):
-            fr = int(row["frame"])
-            if fr not in frames:
-                frames[fr] = []
-                order.append(fr)
-            frames[fr].append(row)
+        reader_csv = csv.reader(f)
+        header = next(reader_csv)
+        last_row = {}
+        for i, row in enumerate(reader_csv):
+            last_row[int(row[0])] = i
+    col = {k: header.index(k) for k in ("frame", "channel", "return", "intensity", "x", "y", "z",
+                                         "azimuth_deg", "elevation_deg", "distance_m", "time_ns")}
+    frames = sorted(last_row)
 
-    messages = []
-    for line in r.stdout.splitlines():
-        parts = line.split(",")
-        if parts[0] == "M":
-            messages.append({"seq": int(parts[1]), "stamp": int(parts[2]), "frame_id": parts[3],
-                             "width": int(parts[4]), "topic": parts[5], "points": []})
-        elif parts[0] == "P":
-            messages[-1]["points"].append(parts[1:])
-    if len(messages) != len(order):
-        fail(f"{len(messages)} messages, {len(order)} frames in the CSV")
-    messages.sort(key=lambda m: m["seq"])
-    if [m["seq"] for m in messages] != sorted(order):
-        fail("message sequence numbers are not the CSV's frame numbers")
-
+    node = subprocess.Popen(["node", reader, mcap_path, modules], stdout=subprocess.PIPE,
+                            stderr=subprocess.PIPE, text=True)
+    lines = iter(node.stdout)
     m_tol = 0.00005 * 1.001 + 1e-6           # metres: 4 printed decimals, float32 at <= 200 m
     deg_tol = 0.0005 * 1.001 + 1e-4           # degrees: 3 printed decimals, float32 radians
     points = 0
-    for m in messages:
-        rows = frames[m["seq"]]
-        if m["width"] != len(rows) or len(m["points"]) != len(rows):
-            fail(f"frame {m['seq']}: {m['width']} points in the message, {len(rows)} rows")
-        if m["frame_id"] != "hesai" or m["topic"] != "/hesai/points":
-            fail(f"frame {m['seq']}: frame_id {m['frame_id']} topic {m['topic']}")
-        if m["stamp"] != min(int(row["time_ns"]) for row in rows):
-            fail(f"frame {m['seq']}: stamp {m['stamp']} is not the earliest time_ns")
-        for i, (p, row) in enumerate(zip(m["points"], rows)):
-            ch, ret, inten = int(p[0]), int(p[1]), int(p[2])
-            x, y, z, az, el, dist = (float(v) for v in p[3:9])
-            t = int(p[9])
-            where = f"frame {m['seq']} point {i}"
-            if ch != int(row["channel"]) - 1 or ret != int(row["return"]) or inten != int(row["intensity"]):
-                fail(f"{where}: channel/return/intensity {ch},{ret},{inten} vs CSV {row['channel']},{row['return']},{row['intensity']}")
-            if t != int(row["time_ns"]):
-                fail(f"{where}: time {t} vs CSV {row['time_ns']}")
-            for key, v in (("x", x), ("y", y), ("z", z), ("distance_m", dist)):
-                if abs(v - float(row[key])) > m_tol:
-                    fail(f"{where}: {key} {v} vs CSV {row[key]}")
-            for key, v in (("azimuth_deg", az), ("elevation_deg", el)):
-                d = math.degrees(v) - float(row[key])
-                d = (d + 180.0) % 360.0 - 180.0  # 359.9996 prints as 360.000
-                if abs(d) > deg_tol:
-                    fail(f"{where}: {key} {math.degrees(v)} vs CSV {row[key]}")
-            points += 1
-    print(f"{name}: {len(messages)} messages = {len(order)} frames, {points} points match the CSV")
+    pending = {}
+    def fail_read(msg):
+        # read.mjs's own message first when it stopped early.
+        node.stdout.close()
+        err, status = node.stderr.read(), node.wait()
+        fail(f"read.mjs failed ({status}): {err}" if status != 0 else msg)
 
+    consumed = -1  # the last CSV data row read
+    with open(csv_path, newline="") as f:
+        rows_iter = csv.reader(f)
+        next(rows_iter)
+        for frame in frames:
+            while consumed < last_row[frame]:
+                row = next(rows_iter)
+                consumed += 1
+                pending.setdefault(int(row[col["frame"]]), []).append(row)
+            rows = pending.pop(frame)
+            line = next(lines, None)
+            if line is None:
+                fail_read(f"no message for frame {frame}")
+            mparts = line.rstrip("\n").split(",")
+            if mparts[0] != "M" or int(mparts[1]) != frame:
+                fail_read(f"expected the message of frame {frame}, read '{line.strip()}'")
+            stamp, frame_id, width, topic = int(mparts[2]), mparts[3], int(mparts[4]), mparts[5]
+            if width != len(rows):
+                fail(f"frame {frame}: {width} points in the message, {len(rows)} rows")
+            if frame_id != "hesai" or topic != "/hesai/points":
+                fail(f"frame {frame}: frame_id {frame_id} topic {topic}")
+            if stamp != min(int(row[col["time_ns"]]) for row in rows):
+                fail(f"frame {frame}: stamp {stamp} is not the earliest time_ns")
+            for i, row in enumerate(rows):
+                p = next(lines, "").rstrip("\n").split(",")
+                where = f"frame {frame} point {i}"
+                if p[0] != "P":
+                    fail_read(f"{where}: no point line")
+                ch, ret, inten = int(p[1]), int(p[2]), int(p[3])
+                x, y, z, az, el, dist = (float(v) for v in p[4:10])
+                if (ch != int(row[col["channel"]]) - 1 or ret != int(row[col["return"]])
+                        or inten != int(row[col["intensity"]])):
+                    fail(f"{where}: channel/return/intensity {ch},{ret},{inten} vs CSV "
+                         f"{row[col['channel']]},{row[col['return']]},{row[col['intensity']]}")
+                if int(p[10]) != int(row[col["time_ns"]]):
+                    fail(f"{where}: time {p[10]} vs CSV {row[col['time_ns']]}")
+                for key, v in (("x", x), ("y", y), ("z", z), ("distance_m", dist)):
+                    if abs(v - float(row[col[key]])) > m_tol:
+                        fail(f"{where}: {key} {v} vs CSV {row[col[key]]}")
+                for key, v in (("azimuth_deg", az), ("elevation_deg", el)):
+                    d = math.degrees(v) - float(row[col[key]])
+                    d = (d + 180.0) % 360.0 - 180.0  # 359.9996 prints as 360.000
+                    if abs(d) > deg_tol:
+                        fail(f"{where}: {key} {math.degrees(v)} vs CSV {row[col[key]]}")
+                points += 1
+    extra = next(lines, None)
+    err = node.stderr.read()
+    status = node.wait()
+    if status != 0:
+        fail(f"read.mjs failed ({status}): {err}")
+    if extra is not None:
+        fail(f"more messages than the CSV's {len(frames)} frames: '{extra.strip()}'")
+    if points != sum(1 for _ in open(csv_path)) - 1:
+        fail(f"{points} points compared, the CSV has more rows (a frame without a message)")
+    print(f"{name}: {len(frames)} messages = {len(frames)} frames, {points} points match the CSV")
 
 if __name__ == "__main__":
     main()

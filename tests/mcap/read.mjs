@@ -13,10 +13,10 @@
 //     PointCloud2.msg and holding the three MSG: sections), channel encoding cdr;
 //   - the CDR: encapsulation 00 01 00 00, height 1, the ten fields of PointXYZIRCAEDT, point_step
 //     32, row_step and data length 32 * width, is_bigendian false, is_dense true, nothing after.
-// Output (stdout), per message: a line "M,sequence,stamp_ns,frame_id,width,topic,log_time", then
-// one line per point "P,channel,return_type,intensity,x,y,z,azimuth,elevation,distance,time_ns"
-// (time_ns = stamp + time_stamp).
-import { readFileSync } from "node:fs";
+// Output (stdout), per message in sequence order: a line "M,sequence,stamp_ns,frame_id,width,topic,
+// log_time", then one line per point "P,channel,return_type,intensity,x,y,z,azimuth,elevation,
+// distance,time_ns" (time_ns = stamp + time_stamp), written as it is decoded.
+import { readFileSync, writeSync } from "node:fs";
 import { createRequire } from "node:module";
 import path from "node:path";
 
@@ -113,6 +113,10 @@ function decodeCloud(data) {
   const stamp = BigInt(sec) * 1000000000n + BigInt(nanosec);
   const view = new DataView(data.buffer, data.byteOffset + start, dataLength);
   const rows = [];
+  const print = () => {
+    writeSync(1, rows.join("\n") + "\n");
+    rows.length = 0;
+  };
   for (let i = 0; i < width; i++) {
     const b = i * 32;
     const f = (o) => view.getFloat32(b + o, true);
@@ -122,8 +126,20 @@ function decodeCloud(data) {
         stamp + BigInt(view.getUint32(b + 28, true)),
       ].join(","),
     );
+    if (rows.length === 4096) print();
   }
-  return { stamp, frameId, width, rows };
+  if (rows.length > 0) print();
+}
+
+// The header fields of a PointCloud2, for the M line (the points are printed by decodeCloud).
+function cloudHeader(data) {
+  const c = new Cdr(data);
+  const sec = c.i32();
+  const nanosec = c.u32();
+  const frameId = c.str();
+  c.u32();
+  const width = c.u32();
+  return { stamp: BigInt(sec) * 1000000000n + BigInt(nanosec), frameId, width };
 }
 
 const reader = await McapIndexedReader.Initialize({ readable });
@@ -156,21 +172,23 @@ for (let record; (record = stream.nextRecord()); ) if (record.type === "Message"
 }
 expect(stream.done(), "the stream reader did not reach the trailing magic");
 
-const out = [];
-let count = 0;
+const messages = [];
 for await (const m of reader.readMessages({ validateCrcs: true })) {
   const s = streamed.get(m.sequence);
   expect(s && s.sequence === m.sequence && s.logTime === m.logTime && Buffer.compare(s.data, m.data) === 0,
-         `message ${count}: the stream reader reads another`);
-  const cloud = decodeCloud(m.data);
-  expect(m.logTime === cloud.stamp && m.publishTime === cloud.stamp, `message ${count}: log_time is not header.stamp`);
-  const topic = reader.channelsById.get(m.channelId).topic;
-  out.push(["M", m.sequence, cloud.stamp, cloud.frameId, cloud.width, topic, m.logTime].join(","));
-  for (const row of cloud.rows) out.push(row);
-  count++;
+         `message ${messages.length}: the stream reader reads another`);
+  messages.push(m);
 }
+const count = messages.length;
 expect(count === streamed.size, `indexed reader: ${count} messages, stream reader: ${streamed.size}`);
 expect(BigInt(count) === stats.messageCount, `statistics: ${stats.messageCount} messages, read ${count}`);
 expect(stats.chunkCount === reader.chunkIndexes.length, "statistics chunk_count");
-process.stdout.write(out.join("\n") + "\n");
+messages.sort((a, b) => a.sequence - b.sequence);
+for (const m of messages) {
+  const h = cloudHeader(m.data);
+  expect(m.logTime === h.stamp && m.publishTime === h.stamp, `message ${m.sequence}: log_time is not header.stamp`);
+  const topic = reader.channelsById.get(m.channelId).topic;
+  writeSync(1, ["M", m.sequence, h.stamp, h.frameId, h.width, topic, m.logTime].join(",") + "\n");
+  decodeCloud(m.data);
+}
 console.error(`read.mjs: ${file}: ${count} messages in ${reader.chunkIndexes.length} chunks`);
