@@ -155,6 +155,8 @@ WriteResult McapWriter::open(const std::string& path, const std::string& profile
     error_ = WriteResult::failure("cannot write '" + path + "': " + std::strerror(err) +
                                       " (MCAP chunk headers are written when each chunk ends: give a file)",
                                   err);
+    std::fclose(file_);
+    file_ = nullptr;
     return error_;
   }
   std::vector<std::uint8_t> r(kMagic, kMagic + 8);

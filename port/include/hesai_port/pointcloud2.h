@@ -43,7 +43,8 @@ inline constexpr std::size_t kPointStep = 32;
 const std::string& pointcloud2_definition();
 
 /// The CDR bytes of a PointCloud2 up to its point data: encapsulation header, header (stamp from
-/// `stamp_ns`, ns since the Unix epoch, and `frame_id`), height 1, width `points`, the ten fields
+/// `stamp_ns`, ns since the Unix epoch, as builtin_interfaces/Time's int32 seconds and uint32
+/// nanoseconds: dates after 2038-01-19 wrap, as they do in ROS 2, and `frame_id`), height 1, width `points`, the ten fields
 /// above, is_bigendian, point_step, row_step and the data's length. The data (kPointStep bytes a
 /// point) follows, then the one byte of is_dense (kPointCloud2Tail).
 std::vector<std::uint8_t> pointcloud2_head(std::int64_t stamp_ns, const std::string& frame_id, std::uint32_t points);
