@@ -57,11 +57,14 @@ const char* const kKeyOptionsHelp =
     "                          read them (ps): a warning; prefer the files or the environment\n"
     "  --allow-unsigned        with a key, accept packets that carry no signature\n";
 const char* const kOutputOptionsHelp =
-    "  --format csv|pcd|ply|png  output format (default csv)\n"
+    "  --format csv|pcd|ply|png|mcap  output format (default csv); mcap: a ROS 2 bag of one\n"
+    "                          sensor_msgs/PointCloud2 per frame (see README)\n"
     "  --out PATH              output file ('-' = stdout for csv); a directory with --per-frame\n"
     "  --per-frame             one file per frame in --out: frame_000001.pcd, ...\n"
     "  --png-range M           PNG: metres from the sensor to the image edge (default 60)\n"
-    "  --png-color intensity|height  PNG: what colours the points (default intensity)\n";
+    "  --png-color intensity|height  PNG: what colours the points (default intensity)\n"
+    "  --topic NAME            MCAP: topic of the point clouds (default /hesai/points)\n"
+    "  --frame-id ID           MCAP: header.frame_id of the point clouds (default hesai)\n";
 
 Args::Args(int argc, char** argv, int first) : argv_(argv), first_(first) {
   for (int i = first; i < argc; ++i) args_.emplace_back(argv[i]);
@@ -390,7 +393,9 @@ bool parse_output_option(Args& args, OutputOptions& o, std::string& error) {
     o.per_frame = true;
     return true;
   }
-  if (opt != "--format" && opt != "--out" && opt != "--png-range" && opt != "--png-color") return false;
+  if (opt != "--format" && opt != "--out" && opt != "--png-range" && opt != "--png-color" && opt != "--topic" &&
+      opt != "--frame-id")
+    return false;
   args.take();
   std::string v;
   if (!args.value(opt, v)) {
@@ -404,10 +409,15 @@ bool parse_output_option(Args& args, OutputOptions& o, std::string& error) {
   } else if (opt == "--png-color") {
     if (v != "intensity" && v != "height") error = "--png-color takes intensity or height, got '" + v + "'";
     o.png_height = v == "height";
-  } else if (v == "csv" || v == "pcd" || v == "ply" || v == "png") {
+  } else if (opt == "--topic") {
+    if (v.empty()) error = "--topic needs a name";
+    o.topic = v;
+  } else if (opt == "--frame-id") {
+    o.frame_id = v;
+  } else if (v == "csv" || v == "pcd" || v == "ply" || v == "png" || v == "mcap") {
     o.format = v;
   } else {
-    error = "--format takes csv, pcd, ply or png, got '" + v + "'";
+    error = "--format takes csv, pcd, ply, png or mcap, got '" + v + "'";
   }
   return true;
 }

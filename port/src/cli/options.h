@@ -17,11 +17,13 @@ inline constexpr int kExitInput = 2;
 
 /// Output options of decode and listen.
 struct OutputOptions {
-  std::string format = "csv";  ///< csv | pcd | ply | png
+  std::string format = "csv";  ///< csv | pcd | ply | png | mcap
   std::string out;             ///< --out PATH ("-" for stdout, CSV only); a directory with --per-frame
   bool per_frame = false;      ///< one file per frame: frame_000001.pcd ...
   float png_range_m = 60;      ///< --png-range: metres from the centre to the image edge
   bool png_height = false;     ///< --png-color height (default intensity)
+  std::string topic = "/hesai/points";  ///< --topic: MCAP channel of the PointCloud2 messages
+  std::string frame_id = "hesai";       ///< --frame-id: their header.frame_id
 };
 
 /// Arguments left to right, consumed by the parsers below.

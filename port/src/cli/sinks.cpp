@@ -4,7 +4,10 @@
 #include <cstring>
 #include <sys/stat.h>
 
+#include <algorithm>
 #include <utility>
+
+#include "hesai_port/pointcloud2.h"
 
 namespace hesai::cli {
 
@@ -16,6 +19,7 @@ int OutputSink::open(std::string& error) {
     png.color_by = options_.png_height ? port::ColorBy::height : port::ColorBy::intensity;
     if (!png_.reset(png, &error)) return kExitUsage;
   }
+  if (options_.format == "mcap") return open_mcap(error);
   if (options_.per_frame) {
     if (to_stdout) {
       error = "--per-frame needs --out DIRECTORY";
@@ -58,8 +62,63 @@ OutputSink::Frame& OutputSink::open_frame(std::uint64_t id) {
   return it->second;
 }
 
+namespace {
+// The channel's offered_qos_profiles (the ros2 profile's one required metadata key), empty: the QoS
+// YAML changed between rosbag2 versions (integers up to Humble, names since Jazzy, read by the
+// version of a rosbag2 metadata record this file does not have), and every version reads an empty
+// value as "not recorded" and plays back with its default profile.
+constexpr const char* kQosProfiles = "";
+}  // namespace
+
+int OutputSink::open_mcap(std::string& error) {
+  if (options_.per_frame) {
+    error = "--format mcap writes one file of one message per frame: drop --per-frame";
+    return kExitUsage;
+  }
+  if (options_.out.empty() || options_.out == "-") {
+    error = "--format mcap needs --out FILE";
+    return kExitUsage;
+  }
+  const port::WriteResult r = mcap_.open(options_.out, "ros2", "hesai");
+  if (!r) {
+    error = r.message();
+    return r.os_error() == ESPIPE ? kExitUsage : kExitInput;
+  }
+  const std::uint16_t schema =
+      mcap_.add_schema(port::kPointCloud2Schema, port::kRos2MsgEncoding, port::pointcloud2_definition());
+  mcap_channel_ = mcap_.add_channel(schema, options_.topic, port::kCdrEncoding, {{"offered_qos_profiles", kQosProfiles}});
+  files_.push_back(options_.out);
+  return kExitOk;
+}
+
+void OutputSink::write_mcap_frame(std::uint64_t id, const std::vector<Point>& points) {
+  if (points.empty() || !mcap_.is_open()) return;  // no point, no stamp: no message
+  // header.stamp: the frame's earliest point, so that every time_stamp offset is >= 0.
+  std::int64_t stamp = points[0].time_ns;
+  for (const Point& p : points) stamp = std::min(stamp, p.time_ns);
+  const std::vector<std::uint8_t> head =
+      port::pointcloud2_head(stamp, options_.frame_id, static_cast<std::uint32_t>(points.size()));
+  const auto t = static_cast<std::uint64_t>(stamp);
+  port::WriteResult r = mcap_.begin_message(mcap_channel_, static_cast<std::uint32_t>(id), t, t,
+                                            port::pointcloud2_size(head.size(), points.size()));
+  if (r) r = mcap_.append(head.data(), head.size());
+  std::uint8_t block[2048 * port::kPointStep];
+  for (std::size_t i = 0; r && i < points.size();) {
+    std::size_t n = 0;
+    for (; n < 2048 && i < points.size(); ++n, ++i) port::encode_point(points[i], stamp, block + n * port::kPointStep);
+    r = mcap_.append(block, n * port::kPointStep);
+  }
+  if (r) r = mcap_.append(&port::kPointCloud2Tail, 1);
+  if (r) r = mcap_.end_message();
+  if (!r && deferred_error_.empty()) deferred_error_ = r.message();
+}
+
 void OutputSink::point(const OutPoint& p) {
   ++points_written_;
+  if (options_.format == "mcap") {
+    open_frame(p.frame).points.push_back(p.point);
+    return;
+  }
   if (options_.per_frame) {
     // Near a cut the points of two frames interleave: each goes to its own frame.
     Frame& f = open_frame(p.frame);
@@ -82,6 +141,13 @@ void OutputSink::point(const OutPoint& p) {
 }
 
 void OutputSink::frame_closed(const FrameInfo& frame) {
+  if (options_.format == "mcap") {
+    const auto it = open_.find(frame.id);
+    if (it == open_.end()) return;  // no point was kept
+    write_mcap_frame(frame.id, it->second.points);
+    open_.erase(it);
+    return;
+  }
   if (!options_.per_frame) return;
   const Frame f = std::move(open_frame(frame.id));  // empty when no point was kept
   open_.erase(frame.id);
@@ -116,7 +182,12 @@ bool OutputSink::write_cloud(const std::string& path, const std::vector<Point>& 
 }
 
 bool OutputSink::close(std::string& error) {
-  if (csv_open_ || stream_.is_open()) {
+  if (mcap_.is_open()) {
+    for (const auto& [id, frame] : open_) write_mcap_frame(id, frame.points);  // frames never closed
+    open_.clear();
+    const port::WriteResult r = mcap_.close();
+    if (!r && deferred_error_.empty()) deferred_error_ = r.message();
+  } else if (csv_open_ || stream_.is_open()) {
     const port::WriteResult r = csv_open_ ? csv_.close() : stream_.close();
     if (!r && deferred_error_.empty()) deferred_error_ = r.message();
   } else if (!options_.per_frame && !write_cloud(options_.out, {}, png_, error)) {

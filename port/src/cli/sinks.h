@@ -1,5 +1,6 @@
 // Where decoded points go: CSV rows and PCD/PLY records written as they come, or bird's-eye PNG
-// views; one file for the whole input, or one per frame.
+// views; one file for the whole input, or one per frame; or an MCAP file of one ROS 2
+// PointCloud2 message per frame.
 #pragma once
 
 #include <cstdio>
@@ -8,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "hesai_port/mcap.h"
 #include "hesai_port/writers.h"
 #include "options.h"
 #include "pipeline.h"
@@ -26,9 +28,9 @@ class OutputSink : public Sink {
   void point(const OutPoint& p) override;
   void frame_closed(const FrameInfo& frame) override;
   /// Writes what is still held (the single PNG), closes the file. Returns false with a message.
-  /// Memory: the open frames' points or PNG views with --per-frame (two frames near a cut, where
-  /// a packet gives points to both); otherwise a block of output or the PNG's pixels, whatever
-  /// the number of points.
+  /// Memory: the open frames' points or PNG views with --per-frame, and the open frames' points
+  /// for MCAP (two frames near a cut, where a packet gives points to both); otherwise a block of
+  /// output or the PNG's pixels, whatever the number of points.
   bool close(std::string& error);
   /// Files written so far.
   const std::vector<std::string>& files() const { return files_; }
@@ -44,14 +46,18 @@ class OutputSink : public Sink {
   bool write_cloud(const std::string& path, const std::vector<Point>& points, const port::BirdseyeView& png,
                    std::string& error);
   std::string frame_path(std::uint64_t id) const;
+  int open_mcap(std::string& error);
+  void write_mcap_frame(std::uint64_t id, const std::vector<Point>& points);
   Frame& open_frame(std::uint64_t id);
 
   OutputOptions options_;
   port::CsvWriter csv_;
   bool csv_open_ = false;
   port::CloudWriter stream_;    // the single PCD or PLY file
+  port::McapWriter mcap_;      // --format mcap
+  std::uint16_t mcap_channel_ = 0;
   port::BirdseyeView png_;      // the PNG of every point; with --per-frame, the empty view each frame starts from
-  std::map<std::uint64_t, Frame> open_;  // --per-frame: the frames not yet closed, by id
+  std::map<std::uint64_t, Frame> open_;  // --per-frame and MCAP: the frames not yet closed, by id
   std::vector<std::string> files_;
   std::uint64_t points_written_ = 0;
   std::string deferred_error_;

@@ -1,0 +1,184 @@
+#include "hesai_port/pointcloud2.h"
+
+#include <cstring>
+#include <limits>
+#include <utility>
+
+namespace hesai {
+namespace port {
+
+namespace {
+
+// The .msg files verbatim: ros2/common_interfaces (sensor_msgs, std_msgs) and ros2/rcl_interfaces
+// (builtin_interfaces), as installed in share/<package>/msg/ and read by rosbag2.
+constexpr const char* kPointCloud2Msg =
+    "# This message holds a collection of N-dimensional points, which may\n"
+    "# contain additional information such as normals, intensity, etc. The\n"
+    "# point data is stored as a binary blob, its layout described by the\n"
+    "# contents of the \"fields\" array.\n"
+    "#\n"
+    "# The point cloud data may be organized 2d (image-like) or 1d (unordered).\n"
+    "# Point clouds organized as 2d images may be produced by camera depth sensors\n"
+    "# such as stereo or time-of-flight.\n"
+    "\n"
+    "# Time of sensor data acquisition, and the coordinate frame ID (for 3d points).\n"
+    "std_msgs/Header header\n"
+    "\n"
+    "# 2D structure of the point cloud. If the cloud is unordered, height is\n"
+    "# 1 and width is the length of the point cloud.\n"
+    "uint32 height\n"
+    "uint32 width\n"
+    "\n"
+    "# Describes the channels and their layout in the binary data blob.\n"
+    "PointField[] fields\n"
+    "\n"
+    "bool    is_bigendian # Is this data bigendian?\n"
+    "uint32  point_step   # Length of a point in bytes\n"
+    "uint32  row_step     # Length of a row in bytes\n"
+    "uint8[] data         # Actual point data, size is (row_step*height)\n"
+    "\n"
+    "bool is_dense        # True if there are no invalid points\n";
+constexpr const char* kPointFieldMsg =
+    "# This message holds the description of one point entry in the\n"
+    "# PointCloud2 message format.\n"
+    "uint8 INT8    = 1\n"
+    "uint8 UINT8   = 2\n"
+    "uint8 INT16   = 3\n"
+    "uint8 UINT16  = 4\n"
+    "uint8 INT32   = 5\n"
+    "uint8 UINT32  = 6\n"
+    "uint8 FLOAT32 = 7\n"
+    "uint8 FLOAT64 = 8\n"
+    "\n"
+    "# Common PointField names are x, y, z, intensity, rgb, rgba\n"
+    "string name      # Name of field\n"
+    "uint32 offset    # Offset from start of point struct\n"
+    "uint8  datatype  # Datatype enumeration, see above\n"
+    "uint32 count     # How many elements in the field\n";
+constexpr const char* kHeaderMsg =
+    "# Standard metadata for higher-level stamped data types.\n"
+    "# This is generally used to communicate timestamped data\n"
+    "# in a particular coordinate frame.\n"
+    "\n"
+    "# Two-integer timestamp that is expressed as seconds and nanoseconds.\n"
+    "builtin_interfaces/Time stamp\n"
+    "\n"
+    "# Transform frame with which this data is associated.\n"
+    "string frame_id\n";
+constexpr const char* kTimeMsg =
+    "# This message communicates ROS Time defined here:\n"
+    "# https://design.ros2.org/articles/clock_and_time.html\n"
+    "\n"
+    "# The seconds component, valid over all int32 values.\n"
+    "int32 sec\n"
+    "\n"
+    "# The nanoseconds component, valid in the range [0, 1e9), to be added to the seconds component.\n"
+    "# e.g.\n"
+    "# The time -1.7 seconds is represented as {sec: -2, nanosec: 3e8}\n"
+    "# The time 1.7 seconds is represented as {sec: 1, nanosec: 7e8}\n"
+    "uint32 nanosec\n";
+
+// CDR, little-endian; offsets count from after the 4-byte encapsulation header.
+class Cdr {
+ public:
+  explicit Cdr(std::vector<std::uint8_t>& out) : out_(out) {
+    for (const int b : {0x00, 0x01, 0x00, 0x00}) out_.push_back(static_cast<std::uint8_t>(b));  // CDR_LE, options 0
+  }
+  Cdr& u8(std::uint8_t v) {
+    out_.push_back(v);
+    return *this;
+  }
+  Cdr& u32(std::uint32_t v) {
+    align(4);
+    for (int i = 0; i < 4; ++i) out_.push_back(static_cast<std::uint8_t>(v >> (8 * i)));
+    return *this;
+  }
+  // A string: its length with the terminating NUL, the bytes, the NUL.
+  Cdr& str(const std::string& s) {
+    u32(static_cast<std::uint32_t>(s.size() + 1));
+    for (const char ch : s) out_.push_back(static_cast<std::uint8_t>(ch));
+    return u8(0);
+  }
+
+ private:
+  void align(std::size_t n) {
+    while ((out_.size() - 4) % n != 0) out_.push_back(0);
+  }
+  std::vector<std::uint8_t>& out_;
+};
+
+struct Field {
+  const char* name;
+  std::uint32_t offset;
+  std::uint8_t datatype;  // sensor_msgs/PointField: UINT8 2, UINT16 4, UINT32 6, FLOAT32 7
+};
+constexpr Field kFields[] = {
+    {"x", 0, 7},         {"y", 4, 7},         {"z", 8, 7},          {"intensity", 12, 2}, {"return_type", 13, 2},
+    {"channel", 14, 4},  {"azimuth", 16, 7},  {"elevation", 20, 7}, {"distance", 24, 7},  {"time_stamp", 28, 6},
+};
+
+void store_le32(std::uint8_t* p, std::uint32_t v) {
+  for (int i = 0; i < 4; ++i) p[i] = static_cast<std::uint8_t>(v >> (8 * i));
+}
+void store_f32(std::uint8_t* p, float f) {
+  static_assert(sizeof(float) == 4 && std::numeric_limits<float>::is_iec559, "IEEE 754 binary32");
+  std::uint32_t bits = 0;
+  std::memcpy(&bits, &f, 4);
+  store_le32(p, bits);
+}
+
+constexpr double kRadPerDeg = 3.14159265358979323846 / 180.0;
+
+}  // namespace
+
+const std::string& pointcloud2_definition() {
+  static const std::string text = [] {
+    const std::string rule(80, '=');
+    std::string t = kPointCloud2Msg;
+    for (const auto& [name, msg] : {std::pair<const char*, const char*>{"sensor_msgs/PointField", kPointFieldMsg},
+                                    {"std_msgs/Header", kHeaderMsg},
+                                    {"builtin_interfaces/Time", kTimeMsg}})
+      t += "\n" + rule + "\nMSG: " + name + "\n" + msg;
+    return t;
+  }();
+  return text;
+}
+
+std::vector<std::uint8_t> pointcloud2_head(std::int64_t stamp_ns, const std::string& frame_id, std::uint32_t points) {
+  std::int64_t sec = stamp_ns / 1000000000;
+  std::int64_t nsec = stamp_ns % 1000000000;
+  if (nsec < 0) {
+    nsec += 1000000000;
+    --sec;
+  }
+  std::vector<std::uint8_t> out;
+  Cdr c(out);
+  c.u32(static_cast<std::uint32_t>(static_cast<std::int32_t>(sec))).u32(static_cast<std::uint32_t>(nsec));
+  c.str(frame_id).u32(1).u32(points);
+  c.u32(static_cast<std::uint32_t>(sizeof kFields / sizeof kFields[0]));
+  for (const Field& f : kFields) c.str(f.name).u32(f.offset).u8(f.datatype).u32(1);
+  c.u8(0);  // is_bigendian
+  c.u32(static_cast<std::uint32_t>(kPointStep)).u32(static_cast<std::uint32_t>(kPointStep * points));
+  c.u32(static_cast<std::uint32_t>(kPointStep * points));  // data: its length, the bytes follow
+  return out;
+}
+
+void encode_point(const Point& p, std::int64_t stamp_ns, std::uint8_t out[kPointStep]) {
+  store_f32(out + 0, p.x);
+  store_f32(out + 4, p.y);
+  store_f32(out + 8, p.z);
+  out[12] = p.intensity;
+  out[13] = p.return_index;
+  const std::uint16_t channel = p.channel > 0 ? static_cast<std::uint16_t>(p.channel - 1) : 0;
+  out[14] = static_cast<std::uint8_t>(channel);
+  out[15] = static_cast<std::uint8_t>(channel >> 8);
+  store_f32(out + 16, static_cast<float>(p.azimuth_deg * kRadPerDeg));
+  store_f32(out + 20, static_cast<float>(p.elevation_deg * kRadPerDeg));
+  store_f32(out + 24, p.distance_m);
+  const std::int64_t dt = p.time_ns - stamp_ns;
+  const std::uint32_t t = dt <= 0 ? 0 : dt >= 0xFFFFFFFFll ? 0xFFFFFFFFu : static_cast<std::uint32_t>(dt);
+  store_le32(out + 28, t);
+}
+
+}  // namespace port
+}  // namespace hesai

@@ -1,0 +1,238 @@
+// The MCAP writer and the PointCloud2 encoding (port/), read back by a small parser written here
+// from the MCAP specification (tests/mcap_check.h): record structure, offsets and CRCs; the CDR
+// bytes checked by hand. The program's MCAP output: test_mcap_cli.cpp; the reference reader
+// (npm's @mcap/core) reads the bundled captures' files in tests/mcap/.
+#include <gtest/gtest.h>
+#include <gtest/gtest-spi.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+#include <string>
+#include <vector>
+
+#include "hesai_port/mcap.h"
+#include "hesai_port/pointcloud2.h"
+#include "mcap_check.h"
+#include "test_support.h"
+
+using namespace hesai;
+using namespace hesai_test;
+using hesai::port::crc32_ieee;
+
+namespace {
+
+// The failure messages check_mcap() reports for `b`, one a line; empty when it finds none.
+std::string failures_of(const std::vector<std::uint8_t>& b) {
+  testing::TestPartResultArray results;
+  {
+    testing::ScopedFakeTestPartResultReporter reporter(
+        testing::ScopedFakeTestPartResultReporter::INTERCEPT_ONLY_CURRENT_THREAD, &results);
+    check_mcap(b);
+  }
+  std::string all;
+  for (int i = 0; i < results.size(); ++i) all += std::string(results.GetTestPartResult(i).message()) + "\n";
+  return all;
+}
+
+TEST(Crc32Ieee, CatalogueCheckValue) {
+  // CRC-32/ISO-HDLC ("CRC-32", zlib) of "123456789": 0xCBF43926 (the CRC catalogue).
+  EXPECT_EQ(crc32_ieee("123456789", 9), 0xCBF43926u);
+  EXPECT_EQ(crc32_ieee("", 0), 0u);
+  // "The quick brown fox jumps over the lazy dog": 0x414FA339 (zlib's crc32 of it).
+  EXPECT_EQ(crc32_ieee("The quick brown fox jumps over the lazy dog", 43), 0x414FA339u);
+}
+
+TEST(Crc32Ieee, SplitAtEveryOffsetAndCombined) {
+  const char* text = "123456789";
+  for (std::size_t k = 0; k <= 9; ++k) {
+    EXPECT_EQ(crc32_ieee(text + k, 9 - k, crc32_ieee(text, k)), 0xCBF43926u) << k;
+    EXPECT_EQ(port::crc32_ieee_combine(crc32_ieee(text, k), crc32_ieee(text + k, 9 - k), 9 - k), 0xCBF43926u) << k;
+  }
+  std::vector<std::uint8_t> big(3000001);
+  for (std::size_t i = 0; i < big.size(); ++i) big[i] = static_cast<std::uint8_t>(i * 7 + (i >> 9));
+  const std::uint32_t whole = crc32_ieee(big.data(), big.size());
+  for (const std::size_t k : {std::size_t{1}, std::size_t{4096}, std::size_t{1234567}}) {
+    const std::uint32_t a = crc32_ieee(big.data(), k), c = crc32_ieee(big.data() + k, big.size() - k);
+    EXPECT_EQ(port::crc32_ieee_combine(a, c, big.size() - k), whole) << k;
+  }
+}
+
+TEST(McapWriter, RecordsOffsetsAndCrcsOfChunkedMessages) {
+  const std::string path = temp_path("hesai_test_writer.mcap");
+  port::McapWriter w;
+  ASSERT_TRUE(w.open(path, "ros2", "test"));
+  const std::uint16_t s = w.add_schema("pkg/msg/Thing", "ros2msg", "uint8 a\n");
+  const std::uint16_t c = w.add_channel(s, "/thing", "cdr", {{"k", "v"}});
+  // 5 messages of 400 000 bytes: a chunk closes once its records reach 1 MiB, so after the third
+  // message (1 200 000 + records) and at the end: two chunks.
+  std::vector<std::vector<std::uint8_t>> sent;
+  for (std::uint32_t i = 0; i < 5; ++i) {
+    std::vector<std::uint8_t> m(400000);
+    for (std::size_t k = 0; k < m.size(); ++k) m[k] = static_cast<std::uint8_t>(k * (i + 3));
+    const std::uint64_t t = 1000 + 10 * i;
+    if (i % 2 == 0) {
+      ASSERT_TRUE(w.write_message(c, i, t, t, m.data(), m.size()));
+    } else {  // in pieces
+      ASSERT_TRUE(w.begin_message(c, i, t, t, m.size()));
+      ASSERT_TRUE(w.append(m.data(), 123));
+      ASSERT_TRUE(w.append(m.data() + 123, m.size() - 123));
+      ASSERT_TRUE(w.end_message());
+    }
+    sent.push_back(m);
+  }
+  ASSERT_TRUE(w.close());
+  const std::vector<std::uint8_t> b = hesai_test::read_file(path);
+  const Parsed p = check_mcap(b);
+  EXPECT_EQ(p.profile, "ros2");
+  EXPECT_EQ(p.chunks, 2u);
+  ASSERT_EQ(p.messages.size(), 5u);
+  for (std::size_t i = 0; i < 5; ++i) {
+    EXPECT_EQ(p.messages[i].first, 1000 + 10 * i);
+    EXPECT_TRUE(p.messages[i].second == sent[i]) << i;
+  }
+  // Statistics: 5 messages, 1 schema, 1 channel, 2 chunks, times 1000..1040.
+  for (const Record& r : p.summary) {
+    if (r.op != 0x0B) continue;
+    EXPECT_EQ(le(b, r.body, 8), 5u);
+    EXPECT_EQ(le(b, r.body + 8, 2), 1u);
+    EXPECT_EQ(le(b, r.body + 10, 4), 1u);
+    EXPECT_EQ(le(b, r.body + 22, 4), 2u);
+    EXPECT_EQ(le(b, r.body + 26, 8), 1000u);
+    EXPECT_EQ(le(b, r.body + 34, 8), 1040u);
+  }
+  std::remove(path.c_str());
+}
+
+TEST(McapWriter, TheCheckerCatchesAFlippedByte) {
+  const std::string path = temp_path("hesai_test_writer_flip.mcap");
+  port::McapWriter w;
+  ASSERT_TRUE(w.open(path, "ros2", "test"));
+  const std::uint16_t c = w.add_channel(0, "/x", "cdr", {});
+  ASSERT_TRUE(w.write_message(c, 0, 5, 5, "abcdefgh", 8));
+  ASSERT_TRUE(w.close());
+  std::vector<std::uint8_t> b = hesai_test::read_file(path);
+  EXPECT_EQ(failures_of(b), "");
+  // The message's last byte: the chunk's CRC and the data section's no longer match.
+  std::size_t at = 0;
+  for (std::size_t i = 0; i + 8 <= b.size(); ++i)
+    if (std::memcmp(b.data() + i, "abcdefgh", 8) == 0) at = i + 7;
+  ASSERT_NE(at, 0u);
+  b[at] ^= 1;
+  std::string f = failures_of(b);
+  EXPECT_NE(f.find("chunk at"), std::string::npos) << f;
+  EXPECT_NE(f.find("data_section_crc"), std::string::npos) << f;
+  b[at] ^= 1;
+  b[b.size() - 8 - 1] ^= 1;  // the footer's summary_crc
+  f = failures_of(b);
+  EXPECT_NE(f.find("summary_crc"), std::string::npos) << f;
+  EXPECT_EQ(f.find("chunk at"), std::string::npos) << f;
+  std::remove(path.c_str());
+}
+
+TEST(McapWriter, MessageSizeMustMatchAndPipesAreRefused) {
+  const std::string path = temp_path("hesai_test_writer_bad.mcap");
+  port::McapWriter w;
+  ASSERT_TRUE(w.open(path, "ros2", "test"));
+  const std::uint16_t c = w.add_channel(0, "/x", "cdr", {});
+  ASSERT_TRUE(w.begin_message(c, 0, 1, 1, 10));
+  EXPECT_FALSE(w.append("0123456789ab", 12));
+  EXPECT_FALSE(w.close());
+  std::remove(path.c_str());
+  // Chunk headers are rewritten in place: a pipe cannot hold an MCAP file.
+  int fds[2];
+  ASSERT_EQ(pipe(fds), 0);
+  port::McapWriter piped;
+  const port::WriteResult r = piped.open("/dev/fd/" + std::to_string(fds[1]), "ros2", "test");
+  EXPECT_FALSE(r);
+  EXPECT_EQ(r.os_error(), ESPIPE);
+  close(fds[0]);
+  close(fds[1]);
+}
+
+TEST(PointCloud2, HeadBytesCheckedByHand) {
+  // stamp 1 700 000 000.123456789 s, frame "hesai", 2 points.
+  const std::vector<std::uint8_t> h = port::pointcloud2_head(1700000000123456789, "hesai", 2);
+  // Offsets after the 4-byte encapsulation (CDR alignment counts from there): stamp.sec 0,
+  // nanosec 4, frame_id length 8 ("hesai" + NUL = 6) and bytes 12..17, pad to 20: height 20,
+  // width 24, field count 28; ten fields of 16 + (name + NUL rounded up to 4) bytes each, names
+  // x y z (4 each) intensity 12 return_type 12 channel 8 azimuth 8 elevation 12 distance 12
+  // time_stamp 12: 248 bytes from 32 to 280; is_bigendian 280, pad, point_step 284, row_step 288,
+  // data length 292; data from 296: 300 bytes with the encapsulation.
+  ASSERT_EQ(h.size(), 300u);
+  const std::uint8_t enc[4] = {0, 1, 0, 0};
+  EXPECT_EQ(0, std::memcmp(h.data(), enc, 4));
+  EXPECT_EQ(le(h, 4 + 0, 4), 1700000000u);
+  EXPECT_EQ(le(h, 4 + 4, 4), 123456789u);
+  EXPECT_EQ(le(h, 4 + 8, 4), 6u);
+  EXPECT_EQ(0, std::memcmp(h.data() + 4 + 12, "hesai", 6));
+  EXPECT_EQ(le(h, 4 + 20, 4), 1u);
+  EXPECT_EQ(le(h, 4 + 24, 4), 2u);
+  EXPECT_EQ(le(h, 4 + 28, 4), 10u);
+  // The first field: "x", offset 0, FLOAT32 (7), count 1.
+  EXPECT_EQ(le(h, 4 + 32, 4), 2u);
+  EXPECT_EQ(h[4 + 36], 'x');
+  EXPECT_EQ(le(h, 4 + 40, 4), 0u);
+  EXPECT_EQ(h[4 + 44], 7);
+  EXPECT_EQ(le(h, 4 + 48, 4), 1u);
+  // The last field, time_stamp (28 bytes, 252..280): name length 11 at 252, name at 256, offset 28
+  // at 268, UINT32 (6) at 272, count 1 at 276.
+  EXPECT_EQ(le(h, 4 + 252, 4), 11u);
+  EXPECT_EQ(0, std::memcmp(h.data() + 4 + 256, "time_stamp", 11));
+  EXPECT_EQ(le(h, 4 + 280 - 12, 4), 28u);
+  EXPECT_EQ(h[4 + 280 - 8], 6);
+  EXPECT_EQ(le(h, 4 + 280 - 4, 4), 1u);
+  EXPECT_EQ(h[4 + 280], 0);  // is_bigendian
+  EXPECT_EQ(le(h, 4 + 284, 4), 32u);
+  EXPECT_EQ(le(h, 4 + 288, 4), 64u);
+  EXPECT_EQ(le(h, 4 + 292, 4), 64u);
+  EXPECT_EQ(port::pointcloud2_size(h.size(), 2), 300u + 64 + 1);
+}
+
+TEST(PointCloud2, PointRecordCheckedByHand) {
+  Point p;
+  p.x = 1.5f;            // 0x3FC00000
+  p.y = -2.0f;           // 0xC0000000
+  p.z = 0.25f;           // 0x3E800000
+  p.intensity = 200;
+  p.return_index = 1;
+  p.channel = 5;         // nebula's 0-based channel 4
+  p.azimuth_deg = 180;   // pi as float32: 0x40490FDB
+  p.elevation_deg = 90;  // pi/2: 0x3FC90FDB
+  p.distance_m = 8.0f;   // 0x41000000
+  p.time_ns = 1000000000 + 70000;
+  std::uint8_t r[32];
+  port::encode_point(p, 1000000000, r);
+  const std::vector<std::uint8_t> v(r, r + 32);
+  EXPECT_EQ(le(v, 0, 4), 0x3FC00000u);
+  EXPECT_EQ(le(v, 4, 4), 0xC0000000u);
+  EXPECT_EQ(le(v, 8, 4), 0x3E800000u);
+  EXPECT_EQ(v[12], 200);
+  EXPECT_EQ(v[13], 1);
+  EXPECT_EQ(le(v, 14, 2), 4u);
+  EXPECT_EQ(le(v, 16, 4), 0x40490FDBu);
+  EXPECT_EQ(le(v, 20, 4), 0x3FC90FDBu);
+  EXPECT_EQ(le(v, 24, 4), 0x41000000u);
+  EXPECT_EQ(le(v, 28, 4), 70000u);
+}
+
+TEST(PointCloud2, DefinitionAsRosbag2WritesIt) {
+  const std::string& d = port::pointcloud2_definition();
+  const std::string rule = "\n" + std::string(80, '=') + "\nMSG: ";
+  EXPECT_EQ(d.rfind("# This message holds a collection of N-dimensional points", 0), 0u);
+  const std::size_t pf = d.find(rule + "sensor_msgs/PointField\n");
+  const std::size_t hd = d.find(rule + "std_msgs/Header\n");
+  const std::size_t tm = d.find(rule + "builtin_interfaces/Time\n");
+  ASSERT_NE(pf, std::string::npos);
+  ASSERT_NE(hd, std::string::npos);
+  ASSERT_NE(tm, std::string::npos);
+  EXPECT_LT(pf, hd);
+  EXPECT_LT(hd, tm);
+  // The definition's fields, as the .msg files declare them.
+  for (const char* line : {"\nstd_msgs/Header header\n", "\nPointField[] fields\n", "\nuint8[] data ",
+                           "\nuint8 FLOAT32 = 7\n", "\nbuiltin_interfaces/Time stamp\n", "\nuint32 nanosec\n"})
+    EXPECT_NE(d.find(line), std::string::npos) << line;
+}
+
+}  // namespace

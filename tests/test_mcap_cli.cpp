@@ -1,0 +1,136 @@
+// The program's MCAP output (decode and listen --format mcap), checked by the structural parser
+// of tests/mcap_check.h against the CSV of the same capture; usage errors.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "hesai_port/pointcloud2.h"
+#include "mcap_check.h"
+#include "test_support.h"
+#include "udp_support.h"
+
+using namespace hesai;
+using namespace hesai_test;
+
+namespace {
+
+// The program, started through the emulator in cross builds (qemu-user).
+std::string cli() {
+#if defined(HESAI_CLI_EMULATOR)
+  return std::string(HESAI_CLI_EMULATOR) + " " + HESAI_CLI_PATH;
+#else
+  return HESAI_CLI_PATH;
+#endif
+}
+
+TEST(McapCli, OneMessagePerFrameOfTheCsv) {
+  const std::string csv = temp_path("hesai_test_cli_mcap.csv"), mcap = temp_path("hesai_test_cli.mcap");
+  const std::string capture = hesai_test::data_path("pandar_xt32.pcap");
+  ASSERT_EQ(std::system((cli() + " decode " + capture + " --quiet --format csv --out " + csv).c_str()), 0);
+  ASSERT_EQ(std::system((cli() + " decode " + capture + " --quiet --format mcap --topic /lidar --frame-id xt32 --out " +
+                         mcap).c_str()),
+            0);
+  // Rows per frame, in the CSV's order.
+  std::map<std::uint64_t, std::uint64_t> rows;
+  {
+    const std::vector<std::uint8_t> text = hesai_test::read_file(csv);
+    std::size_t line = 0;
+    for (std::size_t i = 0; i < text.size(); i = line + 1) {
+      line = i;
+      while (line < text.size() && text[line] != '\n') ++line;
+      if (i == 0) continue;  // the header line
+      ++rows[std::stoull(std::string(text.begin() + static_cast<std::ptrdiff_t>(i), text.begin() + static_cast<std::ptrdiff_t>(line)))];
+    }
+  }
+  ASSERT_GT(rows.size(), 1u);
+  const std::vector<std::uint8_t> b = hesai_test::read_file(mcap);
+  const Parsed p = check_mcap(b);
+  EXPECT_EQ(p.profile, "ros2");
+  ASSERT_EQ(p.messages.size(), rows.size());
+  std::uint64_t total = 0;
+  for (const auto& [t, data] : p.messages) {
+    ASSERT_GE(data.size(), 4u + 32);
+    const std::vector<std::uint8_t> head = port::pointcloud2_head(0, "xt32", 0);
+    const std::uint64_t width = le(data, 4 + 24, 4);  // after "xt32" + NUL (5, padded to 8)
+    EXPECT_EQ(data.size(), head.size() + 32 * width + 1);
+    EXPECT_EQ(le(data, 4 + 8, 4), 5u);
+    EXPECT_EQ(0, std::memcmp(data.data() + 4 + 12, "xt32", 5));
+    EXPECT_EQ(le(data, 0 + 4, 4) * 1000000000ull + le(data, 4 + 4, 4), t) << "log_time is header.stamp";
+    total += width;
+  }
+  std::uint64_t csv_total = 0;
+  for (const auto& [f, n] : rows) csv_total += n;
+  EXPECT_EQ(total, csv_total);
+  // Schema and channel in the summary: the names and encodings of the ros2 profile.
+  for (const Record& r : p.summary) {
+    std::size_t at = r.body + 2;
+    if (r.op == 0x03) {
+      EXPECT_EQ(str_at(b, at), "sensor_msgs/msg/PointCloud2");
+      EXPECT_EQ(str_at(b, at), "ros2msg");
+      EXPECT_EQ(str_at(b, at), port::pointcloud2_definition());
+    } else if (r.op == 0x04) {
+      at += 2;
+      EXPECT_EQ(str_at(b, at), "/lidar");
+      EXPECT_EQ(str_at(b, at), "cdr");
+    }
+  }
+  std::remove(csv.c_str());
+  std::remove(mcap.c_str());
+}
+
+int run_status(const std::string& args) {
+  const int st = std::system((cli() + " " + args + " >/dev/null 2>&1").c_str());
+  return WIFEXITED(st) ? WEXITSTATUS(st) : -1;
+}
+
+TEST(McapCli, UsageErrors) {
+  const std::string capture = hesai_test::data_path("pandar_xt16.pcap");
+  EXPECT_EQ(run_status("decode " + capture + " --format mcap"), 1);                       // no --out
+  EXPECT_EQ(run_status("decode " + capture + " --format mcap --out -"), 1);               // stdout
+  EXPECT_EQ(run_status("decode " + capture + " --format mcap --per-frame --out " + temp_path("d")), 1);
+  // A pipe: popen gives the program one as its stdout.
+  FILE* p = popen((cli() + " decode " + capture + " --format mcap --out /dev/stdout 2>/dev/null").c_str(), "r");
+  ASSERT_NE(p, nullptr);
+  char buf[4096];
+  while (std::fread(buf, 1, sizeof buf, p) > 0) {
+  }
+  const int st = pclose(p);
+  EXPECT_TRUE(WIFEXITED(st) && WEXITSTATUS(st) == 1);
+  EXPECT_EQ(run_status("decode " + capture + " --format mcap --out /nonexistent/dir/x.mcap"), 2);
+  EXPECT_EQ(run_status("decode " + capture + " --format mcap --topic"), 1);               // no value
+}
+
+// listen --format mcap on a replay of the XT16 capture writes the same messages as decode.
+TEST(McapCli, ListenWritesWhatDecodeWrites) {
+  const std::string capture = hesai_test::data_path("pandar_xt16.pcap");
+  const std::string decoded = temp_path("hesai_test_decode_xt16.mcap"), live = temp_path("hesai_test_listen_xt16.mcap");
+  ASSERT_EQ(run_status("decode " + capture + " --quiet --format mcap --out " + decoded), 0);
+  const int port = hesai_test::free_udp_port();
+  ASSERT_NE(port, 0);
+  const std::string listen = cli() + " listen --bind 127.0.0.1 --port " + std::to_string(port) +
+                             " --gps-port 0 --count 1626 --seconds 30 --quiet --format mcap --out " + live +
+                             " >/dev/null 2>&1";
+  FILE* l = popen(listen.c_str(), "r");
+  ASSERT_NE(l, nullptr);
+  EXPECT_TRUE(hesai_test::wait_for_listener(port));
+  EXPECT_EQ(run_status("replay " + capture + " --to 127.0.0.1:" + std::to_string(port) + " --rate 1 --quiet"), 0);
+  EXPECT_EQ(WEXITSTATUS(pclose(l)), 0);
+  const Parsed a = check_mcap(hesai_test::read_file(decoded)), b = check_mcap(hesai_test::read_file(live));
+  ASSERT_EQ(a.messages.size(), 5u);  // the CSV's frames 1..5
+  ASSERT_EQ(b.messages.size(), a.messages.size());
+  for (std::size_t i = 0; i < a.messages.size(); ++i) {
+    EXPECT_EQ(a.messages[i].first, b.messages[i].first) << i;
+    EXPECT_TRUE(a.messages[i].second == b.messages[i].second) << i;
+  }
+  std::remove(decoded.c_str());
+  std::remove(live.c_str());
+}
+
+}  // namespace
