@@ -150,7 +150,34 @@ struct Expected {
   std::int64_t time_ns;
 };
 
-hesai::PacketPoints points;
+// One packet's points, or (for the columnar form's instruction count) its columns in the same RAM.
+struct ColumnArrays {
+  float x[hesai::kMaxPointsPerPacket], y[hesai::kMaxPointsPerPacket], z[hesai::kMaxPointsPerPacket];
+  std::int32_t time_ns[hesai::kMaxPointsPerPacket];
+  std::uint8_t intensity[hesai::kMaxPointsPerPacket], channel[hesai::kMaxPointsPerPacket], ret[hesai::kMaxPointsPerPacket];
+};
+union PointStorage {
+  PointStorage() : points() {}
+  hesai::PacketPoints points;
+  ColumnArrays columns;
+};
+PointStorage storage;
+hesai::PacketPoints& points = storage.points;
+hesai::PointColumns column_view() {
+  ColumnArrays& c = storage.columns;
+  hesai::PointColumns v;
+  v.x = c.x;
+  v.y = c.y;
+  v.z = c.z;
+  v.time_ns = c.time_ns;
+  v.intensity = c.intensity;
+  v.channel = c.channel;
+  v.return_index = c.ret;
+  v.capacity = hesai::kMaxPointsPerPacket;
+  return v;
+}
+const hesai::PointColumns columns = column_view();
+std::size_t column_count = 0;
 // Four decoders fit the 64 KiB RAM region beside the points and the stack. The PandarQT64 and
 // PandarXT models borrow the Pandar40's (decoders[0]), rebuilt in place for each: guest().
 hesai::Decoder decoders[] = {hesai::Decoder(Model::pandar40), hesai::Decoder(Model::pandar40p),
@@ -557,6 +584,8 @@ void instruction_counts() {
     check(subject->decode(packet, info, points) == Error::ok, s.name);  // the spin-rate cache warm
     count(s.name, "validate", [] { subject_error = subject->validate(packet, subject_info); });
     count(s.name, "decode", [] { subject_error = subject->decode(packet, subject_info, points); });
+    count(s.name, "decode_columns",
+          [] { subject_error = subject->decode(packet, subject_info, columns, column_count); });
     // The worst case: a packet at another spin rate, so the decode rebuilds the cache first.
     packet = with_rpm(subject->model(), s.packet.data, s.packet.size, static_cast<std::uint16_t>(info.motor_rpm + 2), shifted);
     count(s.name, "decode_rpm_change", [] { subject_error = subject->decode(packet, subject_info, points); });

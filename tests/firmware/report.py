@@ -17,6 +17,7 @@ from Decoder::validate or Decoder::decode (issue #13). Prints a Markdown report,
 and exits 1 when a budget is exceeded.
 """
 import argparse
+import json
 import glob
 import os
 import re
@@ -35,24 +36,24 @@ STACK_BUDGET = 1024
 # Cortex-M4F, 63% of its decode).
 INSTRUCTION_BUDGETS = {
     'cortex-m4': {
-        'Pandar40': {'validate': 2000, 'decode': 56000, 'decode_rpm_change': 61000},
-        'Pandar40P': {'validate': 2000, 'decode': 56000, 'decode_rpm_change': 61000},
-        'Pandar64': {'validate': 2000, 'decode': 53000, 'decode_rpm_change': 60000},
-        'QT128C2X': {'validate': 16000, 'decode': 50000, 'decode_rpm_change': 77000, 'signature': 97000},
-        'PandarQT64': {'validate': 2000, 'decode': 36000, 'decode_rpm_change': 43000},
-        'PandarXT16': {'validate': 2000, 'decode': 21000, 'decode_rpm_change': 22000},
-        'PandarXT32': {'validate': 2000, 'decode': 37000, 'decode_rpm_change': 40000},
-        'PandarXT32M2X': {'validate': 2000, 'decode': 28000, 'decode_rpm_change': 32000},
+        'Pandar40': {'validate': 2000, 'decode': 56000, 'decode_columns': 50000, 'decode_rpm_change': 61000},
+        'Pandar40P': {'validate': 2000, 'decode': 56000, 'decode_columns': 50000, 'decode_rpm_change': 61000},
+        'Pandar64': {'validate': 2000, 'decode': 53000, 'decode_columns': 46000, 'decode_rpm_change': 60000},
+        'QT128C2X': {'validate': 16000, 'decode': 50000, 'decode_columns': 45000, 'decode_rpm_change': 77000, 'signature': 97000},
+        'PandarQT64': {'validate': 2000, 'decode': 36000, 'decode_columns': 31000, 'decode_rpm_change': 43000},
+        'PandarXT16': {'validate': 2000, 'decode': 21000, 'decode_columns': 20000, 'decode_rpm_change': 22000},
+        'PandarXT32': {'validate': 2000, 'decode': 37000, 'decode_columns': 34000, 'decode_rpm_change': 40000},
+        'PandarXT32M2X': {'validate': 2000, 'decode': 28000, 'decode_columns': 26000, 'decode_rpm_change': 32000},
     },
     'cortex-m0plus': {
-        'Pandar40': {'validate': 2000, 'decode': 762000, 'decode_rpm_change': 868000},
-        'Pandar40P': {'validate': 3000, 'decode': 762000, 'decode_rpm_change': 869000},
-        'Pandar64': {'validate': 3000, 'decode': 662000, 'decode_rpm_change': 832000},
-        'QT128C2X': {'validate': 25000, 'decode': 474000, 'decode_rpm_change': 1104000, 'signature': 161000},
-        'PandarQT64': {'validate': 3000, 'decode': 463000, 'decode_rpm_change': 633000},
-        'PandarXT16': {'validate': 3000, 'decode': 264000, 'decode_rpm_change': 304000},
-        'PandarXT32': {'validate': 3000, 'decode': 479000, 'decode_rpm_change': 557000},
-        'PandarXT32M2X': {'validate': 3000, 'decode': 333000, 'decode_rpm_change': 411000},
+        'Pandar40': {'validate': 2000, 'decode': 762000, 'decode_columns': 653000, 'decode_rpm_change': 868000},
+        'Pandar40P': {'validate': 3000, 'decode': 762000, 'decode_columns': 653000, 'decode_rpm_change': 869000},
+        'Pandar64': {'validate': 3000, 'decode': 662000, 'decode_columns': 574000, 'decode_rpm_change': 832000},
+        'QT128C2X': {'validate': 25000, 'decode': 474000, 'decode_columns': 417000, 'decode_rpm_change': 1104000, 'signature': 161000},
+        'PandarQT64': {'validate': 3000, 'decode': 463000, 'decode_columns': 403000, 'decode_rpm_change': 633000},
+        'PandarXT16': {'validate': 3000, 'decode': 264000, 'decode_columns': 234000, 'decode_rpm_change': 304000},
+        'PandarXT32': {'validate': 3000, 'decode': 479000, 'decode_columns': 427000, 'decode_rpm_change': 557000},
+        'PandarXT32M2X': {'validate': 3000, 'decode': 333000, 'decode_columns': 295000, 'decode_rpm_change': 411000},
     },
 }
 # Packets per second at 600 rpm in dual return, the bundled captures' mode (packets per rotation
@@ -65,6 +66,10 @@ INSTRUCTION_BUDGETS = {
 PACKETS_PER_ROTATION = {'Pandar40': 360, 'Pandar40P': 360, 'Pandar64': 600, 'QT128C2X': 900, 'PandarQT64': 300,
                         'PandarXT16': 500, 'PandarXT32': 500, 'PandarXT32M2X': 360 / 0.54}
 RPM = 600
+# Units (blocks x channels) in the packet each sensor's count decodes (fuzz/seed_packets.inc: the
+# layouts' block and channel counts; the QT128C2X packet has flags 0x1D, 2 blocks of 128).
+UNITS = {'Pandar40': 400, 'Pandar40P': 400, 'Pandar64': 384, 'QT128C2X': 256, 'PandarQT64': 256,
+         'PandarXT16': 128, 'PandarXT32': 256, 'PandarXT32M2X': 192}
 CLOCKS = (('Cortex-M4F at 168 MHz', 168e6), ('Cortex-M7 at 400 MHz', 400e6))
 # Double-precision soft-float: __aeabi_dadd, __aeabi_d2f, ..., and the conversions to double
 # (__aeabi_f2d, __aeabi_i2d, __aeabi_l2d, ...); libgcc's generic names (__adddf3, __extendsfdf2, ...).
@@ -247,7 +252,21 @@ def double_precision_check(rows, edges, frames, names, over):
     return lines
 
 
-def instruction_counts(emulator, image, over):
+def instructions_json(counts, path):
+    """build/<preset>/instructions.json: one entry per sensor, whole-call counts (decodes include validate)."""
+    out = {}
+    for sensor, c in counts.items():
+        if sensor not in UNITS:
+            continue
+        out[sensor] = {'units': UNITS[sensor], 'packets_per_second': round(RPM / 60 * PACKETS_PER_ROTATION[sensor], 1),
+                       'validate': c.get('validate'), 'decode_points': c.get('decode'),
+                       'decode_columns': c.get('decode_columns'), 'decode_points_rate_change': c.get('decode_rpm_change')}
+    with open(path, 'w') as f:
+        json.dump(out, f, indent=2)
+        f.write('\n')
+
+
+def instruction_counts(emulator, image, over, json_path=None):
     """Runs the image under -icount shift=7 and tabulates its instruction counts."""
     cmd = shlex.split(emulator)
     at = cmd.index('-kernel') if '-kernel' in cmd else len(cmd)
@@ -267,17 +286,20 @@ def instruction_counts(emulator, image, over):
               'each sensor (dual return); `decode` includes its `validate`. *rate change*: the packet at another '
               'spin rate, so that the per-rate cache is rebuilt first (the worst case). Budget (%s, in brackets): '
               'the count measured when it was set, plus 25%%.' % core, '',
-              '| sensor | validate | decode | decode, rate change | packets/s | decode, M instructions/s |',
-              '| --- | ---: | ---: | ---: | ---: | ---: |']
+              '| sensor | validate | decode | decode, columns | decode, rate change | per unit less validate: points, columns | packets/s | decode, M instructions/s |',
+              '| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: |']
     per_second = {}
     for sensor, c in counts.items():
         rate = RPM / 60 * PACKETS_PER_ROTATION.get(sensor, 0)
         per_second[sensor] = c.get('decode', 0) * rate
         budget = budgets.get(sensor, {})
         cell = lambda what: '%d (%s)' % (c.get(what, 0), budget.get(what, 'no budget'))
-        lines.append('| %s | %s | %s | %s | %d | %.0f |' % (sensor, cell('validate'), cell('decode'),
-                                                           cell('decode_rpm_change'), rate, per_second[sensor] / 1e6))
-        for what in ('validate', 'decode', 'decode_rpm_change'):
+        units = UNITS.get(sensor, 0)
+        per_unit = lambda what: (c.get(what, 0) - c.get('validate', 0)) / units if units else 0
+        lines.append('| %s | %s | %s | %s | %s | %.0f, %.0f | %d | %.0f |' % (
+            sensor, cell('validate'), cell('decode'), cell('decode_columns'), cell('decode_rpm_change'),
+            per_unit('decode'), per_unit('decode_columns'), rate, per_second[sensor] / 1e6))
+        for what in ('validate', 'decode', 'decode_columns', 'decode_rpm_change'):
             if what not in budget or c.get(what, 0) > budget[what]:
                 over.append('instructions %s %s %d > budget %s' % (sensor, what, c.get(what, 0), budget.get(what)))
     qt = counts.get('QT128C2X', {})
@@ -301,6 +323,8 @@ def instruction_counts(emulator, image, over):
                   '| --- | ---: |' + ' ---: |' * len(CLOCKS)]
         for sensor, ips in per_second.items():
             lines.append('| %s | %.1f M | %s |' % (sensor, ips / 1e6, ' | '.join('%.0f%%' % (100 * ips / hz) for _, hz in CLOCKS)))
+    if json_path:
+        instructions_json(counts, json_path)
     lines.append('')
     return lines
 
@@ -314,6 +338,7 @@ def main():
     ap.add_argument('--emulator', help='the command that runs an image, up to and including -kernel')
     ap.add_argument('--image', help='the firmware image that counts instructions under -icount')
     ap.add_argument('--out')
+    ap.add_argument('--instructions-json', help='where to write the instruction counts as JSON')
     args = ap.parse_args()
     lines, over = [], []
 
@@ -387,7 +412,7 @@ def main():
     lines += ['', 'Budget: at most %d bytes of stack per call; worst: %d bytes.' % (STACK_BUDGET, rows[0][0] if rows else 0)]
     lines += double_precision_check(rows, edges, frames, names, over)
     if args.emulator and args.image:
-        lines += instruction_counts(args.emulator, args.image, over)
+        lines += instruction_counts(args.emulator, args.image, over, args.instructions_json)
 
     text = '\n'.join(lines) + '\n'
     print(text)
