@@ -43,7 +43,7 @@ namespace detail {
 // induction variable walks every array (an identity map, or a test per unit, cost 21-28% more
 // instructions per packet under callgrind).
 template <std::size_t kUnitBytes, typename F>
-inline void for_each_unit(const std::uint8_t* units, std::size_t unit_count, const std::uint8_t* channel_of, F&& f) {
+HESAI_ALWAYS_INLINE inline void for_each_unit(const std::uint8_t* units, std::size_t unit_count, const std::uint8_t* channel_of, F&& f) {
   if (channel_of != nullptr) {
     for (std::size_t j = 0; j < unit_count; ++j) f(units + j * kUnitBytes, std::size_t{channel_of[j]});
   } else {
@@ -56,7 +56,7 @@ inline void for_each_unit(const std::uint8_t* units, std::size_t unit_count, con
 struct Xyz {
   float x, y, z;
 };
-inline Xyz unit_xyz(const BlockConstants& k, float r, std::size_t ch) noexcept {
+HESAI_ALWAYS_INLINE inline Xyz unit_xyz(const BlockConstants& k, float r, std::size_t ch) noexcept {
   return {r * (k.sin_a * k.dir_cos[ch] + k.cos_a * k.dir_sin[ch]),
           r * (k.cos_a * k.dir_cos[ch] - k.sin_a * k.dir_sin[ch]), r * k.sin_el[ch]};
 }
@@ -66,7 +66,7 @@ inline Xyz unit_xyz(const BlockConstants& k, float r, std::size_t ch) noexcept {
 template <std::size_t kUnitBytes>
 inline std::size_t write_columns(const BlockConstants k, const std::uint8_t* units, std::size_t unit_count,
                                  const std::uint8_t* channel_of, const PointColumns out, std::size_t n) noexcept {
-  for_each_unit<kUnitBytes>(units, unit_count, channel_of, [&](const std::uint8_t* p, std::size_t ch) {
+  for_each_unit<kUnitBytes>(units, unit_count, channel_of, [&](const std::uint8_t* p, std::size_t ch) HESAI_ALWAYS_INLINE {
     const std::uint16_t raw = load_le16(p);
     const Xyz v = unit_xyz(k, static_cast<float>(raw) * k.unit_m, ch);
     out.x[n] = v.x;
@@ -85,7 +85,7 @@ inline std::size_t write_columns(const BlockConstants k, const std::uint8_t* uni
 template <std::size_t kUnitBytes>
 inline std::size_t write_points(const BlockConstants k, const std::uint8_t* units, std::size_t unit_count,
                                 const std::uint8_t* channel_of, Point* const out, std::size_t n) noexcept {
-  for_each_unit<kUnitBytes>(units, unit_count, channel_of, [&](const std::uint8_t* p, std::size_t ch) {
+  for_each_unit<kUnitBytes>(units, unit_count, channel_of, [&](const std::uint8_t* p, std::size_t ch) HESAI_ALWAYS_INLINE {
     const std::uint16_t raw = load_le16(p);
     const float r = static_cast<float>(raw) * k.unit_m;
     const Xyz v = unit_xyz(k, r, ch);
