@@ -18,13 +18,32 @@ namespace {
 
 const char* describe(CaptureError e) {
   switch (e) {
-    case CaptureError::bad_magic: return "not a pcap or pcapng file (or an unsupported version)";
+    case CaptureError::bad_magic: return "not a pcap, pcapng or MCAP file (or an unsupported version)";
     case CaptureError::truncated: return "the file ends inside a header, record or block";
     case CaptureError::bad_record: return "a record or block length that cannot be";
     case CaptureError::unsupported_link: return "a link type this reader does not unpack";
     case CaptureError::not_open: return "no capture open";
+    case CaptureError::mcap_chunk_crc: return "the chunk's records do not match its CRC";
+    case CaptureError::mcap_unknown_schema: return "a channel on a schema id that no Schema record defined";
+    case CaptureError::mcap_unknown_channel: return "a message on a channel id that no Channel record defined";
+    case CaptureError::mcap_bad_encoding:
+      return "a pandar_msgs/msg/PandarScan channel whose message encoding is not cdr";
+    case CaptureError::mcap_bad_cdr:
+      return "a PandarScan message that is not little-endian CDR or too short for its packets";
+    case CaptureError::mcap_bad_packet_size: return "a PandarPacket whose size is above its 1500 data bytes";
+    case CaptureError::mcap_no_pandar_scan: return "no pandar_msgs/msg/PandarScan channel in the file";
     default: return capture_error_name(e);
   }
+}
+
+// The compression a chunk names, printable characters only, at most 32.
+std::string printable(ByteView v) {
+  std::string s;
+  for (std::size_t i = 0; i < v.size && s.size() < 32; ++i) {
+    const std::uint8_t c = v[i];
+    s += c >= 0x20 && c < 0x7F ? static_cast<char>(c) : '?';
+  }
+  return s;
 }
 
 }  // namespace
@@ -37,10 +56,12 @@ void CaptureFile::close() {
   size_ = 0;
   released_ = 0;
   parser_ = CaptureParser{};
+  mcap_ = McapParser{};
+  is_mcap_ = false;
 }
 
 CaptureStatus CaptureFile::next(UdpDatagram& out) {
-  const CaptureStatus st = parser_.next(out);
+  const CaptureStatus st = is_mcap_ ? mcap_.next(out) : parser_.next(out);
   if (st == CaptureStatus::datagram && out.file_offset - released_ >= kReleaseBytes) {
     // Up to the page that holds the current record: its payload stays mapped.
     const auto page = static_cast<std::size_t>(sysconf(_SC_PAGESIZE));
@@ -88,16 +109,28 @@ CaptureError CaptureFile::open(const std::string& path) {
     size_ = size;
   }
   ::close(fd);
+  if (McapParser::looks_like_mcap(bytes())) {
+    is_mcap_ = true;
+    return mcap_.open(bytes());
+  }
   return parser_.open(bytes());
 }
 
 std::string CaptureFile::message() const {
   if (os_error_ != 0) return path_ + ": " + os_what_ + " failed: " + std::strerror(os_error_);
-  const CaptureError e = parser_.error();
+  const CaptureError e = error();
   if (e == CaptureError::ok) return std::string();
   if (e == CaptureError::truncated && size_ == 0 && !path_.empty()) return path_ + ": empty file";
-  return path_ + ": " + capture_error_name(e) + " at byte " + std::to_string(parser_.error_offset()) + ": " +
-         describe(e);
+  const std::uint64_t at = is_mcap_ ? mcap_.error_offset() : parser_.error_offset();
+  const std::string where = path_ + ": " + capture_error_name(e) + " at byte " + std::to_string(at) + ": ";
+  if (e == CaptureError::mcap_compressed_chunk) {
+    return where + "a chunk compressed with '" + printable(mcap_.compression()) +
+           "': only uncompressed MCAP is read. Rewrite the file uncompressed with the mcap CLI, "
+           "mcap decompress IN.mcap -o OUT.mcap, or with ROS 2, ros2 bag convert -i IN.mcap -o out.yaml where "
+           "out.yaml gives the output bag storage_id: mcap and a storage_config_uri file that holds "
+           "compression: \"None\" (see docs/CLI.md, MCAP input)";
+  }
+  return where + describe(e);
 }
 
 }  // namespace hesai::port

@@ -331,6 +331,14 @@ const char* capture_error_name(CaptureError e) {
     case CaptureError::unsupported_link: return "capture_unsupported_link";
     case CaptureError::io: return "capture_io";
     case CaptureError::not_open: return "capture_not_open";
+    case CaptureError::mcap_compressed_chunk: return "mcap_compressed_chunk";
+    case CaptureError::mcap_chunk_crc: return "mcap_chunk_crc_mismatch";
+    case CaptureError::mcap_unknown_schema: return "mcap_unknown_schema";
+    case CaptureError::mcap_unknown_channel: return "mcap_unknown_channel";
+    case CaptureError::mcap_bad_encoding: return "mcap_bad_encoding";
+    case CaptureError::mcap_bad_cdr: return "mcap_bad_cdr";
+    case CaptureError::mcap_bad_packet_size: return "mcap_bad_packet_size";
+    case CaptureError::mcap_no_pandar_scan: return "mcap_no_pandar_scan";
   }
   return "unknown";
 }

@@ -1,6 +1,7 @@
-// Capture files on disk: CaptureFile maps a pcap or pcapng file read-only and feeds a
-// CaptureParser; it hands the pages it has read back to the kernel as it goes, so its resident
-// memory stays bounded whatever the file's size.
+// Capture files on disk: CaptureFile maps a pcap, pcapng or MCAP file read-only and feeds a
+// CaptureParser (pcap, pcapng) or a McapParser (a rosbag2 MCAP of PandarScan messages), chosen
+// by the file's magic; it hands the pages it has read back to the kernel as it goes, so its
+// resident memory stays bounded whatever the file's size.
 //
 // The parser itself (CaptureParser, parse_frame, the error codes and the datagram type, with the
 // formats and link types it reads) is in hesai_port/capture_parser.h, included here: it allocates
@@ -10,6 +11,7 @@
 #include <string>
 
 #include "hesai_port/capture_parser.h"
+#include "hesai_port/mcap_parser.h"
 
 namespace hesai::port {
 
@@ -25,8 +27,9 @@ class CaptureFile {
   CaptureFile(const CaptureFile&) = delete;
   CaptureFile& operator=(const CaptureFile&) = delete;
 
-  /// Maps `path` and opens the parser on it. CaptureError::io when the file cannot be opened
-  /// or mapped (errno in os_error()), otherwise CaptureParser::open's result. message() says why.
+  /// Maps `path` and opens the parser on it: McapParser when the file starts with the MCAP magic
+  /// (or is a prefix of it), CaptureParser otherwise. CaptureError::io when the file cannot be
+  /// opened or mapped (errno in os_error()), otherwise the parser's open() result. message() says why.
   [[nodiscard]] CaptureError open(const std::string& path);
   /// Unmaps the file.
   void close();
@@ -41,9 +44,17 @@ class CaptureFile {
   int os_error() const { return os_error_; }
   /// The whole file's bytes.
   ByteView bytes() const { return {static_cast<const std::uint8_t*>(map_), size_}; }
-  /// The parser over the file; call parser().next() for datagrams.
+  /// The parser over a pcap or pcapng file; call parser().next() for datagrams.
   CaptureParser& parser() { return parser_; }
   const CaptureParser& parser() const { return parser_; }
+  /// The parser over an MCAP file (format() == CaptureFormat::mcap).
+  const McapParser& mcap_parser() const { return mcap_; }
+  /// The open file's format (CaptureFormat::mcap for MCAP, else the CaptureParser's).
+  CaptureFormat format() const { return is_mcap_ ? CaptureFormat::mcap : parser_.format(); }
+  /// The error that stopped the last open() or next() in the parser (CaptureError::ok if none).
+  CaptureError error() const { return is_mcap_ ? mcap_.error() : parser_.error(); }
+  /// Counters since open().
+  const CaptureStats& stats() const { return is_mcap_ ? mcap_.stats() : parser_.stats(); }
   const std::string& path() const { return path_; }
 
  private:
@@ -54,6 +65,8 @@ class CaptureFile {
   std::string os_what_;
   std::string path_;
   CaptureParser parser_;
+  McapParser mcap_;
+  bool is_mcap_ = false;
 };
 
 }  // namespace hesai::port

@@ -33,10 +33,19 @@ enum class [[nodiscard]] CaptureError : std::uint8_t {
   unsupported_link,  ///< "capture_unsupported_link": a link type this reader does not unpack (classic pcap)
   io,                ///< "capture_io": the file cannot be opened, read or mapped (see CaptureFile::os_error())
   not_open,          ///< "capture_not_open": CaptureParser::next() before a successful open()
+  // MCAP files (McapParser, hesai_port/mcap_parser.h).
+  mcap_compressed_chunk,  ///< "mcap_compressed_chunk": a chunk compressed (zstd, lz4): only uncompressed chunks are read
+  mcap_chunk_crc,         ///< "mcap_chunk_crc_mismatch": a chunk's records do not match its uncompressed_crc
+  mcap_unknown_schema,    ///< "mcap_unknown_schema": a channel names a schema id that no Schema record defined
+  mcap_unknown_channel,   ///< "mcap_unknown_channel": a message on a channel id that no Channel record defined
+  mcap_bad_encoding,      ///< "mcap_bad_encoding": a PandarScan channel whose message encoding is not "cdr"
+  mcap_bad_cdr,           ///< "mcap_bad_cdr": a PandarScan message too short for its CDR, or not little-endian CDR
+  mcap_bad_packet_size,   ///< "mcap_bad_packet_size": a PandarPacket whose size exceeds its 1500 data bytes
+  mcap_no_pandar_scan,    ///< "mcap_no_pandar_scan": the data section ended without a PandarScan channel
 };
 
 /// The last code, for loops over every code (keep it last when adding codes).
-inline constexpr CaptureError kLastCaptureError = CaptureError::not_open;
+inline constexpr CaptureError kLastCaptureError = CaptureError::mcap_no_pandar_scan;
 
 /// Stable lower-case name of a code, for messages and logs ("capture_bad_magic"); "unknown" for
 /// a value that is not a code.
@@ -48,12 +57,12 @@ struct UdpDatagram {
   std::uint64_t time_ns = 0;           ///< capture time, nanoseconds since 1970-01-01 UTC
   std::uint16_t src_port = 0;          ///< UDP source port
   std::uint16_t dst_port = 0;          ///< UDP destination port
-  std::uint8_t ip_version = 0;         ///< 4 or 6
+  std::uint8_t ip_version = 0;         ///< 4 or 6; 0 for MCAP (no addresses or ports)
   std::array<std::uint8_t, 16> src_addr{};  ///< source address; IPv4 in bytes 0..3, rest zero
   std::array<std::uint8_t, 16> dst_addr{};  ///< destination address; IPv4 in bytes 0..3, rest zero
-  std::uint64_t file_offset = 0;       ///< byte offset of the record header (pcap) or block (pcapng)
+  std::uint64_t file_offset = 0;       ///< byte offset of the record header (pcap), block (pcapng) or PandarPacket (MCAP)
   std::uint32_t record_index = 0;      ///< 0-based index among all packet records (frame number - 1)
-  std::uint32_t interface_id = 0;      ///< pcapng interface within its section; 0 for pcap
+  std::uint32_t interface_id = 0;      ///< pcapng interface within its section; 0 for pcap; the channel id for MCAP
 };
 
 /// Outcome of CaptureParser::next.
@@ -97,7 +106,7 @@ bool link_type_supported(std::uint32_t link_type);
 FrameKind parse_frame(std::uint32_t link_type, ByteView frame, UdpDatagram& out);
 
 /// File format of an open capture.
-enum class CaptureFormat : std::uint8_t { none, pcap, pcapng };
+enum class CaptureFormat : std::uint8_t { none, pcap, pcapng, mcap };
 
 /// Reads UDP datagrams from a capture file held in memory. No allocation, no I/O; the caller
 /// keeps the bytes alive while datagrams are in use.
