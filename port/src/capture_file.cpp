@@ -128,7 +128,7 @@ std::string CaptureFile::message() const {
            "': only uncompressed MCAP is read. Rewrite the file uncompressed with the mcap CLI, "
            "mcap decompress IN.mcap -o OUT.mcap, or with ROS 2, ros2 bag convert -i IN.mcap -o out.yaml where "
            "out.yaml gives the output bag storage_id: mcap and a storage_config_uri file that holds "
-           "compression: \"None\" (see docs/CLI.md, MCAP input)";
+           "compression: \"None\" (docs/CLI.md, Input formats)";
   }
   return where + describe(e);
 }

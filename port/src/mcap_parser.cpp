@@ -63,6 +63,11 @@ McapParser::Step McapParser::fail(CaptureError e, std::uint64_t offset) {
   return Step::error;
 }
 
+CaptureStatus McapParser::stop(CaptureError e, std::uint64_t offset) {
+  fail(e, offset);
+  return CaptureStatus::error;
+}
+
 CaptureError McapParser::open(ByteView file) {
   file_ = file;
   pos_ = 0;
@@ -118,10 +123,7 @@ CaptureError McapParser::open(ByteView file) {
 
 CaptureStatus McapParser::next(UdpDatagram& out) {
   if (error_ != CaptureError::ok) return CaptureStatus::error;
-  if (!opened_) {
-    fail(CaptureError::not_open, 0);
-    return CaptureStatus::error;
-  }
+  if (!opened_) return stop(CaptureError::not_open, 0);
   for (;;) {
     Step step = Step::more;
     if (packets_left_ > 0) {
@@ -135,18 +137,18 @@ CaptureStatus McapParser::next(UdpDatagram& out) {
       }
       const std::uint8_t* p = chunk_records_.data + chunk_pos_;
       const std::size_t left = chunk_records_.size - chunk_pos_;
-      if (left < record_prefix) return fail(CaptureError::bad_record, offset_of(p)), CaptureStatus::error;
+      if (left < record_prefix) return stop(CaptureError::bad_record, offset_of(p));
       const std::uint64_t len = load_le64(p + 1);
-      if (len > left - record_prefix) return fail(CaptureError::bad_record, offset_of(p)), CaptureStatus::error;
+      if (len > left - record_prefix) return stop(CaptureError::bad_record, offset_of(p));
       chunk_pos_ += record_prefix + static_cast<std::size_t>(len);
       step = record(p[0], ByteView(p + record_prefix, static_cast<std::size_t>(len)), offset_of(p), true);
     } else if (pos_ == file_.size) {
       step = Step::end;  // no Data End: a file cut at a record boundary ends there
     } else {
       const std::size_t at = pos_;
-      if (file_.size - at < record_prefix) return fail(CaptureError::truncated, at), CaptureStatus::error;
+      if (file_.size - at < record_prefix) return stop(CaptureError::truncated, at);
       const std::uint64_t len = load_le64(file_.data + at + 1);
-      if (len > file_.size - at - record_prefix) return fail(CaptureError::truncated, at), CaptureStatus::error;
+      if (len > file_.size - at - record_prefix) return stop(CaptureError::truncated, at);
       pos_ = at + record_prefix + static_cast<std::size_t>(len);
       step = record(file_[at], file_.sub(at + record_prefix, static_cast<std::size_t>(len)), at, false);
     }
@@ -156,7 +158,7 @@ CaptureStatus McapParser::next(UdpDatagram& out) {
       case Step::error: return CaptureStatus::error;
       case Step::end:
         done_ = true;
-        if (!any_scan_channel_) return fail(CaptureError::mcap_no_pandar_scan, pos_), CaptureStatus::error;
+        if (!any_scan_channel_) return stop(CaptureError::mcap_no_pandar_scan, pos_);
         return CaptureStatus::end;
     }
   }

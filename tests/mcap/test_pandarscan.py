@@ -2,7 +2,7 @@
 """MCAP input: `hesai stats`, `decode` and `replay` on rosbag2 MCAP bags of PandarScan messages
 made by make_pandarscan.py (an independent writer) from the bundled captures.
 
-Usage: test_pandarscan.py HESAI DATA_DIR WORK_DIR
+Usage: test_pandarscan.py HESAI DATA_DIR WORK_DIR [--memory]
 HESAI_RUN_PREFIX (environment): words put before HESAI (cross builds: the qemu-user emulator).
 
 Proves, for every bundled capture: `stats --json` on the bag (unchunked; chunked with CRCs, with a
@@ -11,6 +11,7 @@ second, non-PandarScan topic; chunked without CRCs) equals `stats --json` on the
 Then each damaged file gives exit 2 and its own code at the byte offset where the writer put the
 damaged record (never a value read back from the program), and a compressed chunk's message names
 the compression and the commands that rewrite the file uncompressed.
+With --memory, only: `stats` on a bag of more than 256 MiB peaks under 64 MiB resident.
 """
 import json
 import os
@@ -240,9 +241,47 @@ def damaged_files(hesai, work, pcap):
           'part-way damage: exit %d, stdout %r' % (r.returncode, r.stdout[:200]))
 
 
+def bounded_memory(hesai, work, pcap):
+    """`stats` on a bag of more than 256 MiB (the capture's packets as one chunk, repeated) peaks
+    under 64 MiB resident, as the kernel reports it for the child (wait4's rusage)."""
+    bag = mp.Bag()
+    head = bytes(bag.out)
+    bag.open_chunk()
+    bag.schema(1, 'pandar_msgs/msg/PandarScan')
+    bag.channel(1, 1, '/pandar_packets')
+    for scan in mp.scan_messages(mp.pcap_payloads(pcap), 50):
+        bag.message(1, scan[0][0], mp.cdr_scan(scan))
+    bag.close_chunk()
+    chunk = bytes(bag.out[len(head):])
+    repeats = (256 << 20) // len(chunk) + 1
+    path = os.path.join(work, 'large.mcap')
+    with open(path, 'wb') as f:
+        f.write(head)
+        for _ in range(repeats):
+            f.write(chunk)
+        f.write(mp.record(mp.OP_DATA_END, struct.pack('<I', 0)))
+    try:
+        size = os.path.getsize(path)
+        p = subprocess.Popen([hesai, 'stats', path, '--json'], stdout=subprocess.PIPE, stderr=subprocess.PIPE)
+        out, err = p.stdout.read(), p.stderr.read()
+        _, status, usage = os.wait4(p.pid, 0)
+        p.returncode = os.waitstatus_to_exitcode(status)
+        check(p.returncode == 0, 'large bag: exit %d: %s' % (p.returncode, err.decode()))
+        packets = json.loads(out)['packets'] if p.returncode == 0 else 0
+        check(packets == repeats * len(mp.pcap_payloads(pcap)), 'large bag: %d packets' % packets)
+        check(usage.ru_maxrss < 64 * 1024, 'large bag of %d MiB: peak RSS %d MiB' % (size >> 20, usage.ru_maxrss >> 10))
+        print('large bag: %d MiB, %d packets, peak RSS %d MiB' % (size >> 20, packets, usage.ru_maxrss >> 10))
+    finally:
+        os.remove(path)
+
+
 def main():
     hesai, data_dir, work = sys.argv[1:4]
     os.makedirs(work, exist_ok=True)
+    if sys.argv[4:] == ['--memory']:
+        bounded_memory(hesai, work, os.path.join(data_dir, 'pandar64_dual.pcap'))
+        print('%d failures' % len(FAILURES) if FAILURES else 'all checks passed')
+        return 1 if FAILURES else 0
     captures = sorted(f for f in os.listdir(data_dir) if f.endswith('.pcap'))
     check(len(captures) >= 7, 'bundled captures: %d' % len(captures))
     for c in captures:

@@ -76,6 +76,7 @@ class McapParser {
 
   enum class Step : std::uint8_t { more, datagram, end, error };
   Step fail(CaptureError e, std::uint64_t offset);
+  CaptureStatus stop(CaptureError e, std::uint64_t offset);  // fail() for next()
   // One record (opcode, its body, the file offset of its opcode); `in_chunk` inside a chunk.
   Step record(std::uint8_t op, ByteView body, std::uint64_t at, bool in_chunk);
   Step schema(ByteView body, std::uint64_t at);
