@@ -1083,7 +1083,10 @@ TEST(CaptureError, EveryCodeHasItsOwnName) {
     EXPECT_TRUE(names.insert(n).second) << n;
   }
   EXPECT_EQ(names, (std::set<std::string>{"ok", "capture_bad_magic", "capture_truncated", "capture_bad_record",
-                                          "capture_unsupported_link", "capture_io", "capture_not_open"}));
+                                          "capture_unsupported_link", "capture_io", "capture_not_open",
+                                          "mcap_compressed_chunk", "mcap_chunk_crc_mismatch", "mcap_unknown_schema",
+                                          "mcap_unknown_channel", "mcap_bad_encoding", "mcap_bad_cdr",
+                                          "mcap_bad_packet_size", "mcap_no_pandar_scan"}));
   EXPECT_STREQ(hesai::port::capture_error_name(CaptureError::bad_magic), "capture_bad_magic");
   EXPECT_STREQ(hesai::port::capture_error_name(CaptureError::io), "capture_io");
   EXPECT_STREQ(hesai::port::capture_error_name(

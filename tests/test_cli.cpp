@@ -194,7 +194,7 @@ TEST(Cli, CaptureErrorMessages) {
   store_le32(&header[20], 119);
   std::ofstream(link, std::ios::binary).write(reinterpret_cast<const char*>(header.data()), 24);
   const std::pair<std::string, std::string> cases[] = {
-      {not_capture, not_capture + ": capture_bad_magic at byte 0: not a pcap or pcapng file (or an unsupported version)"},
+      {not_capture, not_capture + ": capture_bad_magic at byte 0: not a pcap, pcapng or MCAP file (or an unsupported version)"},
       {cut, cut + ": capture_truncated at byte " + std::to_string(cut_at) + ": the file ends inside a header, record or block"},
       {empty, empty + ": empty file"},
       {link, link + ": capture_unsupported_link at byte 20: a link type this reader does not unpack"},

@@ -51,7 +51,7 @@ constexpr const char* kUsage =
     "usage: hesai <command> [options]\n"
     "\n"
     "commands:\n"
-    "  decode CAPTURE   decode a pcap/pcapng capture into points (CSV, PCD, PLY or PNG)\n"
+    "  decode CAPTURE   decode a pcap/pcapng capture or a PandarScan MCAP bag into points\n"
     "  stats CAPTURE    count packets, points, frames, integrity failures and losses\n"
     "  listen           receive packets live over UDP and report statistics\n"
     "  replay CAPTURE   send a capture's UDP payloads to HOST:PORT (and stand in for the sensor's PTC)\n"
@@ -69,6 +69,8 @@ int fail(const std::string& command, int status, const std::string& message) {
 }
 
 std::uint64_t source_key(const port::UdpDatagram& d) {
+  // MCAP packets carry no address: each PandarScan channel (topic) is one sensor.
+  if (d.ip_version == 0) return d.interface_id;
   std::uint64_t h = 1469598103934665603ull;  // FNV-1a over the address, then the port
   for (std::uint8_t b : d.src_addr) h = (h ^ b) * 1099511628211ull;
   return h ^ d.src_port;
@@ -111,7 +113,8 @@ int cmd_decode(Args& args) {
   while (!args.empty()) {
     const std::string a = args.peek();
     if (a == "--help" || a == "-h") {
-      std::printf("usage: hesai decode CAPTURE [options]\n\nDecodes every point of a capture.\n\n%s%s%s"
+      std::printf("usage: hesai decode CAPTURE [options]\n\nDecodes every point of a capture (pcap, pcapng, or an MCAP bag of\n"
+                  "pandar_msgs/msg/PandarScan, told apart by their first bytes).\n\n%s%s%s"
                   "  --quiet                 no progress line\n\n"
                   "CSV columns: frame,packet,block,channel,return,azimuth_deg,elevation_deg,distance_m,x,y,z,intensity,time_ns\n",
                   kDecodeOptionsHelp, kOutputOptionsHelp, kKeyOptionsHelp);
