@@ -13,6 +13,12 @@
 
 namespace hesai::cli {
 
+std::uint64_t source_key(const port::UdpDatagram& d) {
+  std::uint64_t h = 1469598103934665603ull;  // FNV-1a over the address, then the port
+  for (std::uint8_t b : d.src_addr) h = (h ^ b) * 1099511628211ull;
+  return h ^ d.src_port;
+}
+
 bool read_text_file(const std::string& path, std::string& out, std::string& error) {
   std::ifstream f(path, std::ios::binary);
   if (!f) {
