@@ -9,6 +9,7 @@ import os
 import pathlib
 import struct
 import subprocess
+import sys
 
 import numpy as np
 import pytest
@@ -233,3 +234,21 @@ def test_unreadable_capture_and_bad_calibration_raise(tmp_path):
     assert e.value.status == 1
     with pytest.raises(hesai.HesaiError):
         hesai.decode_file(DATA / "pandar40p_dual.pcap", cut_angle=360.0)
+
+
+def test_installed_package_finds_its_library(tmp_path):
+    """cmake --install puts the package and libhesai_c under a prefix; the package imported from
+    there (no HESAI_LIBRARY, run from elsewhere) loads that library and decodes."""
+    build = os.environ.get("HESAI_BUILD_DIR", str(ROOT / "build" / "release"))
+    prefix = tmp_path / "prefix"
+    subprocess.run(["cmake", "--install", build, "--prefix", str(prefix)], check=True, capture_output=True)
+    site = prefix / "lib" / "python3" / "dist-packages"
+    env = {k: v for k, v in os.environ.items() if k not in ("HESAI_LIBRARY", "PYTHONPATH")}
+    env["PYTHONPATH"] = str(site)
+    code = ("import sys, hesai; print(hesai.__file__); print(hesai.library_path); "
+            "print(len(hesai.decode_file(sys.argv[1])))")
+    out = subprocess.run([sys.executable, "-c", code, str(DATA / "pandar_xt16.pcap")], check=True,
+                         capture_output=True, text=True, cwd=tmp_path, env=env).stdout.split("\n")
+    assert out[0].startswith(str(site))
+    assert out[1].startswith(str(prefix / "lib"))
+    assert int(out[2]) == len(cli_csv(DATA / "pandar_xt16.pcap", [])["frame"])
