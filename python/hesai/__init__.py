@@ -30,14 +30,17 @@ ROW_DTYPE = _lib.ROW_DTYPE
 """Fields of decode_file's rows, as the CSV's columns: frame, packet, block, channel, return,
 azimuth_deg, elevation_deg, distance_m, x, y, z, intensity, time_ns."""
 
-POINT_DTYPE = np.dtype([(name, ROW_DTYPE.fields[name][0]) for name in ROW_DTYPE.names
-                        if name not in ("frame", "packet")])
-"""Fields of Decoder.decode's points: the CSV's columns without frame and packet."""
+POINT_DTYPE = _lib.POINT_DTYPE
+"""Fields of Decoder.decode's points (the C interface's hesai_point): the CSV's columns without
+frame and packet, and confidence (the QT128's per-point byte, 0 for other models)."""
 
 library_path = _lib.path
 """The libhesai_c that was loaded."""
 
 _BATCH = 1 << 16  # rows per call into the library
+# Rows are moved as opaque records of ROW_DTYPE's size: numpy copies a structured dtype with holes
+# field by field, ten times slower than these plain copies.
+_RAW = np.dtype((np.void, ROW_DTYPE.itemsize))
 _ROTATIONS = {"auto": -1, "cw": 0, "ccw": 1}
 _REFLECTIVITY = {"raw": 0, "nonlinear": 1}
 
@@ -100,19 +103,29 @@ class _Capture:
                                          msg, len(msg))
         if st != 0:
             raise HesaiError(msg.value.decode(errors="replace"), status=st)
-        self._buffer = np.empty(_BATCH, dtype=ROW_DTYPE)
+        self._buffer = np.empty(_BATCH, dtype=_RAW)
         self._count = ctypes.c_size_t()
         self._closed = ctypes.c_uint64()
         self._msg = msg
 
     def read(self):
-        """(rows, closed frame id or 0); rows empty and 0 at the end. The rows are a copy."""
+        """(rows as _RAW records, closed frame id or 0); no rows and 0 at the end. A copy."""
         st = _lib.lib.hesai_capture_read(self._handle, self._buffer.ctypes.data, len(self._buffer),
                                          ctypes.byref(self._count), ctypes.byref(self._closed), self._msg,
                                          len(self._msg))
         if st != 0:
             raise HesaiError(self._msg.value.decode(errors="replace"), status=st)
         return self._buffer[:self._count.value].copy(), self._closed.value
+
+    def read_into(self, out, start):
+        """Rows into out[start:] (an array of _RAW records): (rows written, closed frame id or 0)."""
+        st = _lib.lib.hesai_capture_read(self._handle, out.ctypes.data + start * out.itemsize,
+                                         min(len(out) - start, _BATCH),
+                                         ctypes.byref(self._count), ctypes.byref(self._closed), self._msg,
+                                         len(self._msg))
+        if st != 0:
+            raise HesaiError(self._msg.value.decode(errors="replace"), status=st)
+        return self._count.value, self._closed.value
 
     def packets(self):
         return _lib.lib.hesai_capture_packets(self._handle)
@@ -144,14 +157,19 @@ def decode_file(path, calibration=None, firetimes=None, channel_config=None, *, 
                    max_range=max_range, reflectivity=reflectivity, firetime_azimuth=firetime_azimuth,
                    session_key=session_key, allow_unsigned=allow_unsigned)
     try:
-        chunks = []
+        # The library writes straight into the result, which grows in place (realloc: the pages
+        # are remapped, not copied), so each row is written once.
+        out = np.empty(_BATCH, dtype=_RAW)
+        n = 0
         while True:
-            rows, closed = cap.read()
-            if len(rows) == 0 and closed == 0:
+            if n == len(out):
+                out.resize(2 * len(out), refcheck=False)
+            got, closed = cap.read_into(out, n)
+            if got == 0 and closed == 0:
                 break
-            if len(rows):
-                chunks.append(rows)
-        return np.concatenate(chunks) if chunks else np.empty(0, dtype=ROW_DTYPE)
+            n += got
+        out.resize(n, refcheck=False)
+        return out.view(ROW_DTYPE)
     finally:
         cap.close()
 
@@ -178,15 +196,16 @@ def frames(path, calibration=None, firetimes=None, channel_config=None, *, rotat
                     break
                 continue
             held = np.concatenate(pending) if len(pending) > 1 else (pending[0] if pending else
-                                                                    np.empty(0, dtype=ROW_DTYPE))
-            mine = held["frame"] == closed
-            yield held[mine]
+                                                                    np.empty(0, dtype=_RAW))
+            mine = held.view(ROW_DTYPE)["frame"] == closed
+            yield held[mine].view(ROW_DTYPE)
             rest = held[~mine]
             pending = [rest] if len(rest) else []
         if pending:  # rows of frames that never closed (not expected: finish() closes them)
             held = np.concatenate(pending)
-            for fid in np.unique(held["frame"]):
-                yield held[held["frame"] == fid]
+            ids = held.view(ROW_DTYPE)["frame"]
+            for fid in np.unique(ids):
+                yield held[ids == fid].view(ROW_DTYPE)
     finally:
         cap.close()
 
@@ -210,7 +229,8 @@ class Decoder:
             raise ValueError("reflectivity takes 'raw' or 'nonlinear'")
         self._storage = np.zeros(_lib.DECODER_SIZE // 8, dtype=np.uint64)     # aligned for the decoder
         self._scratch = np.zeros(_lib.CALIBRATION_SCRATCH_SIZE // 8 + 1, dtype=np.uint64)
-        self._points = np.empty(_lib.MAX_POINTS_PER_PACKET, dtype=_lib.POINT_DTYPE)
+        self._points = np.empty(_lib.MAX_POINTS_PER_PACKET, dtype=POINT_DTYPE)
+        self._raw = self._points.view(np.dtype((np.void, POINT_DTYPE.itemsize)))
         self._count = ctypes.c_size_t()
         self._files = [(name, None if p is None else open(p, "rb").read())
                        for name, p in (("hesai_decoder_set_angles_csv", calibration),
@@ -272,8 +292,4 @@ class Decoder:
         code = _lib.lib.hesai_decoder_decode(self._storage.ctypes.data, payload, len(payload), None,
                                              self._points.ctypes.data, len(self._points), ctypes.byref(self._count))
         self._check(code, "packet")
-        p = self._points[:self._count.value]
-        out = np.empty(len(p), dtype=POINT_DTYPE)
-        for name in POINT_DTYPE.names:
-            out[name] = p["return_index" if name == "return" else name]
-        return out
+        return self._raw[:self._count.value].copy().view(POINT_DTYPE)

@@ -102,10 +102,11 @@ DECODER_SIZE = 8192                 # HESAI_DECODER_SIZE
 CALIBRATION_SCRATCH_SIZE = 2312     # HESAI_CALIBRATION_SCRATCH_SIZE
 MAX_POINTS_PER_PACKET = 400         # HESAI_MAX_POINTS_PER_PACKET
 
-# hesai_point (hesai::Point's layout).
+# hesai_point (hesai::Point's layout), its members named as the CSV's columns (return_index is
+# "return"); confidence is the QT128's per-point byte, 0 for other models.
 POINT_DTYPE = np.dtype({
     "names": ["x", "y", "z", "distance_m", "azimuth_deg", "elevation_deg", "time_ns", "intensity", "channel",
-              "return_index", "confidence", "block"],
+              "return", "confidence", "block"],
     "formats": ["<f4"] * 6 + ["<i8"] + ["u1"] * 5,
     "offsets": [0, 4, 8, 12, 16, 20, 24, 32, 33, 34, 35, 36],
     "itemsize": 40,
