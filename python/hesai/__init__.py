@@ -95,6 +95,8 @@ def _options(calibration, firetimes, channel_config, rotation, cut_angle, fov, p
 class _Capture:
     """An open capture in the library: batches of rows and the frames that closed."""
 
+    _handle = None
+
     def __init__(self, path, **kw):
         self._options, self._key = _options(**kw)
         self._handle = ctypes.c_void_p()

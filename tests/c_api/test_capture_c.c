@@ -68,6 +68,9 @@ int main(int argc, char** argv) {
 
   /* The whole capture, 1000 rows at most per call. */
   CHECK(hesai_capture_open(path, NULL, &c, message, sizeof message) == 0 && c != NULL);
+  CHECK(hesai_capture_read(c, rows, 0, &count, &closed, message, sizeof message) == 1);
+  CHECK(hesai_capture_read(c, NULL, 10, &count, &closed, message, sizeof message) == 1);
+  CHECK(hesai_capture_read(NULL, rows, 10, &count, &closed, message, sizeof message) == 1);
   for (;;) {
     st = hesai_capture_read(c, rows, 1000, &count, &closed, message, sizeof message);
     CHECK(st == 0);

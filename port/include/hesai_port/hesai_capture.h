@@ -84,7 +84,7 @@ int hesai_capture_open(const char* path, const hesai_capture_options* options, h
  * gives points to both); otherwise *closed_frame is 0. *count == 0 with *closed_frame == 0: the end
  * of the capture. Returns 0, or the status of a failure (1: a calibration file that does not fit
  * the model; 2: a damaged capture, after its rows up to the damage have been given) with a message.
- * closed_frame may be NULL. */
+ * closed_frame may be NULL; a NULL capture, rows or count, or a capacity of 0: 1. */
 int hesai_capture_read(hesai_capture* capture, hesai_capture_row* rows, size_t capacity, size_t* count,
                        uint64_t* closed_frame, char* message, size_t message_size) HESAI_CAPTURE_NOEXCEPT;
 

@@ -173,7 +173,7 @@ int hesai_capture_read(hesai_capture* c, hesai_capture_row* rows, std::size_t ca
   using namespace hesai::cli;
   if (count != nullptr) *count = 0;
   if (closed_frame != nullptr) *closed_frame = 0;
-  if (c == nullptr || count == nullptr || (rows == nullptr && capacity != 0)) return kExitUsage;
+  if (c == nullptr || count == nullptr || rows == nullptr || capacity == 0) return kExitUsage;
   RowSink& s = c->sink;
   try {
     for (;;) {
