@@ -5,6 +5,7 @@ output parsed here), never from the package. Environment: HESAI_CLI (the program
 build/release/bin/hesai), HESAI_DATA (default data/), HESAI_LIBRARY (libhesai_c, optional).
 """
 
+import io
 import os
 import pathlib
 import struct
@@ -47,14 +48,17 @@ def cli_csv(capture, args):
     out = subprocess.run([CLI, "decode", str(capture), "--quiet", *args], check=True, capture_output=True).stdout
     lines = out.split(b"\n", 1)
     assert lines[0].decode() == HEADER
-    body = lines[1]
+    return cli_csv_body(lines[1])
+
+
+def cli_csv_body(body):
+    """The CSV rows after the header: {column: array}."""
     ints = [HEADER.split(",").index(c) for c in INT_COLUMNS]
     floats = [HEADER.split(",").index(c) for c, _ in FLOAT_COLUMNS]
     if not body.strip():
         empty = {c: np.empty(0, np.int64) for c in INT_COLUMNS}
         empty.update({c: np.empty(0) for c, _ in FLOAT_COLUMNS})
         return empty
-    import io
     iv = np.loadtxt(io.BytesIO(body), delimiter=",", dtype=np.int64, usecols=ints, ndmin=2)
     fv = np.loadtxt(io.BytesIO(body), delimiter=",", dtype=np.float64, usecols=floats, ndmin=2)
     cols = {c: iv[:, i] for i, c in enumerate(INT_COLUMNS)}
@@ -154,6 +158,33 @@ def test_frames_with_a_cut_equal_the_csv_frames(cut, expected):
     joined = np.concatenate(parts)
     order = np.argsort(want["frame"], kind="stable")
     assert_rows_equal(joined, {c: v[order] for c, v in want.items()})
+
+
+PER_FRAME_CASES = [
+    ("pandar64_dual", [], {}),
+    ("pandar_xt32m2x", ["--cut-angle", "123.4"], {"cut_angle": 123.4}),
+    ("qt128c2x_dual", ["--cut-angle", "123.4", "--fov", "300:60"], {"cut_angle": 123.4, "fov": (300.0, 60.0)}),
+]
+
+
+@pytest.mark.parametrize("name,args,kw", PER_FRAME_CASES, ids=[f"{c[0]}-{' '.join(c[1])}" for c in PER_FRAME_CASES])
+def test_frames_equal_the_per_frame_csv_files(name, args, kw, tmp_path):
+    """frames() gives the frames `hesai decode --per-frame` writes a file for, in order, each
+    with that file's rows."""
+    out = tmp_path / "frames"
+    subprocess.run([CLI, "decode", str(DATA / f"{name}.pcap"), "--quiet", "--per-frame", "--out", str(out), *args],
+                   check=True, capture_output=True)
+    files = sorted(out.glob("frame_*.csv"))
+    parts = list(hesai.frames(DATA / f"{name}.pcap", **kw))
+    assert len(files) >= 2
+    assert len(parts) == len(files)
+    for part, f in zip(parts, files):
+        text = f.read_bytes()
+        body = text.split(b"\n", 1)[1] if b"\n" in text else b""
+        want = cli_csv_body(body)
+        assert_rows_equal(part, want)
+        if len(part):
+            assert int(f.stem.split("_")[1]) == int(part["frame"][0])
 
 
 def udp_payloads(path):
