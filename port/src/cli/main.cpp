@@ -68,14 +68,6 @@ int fail(const std::string& command, int status, const std::string& message) {
   return status;
 }
 
-std::uint64_t source_key(const port::UdpDatagram& d) {
-  // MCAP packets carry no address: each PandarScan channel (topic) is one sensor.
-  if (d.ip_version == 0) return d.interface_id;
-  std::uint64_t h = 1469598103934665603ull;  // FNV-1a over the address, then the port
-  for (std::uint8_t b : d.src_addr) h = (h ^ b) * 1099511628211ull;
-  return h ^ d.src_port;
-}
-
 // Feeds every datagram of an open capture to the pipeline. Returns an exit status.
 int run_capture(port::CaptureFile& file, Pipeline& pipeline, bool quiet) {
   const bool progress = !quiet && isatty(STDERR_FILENO);

@@ -13,6 +13,14 @@
 
 namespace hesai::cli {
 
+std::uint64_t source_key(const port::UdpDatagram& d) {
+  // MCAP packets carry no address: each PandarScan channel (topic) is one sensor.
+  if (d.ip_version == 0) return d.interface_id;
+  std::uint64_t h = 1469598103934665603ull;  // FNV-1a over the address, then the port
+  for (std::uint8_t b : d.src_addr) h = (h ^ b) * 1099511628211ull;
+  return h ^ d.src_port;
+}
+
 bool read_text_file(const std::string& path, std::string& out, std::string& error) {
   std::ifstream f(path, std::ios::binary);
   if (!f) {

@@ -17,6 +17,7 @@
 #include "hesai/safety.h"
 #include "hesai/sequence.h"
 #include "hesai/stats.h"
+#include "hesai_port/capture.h"
 
 namespace hesai::cli {
 
@@ -146,6 +147,9 @@ class Pipeline {
   std::string error_;
   PacketPoints points_;  // one packet's points (reused)
 };
+
+/// The source a captured datagram comes from, for Pipeline::feed: its sender's address and port.
+std::uint64_t source_key(const port::UdpDatagram& d);
 
 /// Reads a whole file into a string. False with a message when it cannot be read.
 bool read_text_file(const std::string& path, std::string& out, std::string& error);

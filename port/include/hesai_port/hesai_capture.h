@@ -1,0 +1,101 @@
+/* A capture file decoded by the hesai program's own pipeline, from C (C99; extern "C" from C++).
+ *
+ * Part of the shared library libhesai_c (with the core's C interface, hesai/hesai.h), which the
+ * Python package (python/hesai) loads through ctypes. The rows are those `hesai decode --format
+ * csv` writes, in the same order: the same capture reader, the same Pipeline (held packets until
+ * each source's rotation is known, frame assembly, --cut-angle, --fov, --packets, range limits).
+ *
+ * The contract:
+ * - Memory: a hesai_capture is allocated by hesai_capture_open (the port is hosted: the pipeline
+ *   holds std::vector and std::map) and released by hesai_capture_close. The file is mapped
+ *   read-only; rows go into the caller's hesai_capture_row array.
+ * - Errors: functions return 0 on success, else the hesai program's exit status (1: a usage
+ *   error such as a calibration file that does not parse, 2: an input error such as a file that
+ *   cannot be read or a damaged capture) with a message in the caller's buffer.
+ * - Threads: one hesai_capture must not be used by two threads at once; different ones are
+ *   independent.
+ */
+#ifndef HESAI_PORT_HESAI_CAPTURE_H
+#define HESAI_PORT_HESAI_CAPTURE_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#ifdef __cplusplus
+#define HESAI_CAPTURE_NOEXCEPT noexcept
+extern "C" {
+#else
+#define HESAI_CAPTURE_NOEXCEPT
+#endif
+
+/* The decode options of the hesai program (docs/CLI.md). hesai_capture_default_options gives the
+ * program's defaults. */
+typedef struct hesai_capture_options {
+  const char* calibration;    /* --calibration: angle-correction CSV path; NULL: the manual's angles */
+  const char* firetimes;      /* --firetimes: firing-time CSV path; NULL: the manual's */
+  const char* channel_config; /* --channel-config: QT128 channel-configuration CSV path; NULL: none */
+  int reflectivity;           /* --reflectivity: 0 raw (default), 1 nonlinear (Pandar64) */
+  int firetime_azimuth;       /* 1 (default); 0: --no-firetime-azimuth */
+  int rotation;               /* --rotation: -1 auto (default), 0 cw, 1 ccw */
+  uint64_t first_packet;      /* --packets FIRST:END, point-cloud packet indices (0, UINT64_MAX) */
+  uint64_t end_packet;
+  float cut_angle_deg;        /* --cut-angle, degrees in [0, 360) (0) */
+  int has_fov;                /* --fov START:END when 1 (0) */
+  float fov_start_deg;
+  float fov_end_deg;
+  float min_range_m;          /* --min-range (0) */
+  float max_range_m;          /* --max-range (1e9) */
+  const uint8_t* session_key; /* --session-key: 32 bytes, or NULL (no signature verification) */
+  int allow_unsigned;         /* --allow-unsigned (0) */
+} hesai_capture_options;
+
+/* One row of the CSV. Field order favours alignment; the meaning of each is the CSV column's. */
+typedef struct hesai_capture_row {
+  uint64_t frame;        /* frame id, 1-based in rotation order */
+  uint64_t packet;       /* 0-based index of the point-cloud packet in the capture */
+  int64_t time_ns;       /* firing time, ns since the Unix epoch */
+  float azimuth_deg;     /* degrees, [0, 360) */
+  float elevation_deg;   /* degrees, up positive */
+  float distance_m;      /* metres */
+  float x;               /* metres */
+  float y;               /* metres */
+  float z;               /* metres */
+  uint8_t block;         /* 0-based block in the packet */
+  uint8_t channel;       /* 1-based laser channel */
+  uint8_t return_index;  /* the CSV's "return" */
+  uint8_t intensity;     /* reflectivity byte (or the Pandar64's nonlinear percentage) */
+} hesai_capture_row;
+
+typedef struct hesai_capture hesai_capture;
+
+/* The hesai program's defaults. */
+void hesai_capture_default_options(hesai_capture_options* options) HESAI_CAPTURE_NOEXCEPT;
+
+/* Opens the capture at `path` (pcap or pcapng) and loads the calibration files of `options` (NULL:
+ * the defaults). On success *out is the capture (release with hesai_capture_close) and 0 is
+ * returned; otherwise *out is NULL, the status is 1 (bad option value) or 2 (a file that cannot be
+ * read or is no capture) and `message` (when not NULL, `message_size` bytes) says why. */
+int hesai_capture_open(const char* path, const hesai_capture_options* options, hesai_capture** out,
+                       char* message, size_t message_size) HESAI_CAPTURE_NOEXCEPT;
+
+/* The next rows, in the CSV's order: writes up to `capacity` rows to rows[0 .. *count). Stops early
+ * where a frame closes: then *closed_frame is the id of the frame whose every row has now been
+ * given (the rows of the next frame may already have started, as a packet that straddles the cut
+ * gives points to both); otherwise *closed_frame is 0. *count == 0 with *closed_frame == 0: the end
+ * of the capture. Returns 0, or the status of a failure (1: a calibration file that does not fit
+ * the model; 2: a damaged capture, after its rows up to the damage have been given) with a message.
+ * closed_frame may be NULL; a NULL capture, rows or count, or a capacity of 0: 1. */
+int hesai_capture_read(hesai_capture* capture, hesai_capture_row* rows, size_t capacity, size_t* count,
+                       uint64_t* closed_frame, char* message, size_t message_size) HESAI_CAPTURE_NOEXCEPT;
+
+/* UDP payloads the pipeline has examined so far (point-cloud, GPS and rejected ones). */
+uint64_t hesai_capture_packets(const hesai_capture* capture) HESAI_CAPTURE_NOEXCEPT;
+
+/* Releases the capture (NULL: nothing). */
+void hesai_capture_close(hesai_capture* capture) HESAI_CAPTURE_NOEXCEPT;
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* HESAI_PORT_HESAI_CAPTURE_H */

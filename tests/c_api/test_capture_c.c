@@ -1,0 +1,105 @@
+/* hesai_port/hesai_capture.h from C99 (-std=c99 -pedantic, warnings are errors), linked against
+ * the shared library libhesai_c: the row layout as the C compiler sees it, the errors of
+ * hesai_capture_open, and a whole capture read in small batches with its frame closings.
+ * Expected counts: the Pandar64 capture's 2400 packets and 716 622 points (tests/test_golden.cpp,
+ * counted again without the library by tests/golden/count_points.py).
+ * Usage: hesai_capture_c_test DATA_DIR */
+#include <stddef.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "hesai/hesai.h"
+#include "hesai_port/hesai_capture.h"
+
+static int failures = 0;
+#define CHECK(cond)                                                       \
+  do {                                                                    \
+    if (!(cond)) {                                                        \
+      fprintf(stderr, "%s:%d: CHECK failed: %s\n", __FILE__, __LINE__, #cond); \
+      ++failures;                                                         \
+    }                                                                     \
+  } while (0)
+
+/* The layout python/hesai/_lib.py reads (ROW_DTYPE), as a C compiler lays it out. */
+typedef char row_size_is_56[sizeof(hesai_capture_row) == 56 ? 1 : -1];
+typedef char row_offsets[offsetof(hesai_capture_row, time_ns) == 16 && offsetof(hesai_capture_row, azimuth_deg) == 24 &&
+                                 offsetof(hesai_capture_row, z) == 44 && offsetof(hesai_capture_row, block) == 48 &&
+                                 offsetof(hesai_capture_row, intensity) == 51
+                             ? 1
+                             : -1];
+
+static hesai_capture_row rows[1000];
+
+int main(int argc, char** argv) {
+  char path[1024], cal[1024], message[256];
+  hesai_capture* c = NULL;
+  hesai_capture_options o;
+  size_t count = 0, total = 0, i;
+  uint64_t closed = 0, last_closed = 0, frames = 0;
+  int st;
+  (void)sizeof(row_size_is_56);
+  (void)sizeof(row_offsets);
+  if (argc != 2) {
+    fprintf(stderr, "usage: %s DATA_DIR\n", argv[0]);
+    return 2;
+  }
+  snprintf(path, sizeof path, "%s/pandar64_dual.pcap", argv[1]);
+  snprintf(cal, sizeof cal, "%s/calibration/pandar40p_unit_a_angles.csv", argv[1]);
+
+  /* Errors: the program's exit statuses, with a message. */
+  hesai_capture_default_options(&o);
+  CHECK(o.rotation == -1 && o.firetime_azimuth == 1 && o.end_packet == UINT64_MAX && o.max_range_m == 1e9f);
+  message[0] = '\0';
+  CHECK(hesai_capture_open("/nonexistent/x.pcap", &o, &c, message, sizeof message) == 2 && c == NULL);
+  CHECK(strlen(message) > 0);
+  CHECK(hesai_capture_open(NULL, &o, &c, message, sizeof message) == 1 && c == NULL);
+  CHECK(hesai_capture_open(path, &o, NULL, message, sizeof message) == 1);
+  o.cut_angle_deg = 360.0f;
+  CHECK(hesai_capture_open(path, &o, &c, message, sizeof message) == 1 && c == NULL);
+  o.cut_angle_deg = 0.0f;
+  /* A 40-channel file for a 64-channel capture: applied at the first packet, so reading fails. */
+  o.calibration = cal;
+  CHECK(hesai_capture_open(path, &o, &c, message, 8) == 0 && c != NULL);
+  CHECK(hesai_capture_read(c, rows, 1000, &count, &closed, message, 8) == 1 && count == 0);
+  CHECK(strlen(message) == 7); /* cut to the buffer, terminated */
+  hesai_capture_close(c);
+  hesai_capture_close(NULL);
+
+  /* The whole capture, 1000 rows at most per call. */
+  CHECK(hesai_capture_open(path, NULL, &c, message, sizeof message) == 0 && c != NULL);
+  CHECK(hesai_capture_read(c, rows, 0, &count, &closed, message, sizeof message) == 1);
+  CHECK(hesai_capture_read(c, NULL, 10, &count, &closed, message, sizeof message) == 1);
+  CHECK(hesai_capture_read(NULL, rows, 10, &count, &closed, message, sizeof message) == 1);
+  for (;;) {
+    st = hesai_capture_read(c, rows, 1000, &count, &closed, message, sizeof message);
+    CHECK(st == 0);
+    if (st != 0 || (count == 0 && closed == 0)) break;
+    CHECK(count <= 1000);
+    for (i = 0; i < count; ++i) {
+      /* Rows after frame f closed belong to later frames. */
+      CHECK(rows[i].frame > last_closed);
+      CHECK(rows[i].packet < 2400);
+      CHECK(rows[i].channel >= 1 && rows[i].channel <= 64 && rows[i].return_index <= 1);
+      CHECK(rows[i].azimuth_deg >= 0.0f && rows[i].azimuth_deg < 360.0f);
+      if (failures > 20) return 1;
+    }
+    total += count;
+    if (closed != 0) {
+      CHECK(closed == last_closed + 1); /* frames close in id order */
+      last_closed = closed;
+      ++frames;
+    }
+  }
+  CHECK(total == 716622);
+  CHECK(frames >= 2);
+  CHECK(hesai_capture_packets(c) == 2400);
+  /* At the end it stays at the end. */
+  CHECK(hesai_capture_read(c, rows, 1000, &count, &closed, message, sizeof message) == 0 && count == 0 && closed == 0);
+  hesai_capture_close(c);
+
+  /* The core's C interface is in the same library. */
+  CHECK(strcmp(hesai_model_name(HESAI_MODEL_pandar64), "Pandar64") == 0);
+  if (failures == 0) printf("hesai_capture.h from C99: %lu rows, %lu frames\n", (unsigned long)total, (unsigned long)frames);
+  return failures == 0 ? 0 : 1;
+}
