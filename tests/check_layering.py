@@ -23,7 +23,7 @@ BELOW = {  # concern -> the concerns it may include
     'capi': {'base', 'crc', 'crypto', 'calibration', 'ptc', 'sensors', 'streams'},
 }
 HEADERS = {  # public header (under core/include/hesai/) -> concern
-    'config.h': 'base', 'bytes.h': 'base', 'error.h': 'base', 'error_list.h': 'base', 'model.h': 'base', 'math.h': 'base',
+    'config.h': 'base', 'bytes.h': 'base', 'error.h': 'base', 'error_list.h': 'base', 'model.h': 'base', 'model_list.h': 'base', 'math.h': 'base',
     'civil_time.h': 'base',
     'crc32.h': 'crc',
     'sha256.h': 'crypto', 'hmac.h': 'crypto', 'hkdf.h': 'crypto', 'ct.h': 'crypto',

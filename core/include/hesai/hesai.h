@@ -27,6 +27,7 @@
 #include <stdint.h>
 
 #include "hesai/error_list.h"
+#include "hesai/model_list.h"
 #include "hesai/packet_info_list.h"
 
 #ifdef __cplusplus
@@ -47,17 +48,14 @@ typedef enum hesai_error {
   HESAI_ERROR_COUNT /* number of codes, not a code */
 } hesai_error;
 
-/* A sensor model (values of hesai::Model). */
+/* A sensor model (values of hesai::Model): HESAI_MODEL_<id> for each model of hesai/model_list.h,
+ * in its order from 1; 0 is unknown. */
 typedef enum hesai_model {
   HESAI_MODEL_unknown = 0,
-  HESAI_MODEL_pandar40 = 1,  /* Pandar40, older firmware: 1256-byte packets */
-  HESAI_MODEL_pandar40p = 2, /* Pandar40P: 1262 bytes, 1266 with UDP sequence */
-  HESAI_MODEL_pandar64 = 3,  /* Pandar64: 1194 bytes, 1198 with UDP sequence */
-  HESAI_MODEL_qt128c2x = 4,  /* QT128C2X, point cloud protocol 3.2 */
-  HESAI_MODEL_pandar_qt64 = 5,    /* PandarQT64, point cloud protocol 3.1 */
-  HESAI_MODEL_pandar_xt16 = 6,    /* PandarXT16, point cloud protocol 6.1 */
-  HESAI_MODEL_pandar_xt32 = 7,    /* PandarXT32, point cloud protocol 6.1 */
-  HESAI_MODEL_pandar_xt32m2x = 8  /* PandarXT32M2X, point cloud protocol 6.1 */
+#define HESAI_C_MODEL(id, name, channels, blocks) HESAI_MODEL_##id,
+  HESAI_MODEL_LIST(HESAI_C_MODEL)
+#undef HESAI_C_MODEL
+  HESAI_MODEL_COUNT /* number of values, unknown included; not a model */
 } hesai_model;
 
 /* What became of a packet's signature (hesai_packet_info.signature; hesai::SignatureStatus). */

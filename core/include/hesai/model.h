@@ -4,71 +4,54 @@
 #include <cstddef>
 #include <cstdint>
 
+#include "hesai/model_list.h"  // the models, once for C++ and C (hesai.h)
+
 namespace hesai {
 
-/// A supported sensor model. Identified from a packet's length, magic and header fields.
+/// A supported sensor model. Identified from a packet's length, magic and header fields. The
+/// models, their names and their channel and block counts are listed once, in model_list.h.
 enum class Model : std::uint8_t {
   unknown = 0,
-  pandar40,   ///< Pandar40, older firmware: 1256-byte packets, 16-byte tail without date
-  pandar40p,  ///< Pandar40P: 1262 bytes, 1266 with UDP sequence
-  pandar64,   ///< Pandar64: 1194 bytes, 1198 with UDP sequence
-  qt128c2x,   ///< QT128C2X, point cloud protocol 3.2: up to 1127 bytes
-  pandar_qt64,     ///< PandarQT64, point cloud protocol 3.1
-  pandar_xt16,     ///< PandarXT16, point cloud protocol 6.1
-  pandar_xt32,     ///< PandarXT32, point cloud protocol 6.1
-  pandar_xt32m2x,  ///< PandarXT32M2X, point cloud protocol 6.1
+#define HESAI_MODEL_ENUMERATOR(id, name, channels, blocks) id,
+  HESAI_MODEL_LIST(HESAI_MODEL_ENUMERATOR)
+#undef HESAI_MODEL_ENUMERATOR
 };
 
 /// Number of models above, `unknown` included (for arrays indexed by Model).
-inline constexpr std::size_t kModelCount = 9;
+#define HESAI_MODEL_PLUS_ONE(id, name, channels, blocks) +1
+inline constexpr std::size_t kModelCount = 1 HESAI_MODEL_LIST(HESAI_MODEL_PLUS_ONE);
+#undef HESAI_MODEL_PLUS_ONE
+
+namespace model_facts {
+// Indexed by Model: entry 0 is `unknown`.
+#define HESAI_MODEL_NAME(id, name, channels, blocks) name,
+inline constexpr const char* kNames[kModelCount] = {"unknown", HESAI_MODEL_LIST(HESAI_MODEL_NAME)};
+#undef HESAI_MODEL_NAME
+#define HESAI_MODEL_CHANNELS(id, name, channels, blocks) channels,
+inline constexpr std::uint8_t kChannels[kModelCount] = {0, HESAI_MODEL_LIST(HESAI_MODEL_CHANNELS)};
+#undef HESAI_MODEL_CHANNELS
+#define HESAI_MODEL_BLOCKS(id, name, channels, blocks) blocks,
+inline constexpr std::uint8_t kBlocks[kModelCount] = {0, HESAI_MODEL_LIST(HESAI_MODEL_BLOCKS)};
+#undef HESAI_MODEL_BLOCKS
+}  // namespace model_facts
 
 /// Display name: "Pandar40", "Pandar40P", "Pandar64", "QT128C2X", "PandarQT64", "PandarXT16",
-/// "PandarXT32", "PandarXT32M2X" ("unknown").
+/// "PandarXT32", "PandarXT32M2X" ("unknown", also for a value that is no model).
 constexpr const char* model_name(Model m) {
-  switch (m) {
-    case Model::pandar40: return "Pandar40";
-    case Model::pandar40p: return "Pandar40P";
-    case Model::pandar64: return "Pandar64";
-    case Model::qt128c2x: return "QT128C2X";
-    case Model::pandar_qt64: return "PandarQT64";
-    case Model::pandar_xt16: return "PandarXT16";
-    case Model::pandar_xt32: return "PandarXT32";
-    case Model::pandar_xt32m2x: return "PandarXT32M2X";
-    case Model::unknown: break;
-  }
-  return "unknown";
+  const auto i = static_cast<std::size_t>(m);
+  return i < kModelCount ? model_facts::kNames[i] : "unknown";
 }
 
 /// Laser channels of a model (0 for unknown).
 constexpr std::size_t channel_count(Model m) {
-  switch (m) {
-    case Model::pandar40:
-    case Model::pandar40p: return 40;
-    case Model::pandar64:
-    case Model::pandar_qt64: return 64;
-    case Model::qt128c2x: return 128;
-    case Model::pandar_xt16: return 16;
-    case Model::pandar_xt32:
-    case Model::pandar_xt32m2x: return 32;
-    case Model::unknown: break;
-  }
-  return 0;
+  const auto i = static_cast<std::size_t>(m);
+  return i < kModelCount ? model_facts::kChannels[i] : 0;
 }
 
 /// Blocks (azimuth columns) per packet.
 constexpr std::size_t block_count(Model m) {
-  switch (m) {
-    case Model::pandar40:
-    case Model::pandar40p: return 10;
-    case Model::pandar64:
-    case Model::pandar_xt32m2x: return 6;
-    case Model::qt128c2x: return 2;
-    case Model::pandar_qt64: return 4;
-    case Model::pandar_xt16:
-    case Model::pandar_xt32: return 8;
-    case Model::unknown: break;
-  }
-  return 0;
+  const auto i = static_cast<std::size_t>(m);
+  return i < kModelCount ? model_facts::kBlocks[i] : 0;
 }
 
 /// The most points one packet of the model can hold: blocks x channels (400, 384, 256; 0 for
@@ -78,7 +61,11 @@ constexpr std::size_t max_points(Model m) { return block_count(m) * channel_coun
 /// The most channels of any model, and the most points one packet can hold (10 x 40).
 inline constexpr std::size_t kMaxChannels = 128;
 inline constexpr std::size_t kMaxPointsPerPacket = 400;
-static_assert(max_points(Model::pandar40) <= kMaxPointsPerPacket && max_points(Model::pandar40p) <= kMaxPointsPerPacket &&
-              max_points(Model::pandar64) <= kMaxPointsPerPacket && max_points(Model::qt128c2x) <= kMaxPointsPerPacket);
+constexpr bool every_model_fits() {
+  for (std::size_t i = 0; i < kModelCount; ++i)
+    if (model_facts::kChannels[i] > kMaxChannels || max_points(static_cast<Model>(i)) > kMaxPointsPerPacket) return false;
+  return true;
+}
+static_assert(every_model_fits(), "kMaxChannels and kMaxPointsPerPacket bound every model of model_list.h");
 
 }  // namespace hesai

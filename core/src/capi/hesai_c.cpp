@@ -49,16 +49,11 @@ HESAI_ERROR_LIST(HESAI_SAME_ERROR)
 #undef HESAI_SAME_ERROR
 static_assert(HESAI_ERROR_COUNT == hesai::kErrorCount);
 
-static_assert(HESAI_MODEL_unknown == static_cast<int>(Model::unknown) &&
-              HESAI_MODEL_pandar40 == static_cast<int>(Model::pandar40) &&
-              HESAI_MODEL_pandar40p == static_cast<int>(Model::pandar40p) &&
-              HESAI_MODEL_pandar64 == static_cast<int>(Model::pandar64) &&
-              HESAI_MODEL_qt128c2x == static_cast<int>(Model::qt128c2x) &&
-              HESAI_MODEL_pandar_qt64 == static_cast<int>(Model::pandar_qt64) &&
-              HESAI_MODEL_pandar_xt16 == static_cast<int>(Model::pandar_xt16) &&
-              HESAI_MODEL_pandar_xt32 == static_cast<int>(Model::pandar_xt32) &&
-              HESAI_MODEL_pandar_xt32m2x == static_cast<int>(Model::pandar_xt32m2x) && hesai::kModelCount == 9,
-              "hesai_model lists every hesai::Model with its value");
+// hesai_model is made from the same list as hesai::Model (hesai/model_list.h); checked anyway.
+#define HESAI_SAME_MODEL(id, name, channels, blocks) static_assert(HESAI_MODEL_##id == static_cast<int>(Model::id));
+HESAI_MODEL_LIST(HESAI_SAME_MODEL)
+#undef HESAI_SAME_MODEL
+static_assert(HESAI_MODEL_unknown == static_cast<int>(Model::unknown) && HESAI_MODEL_COUNT == hesai::kModelCount);
 static_assert(HESAI_ROTATION_clockwise == static_cast<int>(hesai::Rotation::clockwise) &&
               HESAI_ROTATION_counterclockwise == static_cast<int>(hesai::Rotation::counterclockwise));
 static_assert(HESAI_SIGNATURE_not_signed == static_cast<int>(hesai::SignatureStatus::not_signed) &&

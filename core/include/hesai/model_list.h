@@ -1,0 +1,21 @@
+/* The sensor models, listed once for C++ and C: model.h makes hesai::Model and its name, channel
+ * and block counts of this list, hesai.h the C enum hesai_model (HESAI_MODEL_<id>). Values count
+ * from 1 in the order below; 0 is `unknown`. A new sensor adds a line at the end (every earlier
+ * model keeps its value), its file in core/src/sensors/ and its tests (docs/DESIGN.md).
+ *
+ * A C header as well as a C++ one: only the preprocessor, no includes. */
+#ifndef HESAI_MODEL_LIST_H
+#define HESAI_MODEL_LIST_H
+
+/* X(id, display name, laser channels, blocks per packet), once per model in value order. */
+#define HESAI_MODEL_LIST(X)                                                                               \
+  X(pandar40, "Pandar40", 40, 10)           /* older firmware: 1256-byte packets, 16-byte tail, no date */ \
+  X(pandar40p, "Pandar40P", 40, 10)         /* 1262 bytes, 1266 with UDP sequence */                       \
+  X(pandar64, "Pandar64", 64, 6)            /* 1194 bytes, 1198 with UDP sequence */                       \
+  X(qt128c2x, "QT128C2X", 128, 2)           /* point cloud protocol 3.2, up to 1127 bytes */               \
+  X(pandar_qt64, "PandarQT64", 64, 4)       /* point cloud protocol 3.1 */                                 \
+  X(pandar_xt16, "PandarXT16", 16, 8)       /* point cloud protocol 6.1 */                                 \
+  X(pandar_xt32, "PandarXT32", 32, 8)       /* point cloud protocol 6.1 */                                 \
+  X(pandar_xt32m2x, "PandarXT32M2X", 32, 6) /* point cloud protocol 6.1 */
+
+#endif /* HESAI_MODEL_LIST_H */
