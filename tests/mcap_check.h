@@ -43,7 +43,7 @@ inline std::vector<Record> records(const std::vector<std::uint8_t>& b, std::size
     EXPECT_LE(r.length, to - r.body) << "record at " << at << " overruns";
     if (r.length > to - r.body) break;
     out.push_back(r);
-    at = r.body + r.length;
+    at = r.body + static_cast<std::size_t>(r.length);  // r.length <= to - r.body: it fits
   }
   EXPECT_EQ(at, to);
   return out;
@@ -86,7 +86,7 @@ inline Parsed check_mcap(const std::vector<std::uint8_t>& b) {
   EXPECT_EQ(summary_crc, hesai::port::crc32_ieee(b.data() + summary_start, footer + 25 - summary_start)) << "summary_crc";
 
   // Header, then the data section up to the Data End, which ends right before the summary.
-  const std::vector<Record> head = records(b, 8, 8 + 9 + le(b, 9, 8));
+  const std::vector<Record> head = records(b, 8, 8 + 9 + static_cast<std::size_t>(le(b, 9, 8)));
   EXPECT_EQ(head.size(), 1u);
   std::size_t at = 8 + 9;
   p.profile = str_at(b, at);
