@@ -144,7 +144,7 @@ static_assert(crc32_mpeg2_reference(kCrcCheckString, 9) == 0x0376E6E7u, "the CRC
 
 /// Fills CRC1, CRC2 and CRC3 at this file's own offsets (qt128_offsets), with this file's own CRC,
 /// and, with a key, the signature. What each covers (QT128C2X manual, Section 3.1.2, and
-/// /work/shared/docs/protocol-notes.md): CRC1 the body, bytes 12 up to CRC1; CRC2 the 12
+/// docs/protocol-notes.md of the shared project notes): CRC1 the body, bytes 12 up to CRC1; CRC2 the 12
 /// functional-safety bytes after FS Version (Lidar State up to the reserved bytes); CRC3 the tail
 /// up to CRC3 (the UDP sequence included). hesai::qt128::seal is compared with this in test_decoder.cpp.
 inline void qt128_seal(std::vector<std::uint8_t>& p, const std::uint8_t* key = nullptr) {

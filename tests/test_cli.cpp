@@ -42,25 +42,12 @@ using namespace hesai_test;
 
 namespace {
 
-// The program, started through the emulator in cross builds (qemu-user).
-std::string cli() {
-#if defined(HESAI_CLI_EMULATOR)
-  return std::string(HESAI_CLI_EMULATOR) + " " + HESAI_CLI_PATH;
-#else
-  return HESAI_CLI_PATH;
-#endif
-}
 
 struct CmdResult {
   int status = -1;
   std::string out;
   std::string err;
 };
-
-std::string read_text(const std::string& path) {
-  std::ifstream f(path, std::ios::binary);
-  return std::string(std::istreambuf_iterator<char>(f), std::istreambuf_iterator<char>());
-}
 
 // Runs the program with `args` (shell words) and `env` ("NAME=value ...", or empty) as its only
 // key variables: HESAI_SESSION_KEY and HESAI_SECRET of the test's own environment are removed.

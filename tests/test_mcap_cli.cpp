@@ -21,14 +21,6 @@ using namespace hesai_test;
 
 namespace {
 
-// The program, started through the emulator in cross builds (qemu-user).
-std::string cli() {
-#if defined(HESAI_CLI_EMULATOR)
-  return std::string(HESAI_CLI_EMULATOR) + " " + HESAI_CLI_PATH;
-#else
-  return HESAI_CLI_PATH;
-#endif
-}
 
 TEST(McapCli, OneMessagePerFrameOfTheCsv) {
   const std::string csv = temp_path("hesai_test_cli_mcap.csv"), mcap = temp_path("hesai_test_cli.mcap");

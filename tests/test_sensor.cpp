@@ -33,18 +33,8 @@ namespace {
 using hesai_test::data_path;
 using hesai_test::free_udp_port;
 
-std::string cli() {
-#if defined(HESAI_CLI_EMULATOR)
-  return std::string(HESAI_CLI_EMULATOR) + " " + HESAI_CLI_PATH;
-#else
-  return HESAI_CLI_PATH;
-#endif
-}
-
-std::string slurp(const std::string& path) {
-  std::ifstream f(path, std::ios::binary);
-  return std::string(std::istreambuf_iterator<char>(f), std::istreambuf_iterator<char>());
-}
+using hesai_test::cli;
+using hesai_test::read_text;
 
 std::string temp_path(const std::string& name) { return "/tmp/hesai_sensor_test_" + std::to_string(getpid()) + "_" + name; }
 
@@ -73,8 +63,8 @@ Ran run(const std::string& args, const std::string& env = "") {
   r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   r.status = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
   r.max_rss_kib = u.ru_maxrss;
-  r.out = slurp(out);
-  r.err = slurp(err);
+  r.out = read_text(out);
+  r.err = read_text(err);
   std::remove(out.c_str());
   std::remove(err.c_str());
   return r;
@@ -101,7 +91,7 @@ class StandIn {
       _exit(127);
     }
     for (int i = 0; i < 200 && port_ == 0; ++i) {
-      const std::string text = slurp(err_);
+      const std::string text = read_text(err_);
       const std::size_t at = text.find("serving PTC on " + address + ":");
       if (at != std::string::npos && text.find('\n', at) != std::string::npos)
         port_ = std::stoi(text.substr(at + 16 + address.size()));
@@ -116,7 +106,7 @@ class StandIn {
     std::remove(err_.c_str());
   }
   int port() const { return port_; }
-  std::string stderr_text() const { return slurp(err_); }
+  std::string stderr_text() const { return read_text(err_); }
 
  private:
   static inline int count_ = 0;
@@ -179,7 +169,7 @@ TEST(Sensor, InfoStatusAndCalibrationFromTheStandIn) {
     const std::string out = temp_path("calibration.csv");
     const Ran cal = run("sensor calibration" + at + " --out " + out);
     ASSERT_EQ(cal.status, 0) << cal.err;
-    EXPECT_EQ(slurp(out), slurp(data_path(c.angles)));  // byte for byte
+    EXPECT_EQ(read_text(out), read_text(data_path(c.angles)));  // byte for byte
     EXPECT_NE(cal.err.find(std::string("fits the ") + c.model), std::string::npos) << cal.err;
     std::remove(out.c_str());
 
@@ -213,8 +203,8 @@ TEST(Sensor, ListenFetchesCalibrationAndVerifiesEverySignature) {
   ASSERT_NE(l, nullptr);
   // Bound (it says whom it asks over PTC only after binding its sockets). wait_for_listener() would
   // also see the stand-in's socket, which is connected to the same port.
-  for (int i = 0; i < 400 && slurp(listen_err).find("sensor 127.0.0.3:") == std::string::npos; ++i) usleep(25000);
-  ASSERT_NE(slurp(listen_err).find("sensor 127.0.0.3:"), std::string::npos);
+  for (int i = 0; i < 400 && read_text(listen_err).find("sensor 127.0.0.3:") == std::string::npos; ++i) usleep(25000);
+  ASSERT_NE(read_text(listen_err).find("sensor 127.0.0.3:"), std::string::npos);
   // Five datagrams from another address of the loopback: a spoofed stream on the same port.
   const auto packets = hesai_test::pcap_payloads("qt128c2x_dual.pcap");
   const int spoof = socket(AF_INET, SOCK_DGRAM, 0);
@@ -233,8 +223,8 @@ TEST(Sensor, ListenFetchesCalibrationAndVerifiesEverySignature) {
   char buf[4096];
   std::size_t n;
   while ((n = std::fread(buf, 1, sizeof buf, l)) > 0) out.append(buf, n);
-  EXPECT_EQ(pclose(l), 0) << slurp(listen_err);
-  const std::string err = slurp(listen_err);
+  EXPECT_EQ(pclose(l), 0) << read_text(listen_err);
+  const std::string err = read_text(listen_err);
   EXPECT_EQ(json_number(out, "packets"), 1800) << out << err;
   EXPECT_EQ(json_number(out, "signature_valid"), 1800) << out;
   EXPECT_EQ(json_number(out, "signature_invalid"), 0);
@@ -250,7 +240,7 @@ TEST(Sensor, ListenFetchesCalibrationAndVerifiesEverySignature) {
   const Ran decoded = run("decode " + data_path("qt128c2x_dual.pcap") + " --calibration " + kQtAngles + " --firetimes " +
                           kQtFiretimes + " --format csv");
   ASSERT_EQ(decoded.status, 0);
-  const std::string live = slurp(csv);
+  const std::string live = read_text(csv);
   EXPECT_GT(live.size(), 1000000u);
   EXPECT_TRUE(live == decoded.out) << "listen's CSV differs from decode's with the downloaded files";
   std::remove(csv.c_str());
@@ -275,7 +265,7 @@ TEST(Sensor, SignatureStartWritesAKeyThatVerifiesTheSession) {
   struct stat st {};
   ASSERT_EQ(stat(key.c_str(), &st), 0);
   EXPECT_EQ(st.st_mode & 0777, 0600u);
-  EXPECT_EQ(slurp(key).size(), 65u);  // 64 hex digits and a line feed
+  EXPECT_EQ(read_text(key).size(), 65u);  // 64 hex digits and a line feed
   // The stand-in now signs and sends; a listener started after it verifies what it receives.
   FILE* l = popen(("env -u HESAI_SECRET " + cli() + " listen --bind 127.0.0.1 --port " + std::to_string(port) +
                    " --gps-port 0 --session-key-file " + key + " --count 1000 --seconds 60 --idle 2 --json --quiet 2>/dev/null")

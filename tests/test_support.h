@@ -20,6 +20,23 @@
 
 namespace hesai_test {
 
+/// A whole file as text ("" when it cannot be read).
+inline std::string read_text(const std::string& path) {
+  std::ifstream f(path, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(f), std::istreambuf_iterator<char>());
+}
+
+#if defined(HESAI_CLI_PATH)
+/// The hesai program, started through the emulator in cross builds (qemu-user).
+inline std::string cli() {
+#if defined(HESAI_CLI_EMULATOR)
+  return std::string(HESAI_CLI_EMULATOR) + " " + HESAI_CLI_PATH;
+#else
+  return HESAI_CLI_PATH;
+#endif
+}
+#endif
+
 inline std::string data_path(const std::string& name) { return std::string(HESAI_DATA_DIR) + "/" + name; }
 
 /// The bytes of a file; a file that cannot be opened is a test failure (and gives no bytes).

@@ -13,6 +13,7 @@
 #include "hesai/ct.h"
 #include "hesai/hkdf.h"
 #include "hesai/ptc.h"
+#include "hesai_port/ptc_client.h"  // random_bytes
 #include "hesai_port/udp.h"  // monotonic_ns
 
 namespace hesai::port {
@@ -64,18 +65,6 @@ void put_be32(std::vector<std::uint8_t>& out, std::size_t at, std::uint32_t v) {
   for (std::size_t i = 0; i < 4; ++i) out[at + i] = static_cast<std::uint8_t>(v >> (24 - 8 * i));
 }
 
-bool random_bytes(std::uint8_t* out, std::size_t n) {
-  const int fd = ::open("/dev/urandom", O_RDONLY | O_CLOEXEC);
-  if (fd < 0) return false;
-  std::size_t done = 0;
-  while (done < n) {
-    const ssize_t got = ::read(fd, out + done, n - done);
-    if (got <= 0) break;
-    done += static_cast<std::size_t>(got);
-  }
-  ::close(fd);
-  return done == n;
-}
 
 }  // namespace
 

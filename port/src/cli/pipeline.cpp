@@ -56,12 +56,17 @@ int Pipeline::load_files(std::string& error) {
   if (!options_.channel_config_path.empty()) {
     std::string text;
     if (!read_text_file(options_.channel_config_path, text, error)) return kExitInput;
-    channel_config_ = std::make_unique<ChannelConfig>();
-    const ParseResult r = parse_channel_config_csv(text_view(text), *channel_config_);
-    if (r.error != Error::ok) {
-      error = calibration_error(options_.channel_config_path, r.line, r.error);
-      return kExitUsage;
-    }
+    return parse_channel_config(text, error);
+  }
+  return kExitOk;
+}
+
+int Pipeline::parse_channel_config(const std::string& text, std::string& error) {
+  channel_config_ = std::make_unique<ChannelConfig>();
+  const ParseResult r = parse_channel_config_csv(text_view(text), *channel_config_);
+  if (r.error != Error::ok) {
+    error = calibration_error(options_.channel_config_path, r.line, r.error);
+    return kExitUsage;
   }
   return kExitOk;
 }
@@ -78,12 +83,7 @@ int Pipeline::use_downloaded(const std::string& origin, const std::string& angle
   }
   if (options_.channel_config_path.empty() && !channel_config.empty()) {
     options_.channel_config_path = "the channel configuration from " + origin;
-    channel_config_ = std::make_unique<ChannelConfig>();
-    const ParseResult r = parse_channel_config_csv(text_view(channel_config), *channel_config_);
-    if (r.error != Error::ok) {
-      error = calibration_error(options_.channel_config_path, r.line, r.error);
-      return kExitUsage;
-    }
+    return parse_channel_config(channel_config, error);
   }
   return kExitOk;
 }

@@ -126,6 +126,9 @@ class Pipeline {
     bool signed_seen = false;        // a valid signature arrived (start_session)
   };
   Source* source_for(std::uint64_t key, Model model);
+  // Parses a channel configuration (named options_.channel_config_path in messages) into
+  // channel_config_. Returns kExitOk or kExitUsage with a message.
+  int parse_channel_config(const std::string& text, std::string& error);
   // Decodes the oldest held packet in the decoder's direction and processes it.
   bool release_held(Source& src);
   // Accounts one decoded packet (points_ holds its points) and gives its points to the frames.

@@ -80,18 +80,6 @@ std::string mac_text(const std::uint8_t m[6]) {
   return text;
 }
 
-// Fills `bytes` with random bytes from the kernel. False when it cannot.
-bool random_bytes(std::uint8_t* bytes, std::size_t n) {
-  const int fd = ::open("/dev/urandom", O_RDONLY | O_CLOEXEC);
-  std::size_t done = 0;
-  while (fd >= 0 && done < n) {
-    const ssize_t got = ::read(fd, bytes + done, n - done);
-    if (got <= 0) break;
-    done += static_cast<std::size_t>(got);
-  }
-  if (fd >= 0) ::close(fd);
-  return done == n;
-}
 
 // Runs one request; on failure prints the client's message and returns false.
 bool ask(PtcClient& client, ptc::Command command, ByteView payload, Bytes& response) {
@@ -277,7 +265,7 @@ int sensor_file(PtcClient& client, ptc::Command command, const std::string& out_
 // Starts a session with `secret`: the derived key in `key`. Exit status.
 int session_start(PtcClient& client, const std::string& secret, std::uint8_t key[32]) {
   std::uint8_t client_random[ptc::kRandomBytes], lidar_random[ptc::kRandomBytes];
-  if (!random_bytes(client_random, sizeof client_random)) {
+  if (!port::random_bytes(client_random, sizeof client_random)) {
     std::fprintf(stderr, "hesai sensor: cannot read /dev/urandom for the client random\n");
     return kExitInput;
   }
