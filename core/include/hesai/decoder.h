@@ -73,6 +73,13 @@ enum class PacketKind : std::uint8_t { point_cloud, gps };
 /// Errors: bad_length, bad_magic, unsupported_version, unsupported_model, flags_length_mismatch.
 [[nodiscard]] Error identify(ByteView payload, Model& model, PacketKind& kind) noexcept;
 
+/// Writes `sequence` into the UDP sequence field of a point cloud packet that has one, and
+/// rewrites the CRC that covers it (QT128C2X: CRC3; a signature is not renewed). The packets with
+/// the field: Pandar40P and Pandar64 in their longer lengths (1266, 1198 bytes), QT128C2X,
+/// PandarQT64 and the XT family with header flags bit 0. Error::unsupported_section for any other
+/// packet (and for GPS packets); identify()'s errors for a payload it does not recognise.
+[[nodiscard]] Error write_udp_sequence(std::uint8_t* payload, std::size_t size, std::uint32_t sequence) noexcept;
+
 /// Return-mode bytes of the manuals.
 enum class ReturnMode : std::uint8_t {
   first = 0x33,                   ///< QT128
@@ -177,10 +184,6 @@ bool decode_simd_available() noexcept;
 /// The vector code DecodePath::best runs on this CPU: "avx512", "avx2", "neon" (columns; Points
 /// by the scalar loop) or "none".
 const char* decode_simd_name() noexcept;
-
-namespace detail {
-struct BlockRef;  // one block of a packet, for the per-point code (core/src/sensors/columns_simd.h)
-}  // namespace detail
 
 /// Decoder state for one sensor: per-channel geometry from the built-in tables or a
 /// calibration file, the per-spin-rate point constants, the session key, the Pandar40 GPS
@@ -292,39 +295,23 @@ class Decoder {
     AzimuthSpread spread;        // of azimuth_deg, folded into (-180, 180]
   };
 
+  // The sensors' code (core/src/sensors/, one file each, listed in registry.cpp) reads and sets
+  // the state below: SensorBase holds what every sensor shares, each sensor's functions are the
+  // members of its SensorCode<tag> (sensors/sensor.h).
+  friend struct SensorBase;
+  template <class Tag>
+  friend struct SensorCode;
+
   void set_channel_angle(std::size_t ch, double elevation_deg, double azimuth_deg) noexcept;
   void set_channel_firetime(std::size_t ch, double loop1_us, double loop2_us) noexcept;
   // Sets resting_first_ and resting_count_ from resting_.
   void find_resting_runs() noexcept;
-  template <std::size_t N>
-  void set_design_tables(const std::array<float, N>& elevation_deg, const float* azimuth_deg,
-                         const std::array<float, N>& firetime_us) noexcept;
   // Rebuilds spin_ for `rpm` by the loop of `path` (every path gives the same bits).
   void update_spin(std::uint16_t rpm, DecodePath path) noexcept;
-  [[nodiscard]] Error validate_pandar40(ByteView p, PacketInfo& info) noexcept;
-  [[nodiscard]] Error validate_pandar64(ByteView p, PacketInfo& info) noexcept;
-  [[nodiscard]] Error validate_qt128(ByteView p, PacketInfo& info) noexcept;
-  [[nodiscard]] Error validate_qt64(ByteView p, PacketInfo& info) noexcept;
-  [[nodiscard]] Error validate_xt(ByteView p, PacketInfo& info) noexcept;
-  // Each sensor's block walk (in its file under core/src/sensors/), after validation: appends to
-  // out[count...], at most max_points(model_) points in all.
-  // Where a block walk writes: Points or columns, and the count so far (block_points.h).
-  struct Output;
-  // Both decode() forms: the capacity check, validate(), the walk into `out`; count 0 on error.
-  [[nodiscard]] Error decode_into(ByteView payload, PacketInfo& info, Output& out, std::size_t capacity,
-                                  std::size_t& count) noexcept;
-  void decode_pandar40(const std::uint8_t* p, const PacketInfo& info, Output& out) const noexcept;
-  void decode_pandar64(const std::uint8_t* p, const PacketInfo& info, Output& out) const noexcept;
-  void decode_qt128(const std::uint8_t* p, const PacketInfo& info, Output& out) const noexcept;
-  void decode_qt64(const std::uint8_t* p, const PacketInfo& info, Output& out) const noexcept;
-  void decode_xt(const std::uint8_t* p, const PacketInfo& info, Output& out) const noexcept;
-  // The per-point arithmetic every sensor shares (core/src/sensors/block_points.h): a sensor's
-  // walk describes each block of the packet as a detail::BlockRef (its units, the channel map of
-  // a customised QT128, the time from the packet time t0, the firing loop), block b being
-  // blocks[b]; each block holds unit_count units of kUnitBytes.
-  template <std::size_t kUnitBytes>
-  void emit_blocks(const detail::BlockRef* blocks, std::size_t block_count, std::size_t unit_count, const PacketInfo& info,
-                   Output& out) const noexcept;
+  // Every decode() form: the capacity check, validate(), the sensor's walk into `points` (when not
+  // null) or `columns`; count 0 on error.
+  [[nodiscard]] Error decode_into(ByteView payload, PacketInfo& info, Point* points, const PointColumns* columns,
+                                  std::size_t capacity, std::size_t& count, DecodePath path) noexcept;
 
   Model model_;
   bool firetime_correction_ = true;

@@ -1,6 +1,6 @@
 // The per-point arithmetic every sensor shares: a packet's units to points (internal to the
 // core; each sensor's file walks its own block layout into BlockRefs and calls
-// Decoder::emit_blocks once per packet, which writes Points or columns, whichever the caller of
+// SensorBase::emit_blocks once per packet, which writes Points or columns, whichever the caller of
 // decode() asked for).
 // A unit is one channel's measurement; unit j is channel j, except in QT128 packets with
 // customised channels, where the channel configuration maps it.
@@ -17,11 +17,12 @@
 #include "columns_simd.h"
 #include "hesai/decoder.h"
 #include "hesai/math.h"
+#include "sensor.h"
 
 namespace hesai {
 
 // Where a block walk writes: Points (points != nullptr) or columns, and the points so far.
-struct Decoder::Output {
+struct DecodeOutput {
   Point* points = nullptr;
   PointColumns columns;
   DecodePath path = DecodePath::best;
@@ -125,13 +126,15 @@ inline std::size_t write_points(const BlockConstants k, const std::uint8_t* unit
 // units need no channel map), otherwise block by block by the scalar loops above. Every unit's
 // point is written at index n and kept (n advanced) only when its distance is valid: no branch to
 // mispredict. n <= the units before this one, so the writes stay below blocks x channels =
-// max_points(model_), the capacity decode() checked.
+// max_points(d.model()), the capacity decode() checked.
 template <std::size_t kUnitBytes>
-HESAI_NOINLINE_FOR_SIZE void Decoder::emit_blocks(const detail::BlockRef* blocks, std::size_t block_count,
-                                                  std::size_t unit_count, const PacketInfo& info,
-                                                  Output& out) const noexcept {
+HESAI_NOINLINE_FOR_SIZE void SensorBase::emit_blocks(const Decoder& d, const detail::BlockRef* blocks,
+                                                     std::size_t block_count, std::size_t unit_count,
+                                                     const PacketInfo& info, DecodeOutput& out) noexcept {
+  const Decoder::Geometry& geo_ = d.geo_;
+  const Decoder::SpinCache& spin_ = d.spin_;
   const float unit_m = static_cast<float>(info.dis_unit_mm) * 0.001f;
-  const std::uint16_t min_distance = model_ == Model::qt128c2x ? 2 : 1;  // QT128 reserves distance 1 as a marker
+  const std::uint16_t min_distance = sensor_of(d.model_)->min_distance;
 #if defined(HESAI_DECODE_SIMD)
   if (out.path != DecodePath::portable && block_count <= detail::kMaxBlocks) {
     detail::PacketConstants k;

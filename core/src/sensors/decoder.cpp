@@ -1,24 +1,17 @@
-// What every sensor shares: identification by magic (each sensor's file holds its own rule),
-// decoder set-up from tables and calibration files, the per-spin-rate beam cache, and the
-// dispatch of validate() and decode() to the sensor's file. The per-point arithmetic is in
-// block_points.h.
+// What every sensor shares: identification (the registry finds the sensor whose header a payload
+// carries; its file holds the rule), decoder set-up from tables and calibration files, the
+// per-spin-rate beam cache, and validate() and decode() by the sensor's descriptor. The
+// per-point arithmetic is in block_points.h.
 #include "hesai/decoder.h"
 
 #include <cstring>
 
 #include "hesai/math.h"
-#include "hesai/pandar40_packet.h"
-#include "hesai/pandar64_packet.h"
-#include "hesai/qt128_packet.h"
-#include "hesai/tables/pandar40_tables.h"
-#include "hesai/tables/pandar64_tables.h"
-#include "hesai/tables/qt128_tables.h"
-#include "hesai/tables/qt64_tables.h"
-#include "hesai/tables/xt_tables.h"
 #include "../base/compiler.h"
 #include "block_points.h"
 #include "columns_simd.h"
 #include "../base/cpu_x86.h"
+#include "sensor.h"
 #include "sensor_rules.h"
 
 namespace hesai {
@@ -30,32 +23,20 @@ constexpr std::size_t kGpsBytes = 512;
 /// (55.56 us Pandar, 111.11 us QT128); keeps the ns value in range of an int32.
 constexpr double kMaxFiretimeUs = 1000.0;
 
-/// Marks 0-based channel `ch` as resting, or not, in one loop's mask of Decoder::resting_.
-void set_resting(std::array<std::uint8_t, kMaxChannels / 8>& mask, std::size_t ch, bool rests) {
-  const auto bit = static_cast<unsigned>(1u << (ch % 8));
-  mask[ch / 8] = static_cast<std::uint8_t>(rests ? mask[ch / 8] | bit : mask[ch / 8] & ~bit);
-}
-
 }  // namespace
 
 Error identify(ByteView p, Model& model, PacketKind& kind) noexcept {
   model = Model::unknown;
   kind = PacketKind::point_cloud;
   if (p.size < 4) return Error::bad_length;
-  if (p[0] == 0xFF && p[1] == 0xEE) {
-    // A GPS packet (both GPS layouts start FF EE), or the Pandar40 family (block preamble FF EE first).
-    if (p.size == kGpsBytes) {
-      kind = PacketKind::gps;
-      return Error::ok;
-    }
-    return detail::identify_pandar40(p, model);
+  // A GPS packet: both GPS layouts start FF EE, as the Pandar40 family's first block does.
+  if (p[0] == 0xFF && p[1] == 0xEE && p.size == kGpsBytes) {
+    kind = PacketKind::gps;
+    return Error::ok;
   }
-  if (p[0] != 0xEE || p[1] != 0xFF) return Error::bad_magic;
-  if (detail::is_pandar64_header(p)) return detail::identify_pandar64(p, model);
-  // The other EE FF headers name their point cloud protocol in bytes 2 (major) and 3 (minor).
-  if (p[2] == 0x03 && p[3] == 0x01) return detail::identify_qt64(p, model);
-  if (p[2] == 0x06 && p[3] == 0x01) return detail::identify_xt(p, model);
-  return detail::identify_qt128(p, model);
+  if (const SensorDescriptor* s = sensor_claiming(p)) return s->identify(p, model);
+  // EE FF headers name their point cloud protocol in bytes 2 (major) and 3 (minor).
+  return p[0] == 0xEE && p[1] == 0xFF ? Error::unsupported_version : Error::bad_magic;
 }
 
 const char* return_mode_name(std::uint8_t mode) noexcept {
@@ -75,55 +56,7 @@ const char* return_mode_name(std::uint8_t mode) noexcept {
 }
 
 Decoder::Decoder(Model model) noexcept : model_(model) {
-  switch (model) {
-    case Model::pandar40:
-    case Model::pandar40p:
-      for (std::size_t i = 0; i < pandar40::kChannels; ++i) {
-        set_channel_angle(i, tables::pandar40_channel_angles[i].elevation_deg,
-                          tables::pandar40_channel_angles[i].azimuth_deg);
-        set_channel_firetime(i, tables::pandar40_firetime_us[i], tables::pandar40_firetime_us[i]);
-      }
-      break;
-    case Model::pandar64:
-      for (std::size_t i = 0; i < pandar64::kChannels; ++i) {
-        set_channel_angle(i, tables::pandar64_channel_angles[i].elevation_deg,
-                          tables::pandar64_channel_angles[i].azimuth_deg);
-        set_channel_firetime(i, tables::pandar64_firetime_us[i], tables::pandar64_firetime_us[i]);
-      }
-      break;
-    case Model::qt128c2x:
-      for (std::size_t i = 0; i < qt128::kChannels; ++i) {
-        set_channel_angle(i, tables::qt128_channel_angles[i].elevation_deg,
-                          tables::qt128_channel_angles[i].azimuth_deg);
-        set_channel_firetime(i, tables::qt128_firetime_us_loop1[i], tables::qt128_firetime_us_loop2[i]);
-        set_resting(resting_[0], i, !tables::qt128_fires_in_loop1[i]);
-        set_resting(resting_[1], i, !tables::qt128_fires_in_loop2[i]);
-      }
-      find_resting_runs();
-      break;
-    case Model::pandar_qt64:
-      set_design_tables(tables::qt64_elevation_deg, tables::qt64_azimuth_deg.data(), tables::qt64_firetime_us);
-      break;
-    // Every design azimuth offset of the XT family is 0 (xt_tables.h).
-    case Model::pandar_xt16: set_design_tables(tables::xt16_elevation_deg, nullptr, tables::xt16_firetime_us); break;
-    case Model::pandar_xt32: set_design_tables(tables::xt32_elevation_deg, nullptr, tables::xt32_firetime_us); break;
-    case Model::pandar_xt32m2x:
-      set_design_tables(tables::xt32m2x_elevation_deg, nullptr, tables::xt32m2x_firetime_us);
-      break;
-    case Model::unknown: break;
-  }
-}
-
-template <std::size_t N>
-void Decoder::set_design_tables(const std::array<float, N>& elevation_deg, const float* azimuth_deg,
-                                const std::array<float, N>& firetime_us) noexcept {
-  // The float design tables of the models without a manual here (PandarQT64, PandarXT): one
-  // firing sequence; azimuth_deg nullptr when every azimuth offset is 0.
-  for (std::size_t i = 0; i < N; ++i) {
-    set_channel_angle(i, static_cast<double>(elevation_deg[i]),
-                      azimuth_deg != nullptr ? static_cast<double>(azimuth_deg[i]) : 0.0);
-    set_channel_firetime(i, static_cast<double>(firetime_us[i]), static_cast<double>(firetime_us[i]));
-  }
+  if (const SensorDescriptor* s = sensor_of(model)) s->design(*this);
 }
 
 void Decoder::set_channel_angle(std::size_t ch, double elevation_deg, double azimuth_deg) noexcept {
@@ -288,7 +221,8 @@ void Decoder::update_spin(std::uint16_t rpm, [[maybe_unused]] DecodePath path) n
   const float turn = rotation_ == Rotation::clockwise ? 1.0f : -1.0f;
   const float omega = turn * static_cast<float>(rpm) * static_cast<float>(2 * kPi / 60e9);
   // The Pandars fire one sequence (both loops hold the same times); the QT128 alternates two.
-  const std::size_t loops = model_ == Model::qt128c2x ? 2 : 1;
+  const SensorDescriptor* sensor = sensor_of(model_);
+  const std::size_t loops = sensor != nullptr ? sensor->firing_loops : 1;
   const std::size_t channels = channel_count(model_);
   std::int32_t lo = order_key(180.0f), hi = order_key(-180.0f);
   for (std::size_t loop = 0; loop < loops; ++loop) {
@@ -327,7 +261,8 @@ Error Decoder::set_angles(const AngleCorrection& angles) noexcept {
 
 Error Decoder::set_firetimes(const FiretimeCorrection& f) noexcept {
   if (f.channels != channel_count(model_)) return Error::calib_channel_count;
-  const bool two_loops = model_ == Model::qt128c2x;
+  const SensorDescriptor* sensor = sensor_of(model_);
+  const bool two_loops = sensor != nullptr && sensor->firing_loops == 2;
   if (two_loops && f.loops != 2) return Error::calib_channel_count;
   for (std::size_t loop = 0; loop < f.loops && loop < 2; ++loop) {
     for (std::size_t i = 0; i < f.channels; ++i) {
@@ -343,7 +278,7 @@ Error Decoder::set_firetimes(const FiretimeCorrection& f) noexcept {
     }
     set_channel_firetime(i, us[0], us[1]);
     if (two_loops)
-      for (std::size_t loop = 0; loop < 2; ++loop) set_resting(resting_[loop], i, !f.fires[loop][i]);
+      for (std::size_t loop = 0; loop < 2; ++loop) SensorBase::set_resting(*this, loop, i, !f.fires[loop][i]);
   }
   find_resting_runs();
   return Error::ok;
@@ -380,18 +315,7 @@ Error Decoder::validate(ByteView payload, PacketInfo& info) noexcept {
   if (e != Error::ok) return e;
   if (kind != PacketKind::point_cloud || m != model_) return Error::model_mismatch;
   info.model = m;
-  switch (m) {
-    case Model::pandar40:
-    case Model::pandar40p: return validate_pandar40(payload, info);
-    case Model::pandar64: return validate_pandar64(payload, info);
-    case Model::qt128c2x: return validate_qt128(payload, info);
-    case Model::pandar_qt64: return validate_qt64(payload, info);
-    case Model::pandar_xt16:
-    case Model::pandar_xt32:
-    case Model::pandar_xt32m2x: return validate_xt(payload, info);
-    case Model::unknown: break;
-  }
-  return Error::unsupported_model;
+  return sensor_of(m)->validate(*this, payload, info);  // identify() named a model of the registry
 }
 
 Error Decoder::decode(ByteView payload, PacketInfo& info, PacketPoints& out, DecodePath path) noexcept {
@@ -400,10 +324,7 @@ Error Decoder::decode(ByteView payload, PacketInfo& info, PacketPoints& out, Dec
 
 Error Decoder::decode(ByteView payload, PacketInfo& info, Point* points, std::size_t capacity, std::size_t& count,
                       DecodePath path) noexcept {
-  Output out;
-  out.points = points;
-  out.path = path;
-  return decode_into(payload, info, out, capacity, count);
+  return decode_into(payload, info, points, nullptr, capacity, count, path);
 }
 
 Error Decoder::decode(ByteView payload, PacketInfo& info, const PointColumns& columns, std::size_t& count,
@@ -413,34 +334,25 @@ Error Decoder::decode(ByteView payload, PacketInfo& info, const PointColumns& co
     count = 0;
     return Error::invalid_argument;
   }
-  Output out;
-  out.columns = columns;
-  out.path = path;
-  return decode_into(payload, info, out, columns.capacity, count);
+  return decode_into(payload, info, nullptr, &columns, columns.capacity, count, path);
 }
 
 bool decode_simd_available() noexcept { return detail::columns_simd_available(); }
 const char* decode_simd_name() noexcept { return detail::columns_simd_name(); }
 
-Error Decoder::decode_into(ByteView payload, PacketInfo& info, Output& out, std::size_t capacity,
-                           std::size_t& count) noexcept {
+Error Decoder::decode_into(ByteView payload, PacketInfo& info, Point* points, const PointColumns* columns,
+                           std::size_t capacity, std::size_t& count, DecodePath path) noexcept {
   count = 0;
   if (capacity < max_points(model_)) return Error::buffer_too_small;
   const Error e = validate(payload, info);
   if (e != Error::ok) return e;
   const std::uint16_t rpm = firetime_correction_ ? info.motor_rpm : 0;
-  if (rpm != spin_.rpm) update_spin(rpm, out.path);
-  switch (model_) {
-    case Model::pandar40:
-    case Model::pandar40p: decode_pandar40(payload.data, info, out); break;
-    case Model::pandar64: decode_pandar64(payload.data, info, out); break;
-    case Model::qt128c2x: decode_qt128(payload.data, info, out); break;
-    case Model::pandar_qt64: decode_qt64(payload.data, info, out); break;
-    case Model::pandar_xt16:
-    case Model::pandar_xt32:
-    case Model::pandar_xt32m2x: decode_xt(payload.data, info, out); break;
-    case Model::unknown: break;
-  }
+  if (rpm != spin_.rpm) update_spin(rpm, path);
+  DecodeOutput out;
+  out.points = points;
+  if (columns != nullptr) out.columns = *columns;
+  out.path = path;
+  sensor_of(model_)->walk(*this, payload.data, info, out);  // validate() found model_'s packet
   count = out.count;
   return Error::ok;
 }

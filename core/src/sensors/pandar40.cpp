@@ -4,18 +4,46 @@
 #include "hesai/decoder.h"
 #include "hesai/pandar40_packet.h"
 #include "hesai/tables/block_times.h"
+#include "hesai/tables/pandar40_tables.h"
 #include "block_points.h"
 #include "field_checks.h"
+#include "sensor.h"
 #include "sensor_rules.h"
 
 namespace hesai {
 
 namespace {
+struct Pandar40Family;  // this file's SensorCode
+constexpr Model kModels[] = {Model::pandar40, Model::pandar40p};
 constexpr std::int64_t kUsPerHour = 3600LL * 1000000;
 constexpr auto kBlockNs = detail::block_ns(tables::pandar40_block_end_us_single, tables::pandar40_block_end_us_dual);
 }  // namespace
 
-Error detail::identify_pandar40(ByteView p, Model& model) noexcept {
+template <>
+struct SensorCode<Pandar40Family> : SensorBase {
+  // No header: the first block's preamble, FF EE (GPS packets, 512 bytes, start so too).
+  static bool claims(ByteView p) noexcept { return p[0] == pandar40::kPreamble0 && p[1] == pandar40::kPreamble1; }
+  static Error identify(ByteView p, Model& model) noexcept;
+  static void design(Decoder& d) noexcept {
+    for (std::size_t i = 0; i < pandar40::kChannels; ++i)
+      set_channel(d, i, tables::pandar40_channel_angles[i].elevation_deg, tables::pandar40_channel_angles[i].azimuth_deg,
+                  tables::pandar40_firetime_us[i], tables::pandar40_firetime_us[i]);
+  }
+  static Error validate(Decoder& d, ByteView p, PacketInfo& info) noexcept;
+  static void walk(const Decoder& d, const std::uint8_t* p, const PacketInfo& info, DecodeOutput& out) noexcept;
+  // Pandar40P in its longer length only.
+  static std::size_t sequence_at(ByteView p) noexcept {
+    return p.size == pandar40::kPandar40PSequenceBytes ? pandar40::kSequence : 0;
+  }
+};
+using Pandar40Code = SensorCode<Pandar40Family>;
+
+extern const SensorDescriptor kPandar40Sensor;
+const SensorDescriptor kPandar40Sensor = {
+    kModels, 2, Pandar40Code::claims, Pandar40Code::identify, Pandar40Code::design, Pandar40Code::validate,
+    Pandar40Code::walk, Pandar40Code::sequence_at, nullptr, /*firing_loops=*/1, /*min_distance=*/1};
+
+Error Pandar40Code::identify(ByteView p, Model& model) noexcept {
   switch (p.size) {
     case pandar40::kPandar40Bytes: model = Model::pandar40; return Error::ok;
     case pandar40::kPandar40PBytes:
@@ -24,7 +52,7 @@ Error detail::identify_pandar40(ByteView p, Model& model) noexcept {
   }
 }
 
-Error Decoder::validate_pandar40(ByteView p, PacketInfo& info) noexcept {
+Error Pandar40Code::validate(Decoder& d, ByteView p, PacketInfo& info) noexcept {
   using namespace pandar40;
   const bool is_40p = info.model == Model::pandar40p;
   info.blocks = kBlocks;
@@ -58,30 +86,31 @@ Error Decoder::validate_pandar40(ByteView p, PacketInfo& info) noexcept {
   // Pandar40: the timestamp counts us from the top of the hour (the GPS packet sets it to
   // (minute x 60 + second) x 1e6 at each PPS); the date and hour come from the last GPS packet.
   const std::int64_t ts = info.timestamp_us;
-  if (!has_gps_) {
+  if (!d.has_gps_) {
     info.time_reference = TimeReference::hour_relative;
     info.time_ns = ts * 1000;
     return Error::ok;
   }
-  DateTime hour = gps_time_;
+  const DateTime& gps_time = d.gps_time_;
+  DateTime hour = gps_time;
   hour.minute = 0;
   hour.second = 0;
   std::int64_t hour_start_us = unix_seconds(hour) * 1000000;
   // A timestamp far below the GPS packet's own position in the hour belongs to the next hour:
   // the counter wrapped at the top of the hour before the next GPS packet arrived.
-  const std::int64_t gps_us_in_hour = (gps_time_.minute * 60 + gps_time_.second) * 1000000LL;
+  const std::int64_t gps_us_in_hour = (gps_time.minute * 60 + gps_time.second) * 1000000LL;
   if (gps_us_in_hour - ts > kUsPerHour / 2) hour_start_us += kUsPerHour;
-  info.date_time = gps_time_;
+  info.date_time = gps_time;
   info.time_ns = (hour_start_us + ts) * 1000;
   return Error::ok;
 }
 
-void Decoder::decode_pandar40(const std::uint8_t* p, const PacketInfo& info, Output& out) const noexcept {
+void Pandar40Code::walk(const Decoder& d, const std::uint8_t* p, const PacketInfo& info, DecodeOutput& out) noexcept {
   using namespace pandar40;
   const std::size_t dual = info.returns == 2 ? 1 : 0;
   detail::BlockRef blocks[kBlocks];
   for (std::size_t b = 0; b < kBlocks; ++b) blocks[b] = {p + b * kBlockBytes + kBlockPoints, nullptr, kBlockNs[dual][b], 0};
-  emit_blocks<kPointBytes>(blocks, kBlocks, kChannels, info, out);
+  emit_blocks<kPointBytes>(d, blocks, kBlocks, kChannels, info, out);
 }
 
 }  // namespace hesai

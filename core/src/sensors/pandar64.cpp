@@ -6,11 +6,14 @@
 #include "hesai/tables/pandar64_tables.h"
 #include "block_points.h"
 #include "field_checks.h"
+#include "sensor.h"
 #include "sensor_rules.h"
 
 namespace hesai {
 
 namespace {
+struct Pandar64Tag;  // this file's SensorCode
+constexpr Model kModels[] = {Model::pandar64};
 constexpr auto kBlockNs = detail::block_ns(tables::pandar64_block_end_us_single, tables::pandar64_block_end_us_dual);
 // Pandar64 App. B.3: block 1 of 6 ends at t0 - 42.58 - 55.56 x 5 us, or x 2 in dual return.
 static_assert(kBlockNs[0][0] == -320380 && kBlockNs[1][0] == -153700);
@@ -29,17 +32,39 @@ constexpr std::array<std::uint8_t, 256> nonlinear_percent() {
 constexpr std::array<std::uint8_t, 256> kNonlinearPercent = nonlinear_percent();
 }  // namespace
 
-bool detail::is_pandar64_header(ByteView p) noexcept {
-  return p[pandar64::kLaserNum] == 0x40 && p[pandar64::kBlockNum] == 0x06;
-}
+template <>
+struct SensorCode<Pandar64Tag> : SensorBase {
+  // EE FF, then 64 lasers and 6 blocks where the other EE FF headers name their protocol version.
+  static bool claims(ByteView p) noexcept {
+    return p[0] == pandar64::kMagic0 && p[1] == pandar64::kMagic1 && p[pandar64::kLaserNum] == 0x40 &&
+           p[pandar64::kBlockNum] == 0x06;
+  }
+  static Error identify(ByteView p, Model& model) noexcept;
+  static void design(Decoder& d) noexcept {
+    for (std::size_t i = 0; i < pandar64::kChannels; ++i)
+      set_channel(d, i, tables::pandar64_channel_angles[i].elevation_deg, tables::pandar64_channel_angles[i].azimuth_deg,
+                  tables::pandar64_firetime_us[i], tables::pandar64_firetime_us[i]);
+  }
+  static Error validate(Decoder& d, ByteView p, PacketInfo& info) noexcept;
+  static void walk(const Decoder& d, const std::uint8_t* p, const PacketInfo& info, DecodeOutput& out) noexcept;
+  static std::size_t sequence_at(ByteView p) noexcept {
+    return p.size == pandar64::kSequencePacketBytes ? pandar64::kSequence : 0;
+  }
+};
+using Pandar64Code = SensorCode<Pandar64Tag>;
 
-Error detail::identify_pandar64(ByteView p, Model& model) noexcept {
+extern const SensorDescriptor kPandar64Sensor;
+const SensorDescriptor kPandar64Sensor = {
+    kModels, 1, Pandar64Code::claims, Pandar64Code::identify, Pandar64Code::design, Pandar64Code::validate,
+    Pandar64Code::walk, Pandar64Code::sequence_at, nullptr, /*firing_loops=*/1, /*min_distance=*/1};
+
+Error Pandar64Code::identify(ByteView p, Model& model) noexcept {
   if (p.size != pandar64::kPacketBytes && p.size != pandar64::kSequencePacketBytes) return Error::bad_length;
   model = Model::pandar64;
   return Error::ok;
 }
 
-Error Decoder::validate_pandar64(ByteView p, PacketInfo& info) noexcept {
+Error Pandar64Code::validate(Decoder&, ByteView p, PacketInfo& info) noexcept {
   using namespace pandar64;
   info.blocks = kBlocks;
   info.dis_unit_mm = p[kDisUnit];
@@ -64,15 +89,15 @@ Error Decoder::validate_pandar64(ByteView p, PacketInfo& info) noexcept {
   return detail::tail_time(detail::tail_date_time(detail::pandar_year(dt[0]), dt), 999999, info);
 }
 
-void Decoder::decode_pandar64(const std::uint8_t* p, const PacketInfo& info, Output& out) const noexcept {
+void Pandar64Code::walk(const Decoder& d, const std::uint8_t* p, const PacketInfo& info, DecodeOutput& out) noexcept {
   using namespace pandar64;
   const std::size_t dual = info.returns == 2 ? 1 : 0;
   const std::size_t first = out.count;
   detail::BlockRef blocks[kBlocks];
   for (std::size_t b = 0; b < kBlocks; ++b)
     blocks[b] = {p + kBody + b * kBlockBytes + kBlockPoints, nullptr, kBlockNs[dual][b], 0};
-  emit_blocks<kPointBytes>(blocks, kBlocks, kChannels, info, out);
-  if (reflectivity_ == Reflectivity::nonlinear) out.map_intensity(first, kNonlinearPercent.data());
+  emit_blocks<kPointBytes>(d, blocks, kBlocks, kChannels, info, out);
+  if (d.reflectivity_ == Reflectivity::nonlinear) out.map_intensity(first, kNonlinearPercent.data());
 }
 
 Error Decoder::set_reflectivity(Reflectivity mapping) noexcept {

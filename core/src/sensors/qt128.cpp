@@ -9,13 +9,18 @@
 #include "hesai/decoder.h"
 #include "hesai/qt128_packet.h"
 #include "hesai/tables/block_times.h"
+#include "hesai/tables/qt128_tables.h"
 #include "block_points.h"
 #include "field_checks.h"
+#include "sensor.h"
 #include "sensor_rules.h"
 
 namespace hesai {
 
 namespace {
+
+struct Qt128Tag;  // this file's SensorCode
+constexpr Model kModels[] = {Model::qt128c2x};
 
 constexpr auto kBlockNs = detail::block_ns(tables::qt128_block_start_us_single, tables::qt128_block_start_us_dual);
 static_assert(kBlockNs[0][1] == 120110 && kBlockNs[1][1] == 9000);
@@ -72,9 +77,42 @@ bool resting_units_zero(const std::uint8_t* units, const qt128::Layout& l, const
 
 }  // namespace
 
-Error detail::identify_qt128(ByteView p, Model& model) noexcept {
+template <>
+struct SensorCode<Qt128Tag> : SensorBase {
+  // EE FF, point cloud protocol 3.2.
+  static bool claims(ByteView p) noexcept {
+    using namespace qt128;
+    return p[0] == kMagic0 && p[1] == kMagic1 && p[kVersionMajor] == 0x03 && p[kVersionMinor] == 0x02;
+  }
+  static Error identify(ByteView p, Model& model) noexcept;
+  // Two firing sequences; the channels resting in each by the manual's bank rule.
+  static void design(Decoder& d) noexcept {
+    for (std::size_t i = 0; i < qt128::kChannels; ++i) {
+      set_channel(d, i, tables::qt128_channel_angles[i].elevation_deg, tables::qt128_channel_angles[i].azimuth_deg,
+                  tables::qt128_firetime_us_loop1[i], tables::qt128_firetime_us_loop2[i]);
+      set_resting(d, 0, i, !tables::qt128_fires_in_loop1[i]);
+      set_resting(d, 1, i, !tables::qt128_fires_in_loop2[i]);
+    }
+    d.find_resting_runs();
+  }
+  static Error validate(Decoder& d, ByteView p, PacketInfo& info) noexcept;
+  static void walk(const Decoder& d, const std::uint8_t* p, const PacketInfo& info, DecodeOutput& out) noexcept;
+  // With flags bit 0, at the end of the tail (CRC3 covers it).
+  static std::size_t sequence_at(ByteView p) noexcept {
+    using namespace qt128;
+    if (!(p[kFlags] & kFlagSequence)) return 0;
+    return Layout::from_header(p[kLaserNum], p[kFlags]).tail + kTailSequence;
+  }
+};
+using Qt128Code = SensorCode<Qt128Tag>;
+
+extern const SensorDescriptor kQt128Sensor;
+const SensorDescriptor kQt128Sensor = {
+    kModels, 1, Qt128Code::claims, Qt128Code::identify, Qt128Code::design, Qt128Code::validate, Qt128Code::walk,
+    Qt128Code::sequence_at, qt128::seal, /*firing_loops=*/2, /*min_distance=*/2};  // distance 1 is a marker
+
+Error Qt128Code::identify(ByteView p, Model& model) noexcept {
   using namespace qt128;
-  if (p[kVersionMajor] != 0x03 || p[kVersionMinor] != 0x02) return Error::unsupported_version;
   if (p.size < kHeaderEnd) return Error::bad_length;
   if (p[kBlockNum] != kBlocks) return Error::unsupported_model;
   // 128 units per block, or with customised channels (flags bit 6) the header's 1..128.
@@ -111,7 +149,7 @@ Error Decoder::set_channel_config(const ChannelConfig& config) noexcept {
   return Error::ok;
 }
 
-Error Decoder::validate_qt128(ByteView p, PacketInfo& info) noexcept {
+Error Qt128Code::validate(Decoder& d, ByteView p, PacketInfo& info) noexcept {
   using namespace qt128;
   // identify() has checked magic, version, laser and block numbers and the length they and the flags imply.
   info.blocks = kBlocks;
@@ -119,8 +157,8 @@ Error Decoder::validate_qt128(ByteView p, PacketInfo& info) noexcept {
   if (info.flags & kFlagImu) return Error::unsupported_section;  // layout not in the manual
   const Layout layout = Layout::from_header(p[kLaserNum], info.flags);
   if (info.flags & kFlagChannelCustom) {
-    if (custom_lasers_ == 0) return Error::channel_config_required;
-    if (custom_lasers_ != layout.lasers) return Error::channel_config_mismatch;
+    if (d.custom_lasers_ == 0) return Error::channel_config_required;
+    if (d.custom_lasers_ != layout.lasers) return Error::channel_config_mismatch;
   }
   info.dis_unit_mm = p[kDisUnit];
   const std::uint8_t return_num = p[kReturnNum];
@@ -137,13 +175,13 @@ Error Decoder::validate_qt128(ByteView p, PacketInfo& info) noexcept {
   const bool signed_packet = layout.signature != 0 && !all_zero(p.data + layout.signature, kSignatureBytes);
   info.signature = signed_packet ? SignatureStatus::unverified : SignatureStatus::not_signed;
 #if HESAI_SIGNATURE
-  if (has_key_) {
+  if (d.has_key_) {
     if (!signed_packet) {
-      if (!allow_unsigned_) return Error::signature_missing;
+      if (!d.allow_unsigned_) return Error::signature_missing;
       info.signature = SignatureStatus::accepted_unsigned;
     } else {
       std::uint8_t mac[32];
-      HmacSha256 h(key_);
+      HmacSha256 h(d.key_);
       h.update(p.sub(0, layout.signature));
       h.finish(mac);
       const bool ok = constant_time_equal(mac, p.data + layout.signature, kSignatureBytes);
@@ -185,10 +223,10 @@ Error Decoder::validate_qt128(ByteView p, PacketInfo& info) noexcept {
   for (std::size_t b = 0; b < kBlocks; ++b) {
     const std::size_t loop = block_loop(info.mode_flag, info.returns == 2, b);
     const std::uint8_t* units = p.data + kBody + b * layout.block + kBlockPoints;
-    const bool zero = !custom && resting_count_[loop] != kRestingScattered
-                          ? all_zero(units + resting_first_[loop] * layout.unit, resting_count_[loop] * layout.unit)
-                          : resting_units_zero(units, layout, custom ? custom_channel_[loop].data() : nullptr,
-                                               resting_[loop].data());
+    const bool zero = !custom && d.resting_count_[loop] != Decoder::kRestingScattered
+                          ? all_zero(units + d.resting_first_[loop] * layout.unit, d.resting_count_[loop] * layout.unit)
+                          : resting_units_zero(units, layout, custom ? d.custom_channel_[loop].data() : nullptr,
+                                               d.resting_[loop].data());
     if (!zero) return Error::resting_channel_data;
   }
   // Date & Time: year - 1900 (>= 70), or with a year byte of 0 Unix seconds, big-endian, in bytes
@@ -197,7 +235,7 @@ Error Decoder::validate_qt128(ByteView p, PacketInfo& info) noexcept {
   return detail::tail_time(detail::calendar_or_unix(dt, 1900 + dt[0]), 1000000, info);
 }
 
-void Decoder::decode_qt128(const std::uint8_t* p, const PacketInfo& info, Output& out) const noexcept {
+void Qt128Code::walk(const Decoder& d, const std::uint8_t* p, const PacketInfo& info, DecodeOutput& out) noexcept {
   using namespace qt128;
   const Layout layout = Layout::from_header(p[kLaserNum], info.flags);
   const bool custom = (info.flags & kFlagChannelCustom) != 0;
@@ -206,13 +244,13 @@ void Decoder::decode_qt128(const std::uint8_t* p, const PacketInfo& info, Output
   detail::BlockRef blocks[kBlocks];
   for (std::size_t b = 0; b < kBlocks; ++b) {
     const std::size_t loop = block_loop(info.mode_flag, dual != 0, b);
-    blocks[b] = {p + kBody + b * layout.block + kBlockPoints, custom ? custom_channel_[loop].data() : nullptr,
+    blocks[b] = {p + kBody + b * layout.block + kBlockPoints, custom ? d.custom_channel_[loop].data() : nullptr,
                  kBlockNs[dual][b], static_cast<std::uint8_t>(loop)};
   }
   if (layout.unit == kUnitBytes + kConfidenceBytes)
-    emit_blocks<kUnitBytes + kConfidenceBytes>(blocks, kBlocks, layout.lasers, info, out);
+    emit_blocks<kUnitBytes + kConfidenceBytes>(d, blocks, kBlocks, layout.lasers, info, out);
   else
-    emit_blocks<kUnitBytes>(blocks, kBlocks, layout.lasers, info, out);
+    emit_blocks<kUnitBytes>(d, blocks, kBlocks, layout.lasers, info, out);
 }
 
 namespace qt128 {

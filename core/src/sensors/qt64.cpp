@@ -8,20 +8,47 @@
 #include "hesai/tables/qt64_tables.h"
 #include "block_points.h"
 #include "field_checks.h"
+#include "sensor.h"
 #include "sensor_rules.h"
 
 namespace hesai {
 
 namespace {
+struct Qt64Tag;  // this file's SensorCode
+constexpr Model kModels[] = {Model::pandar_qt64};
 constexpr auto kBlockNs = detail::block_ns(tables::qt64_block_start_us_single, tables::qt64_block_start_us_dual);
 // SDK: 25 710 + {0, 166 670, 333 330, 500 000} ns by firing; dual return, two blocks a firing.
 static_assert(kBlockNs[0][1] == 192380 && kBlockNs[0][3] == 525710 && kBlockNs[1][1] == 25710 &&
               kBlockNs[1][3] == 192380);
 }  // namespace
 
-Error detail::identify_qt64(ByteView p, Model& model) noexcept {
+template <>
+struct SensorCode<Qt64Tag> : SensorBase {
+  // EE FF, point cloud protocol 3.1.
+  static bool claims(ByteView p) noexcept {
+    return p[0] == 0xEE && p[1] == 0xFF && p[2] == 0x03 && p[3] == 0x01;
+  }
+  static Error identify(ByteView p, Model& model) noexcept;
+  static void design(Decoder& d) noexcept {
+    set_design_tables(d, tables::qt64_elevation_deg, tables::qt64_azimuth_deg.data(), tables::qt64_firetime_us);
+  }
+  static Error validate(Decoder& d, ByteView p, PacketInfo& info) noexcept;
+  static void walk(const Decoder& d, const std::uint8_t* p, const PacketInfo& info, DecodeOutput& out) noexcept;
+  // With flags bit 0, at the end of the tail (no CRC covers it).
+  static std::size_t sequence_at(ByteView p) noexcept {
+    return (p[qt64::kFlags] & qt64::kFlagSequence) ? qt64::kTail + qt64::kTailSequence : 0;
+  }
+};
+using Qt64Code = SensorCode<Qt64Tag>;
+
+extern const SensorDescriptor kQt64Sensor;
+const SensorDescriptor kQt64Sensor = {
+    kModels, 1, Qt64Code::claims, Qt64Code::identify, Qt64Code::design, Qt64Code::validate, Qt64Code::walk,
+    Qt64Code::sequence_at, nullptr, /*firing_loops=*/1, /*min_distance=*/1};
+
+Error Qt64Code::identify(ByteView p, Model& model) noexcept {
   using namespace qt64;
-  // identify() has checked EE FF and version 3.1 (bytes 2, 3).
+  // claims() has checked EE FF and version 3.1 (bytes 2, 3).
   if (p.size < kHeaderEnd) return Error::bad_length;
   if (p[kLaserNum] != kChannels || p[kBlockNum] != kBlocks) return Error::unsupported_model;
   // SDK GetPacketSize: header + 4 blocks + tail, the u32 UDP sequence only with flags bit 0.
@@ -30,7 +57,7 @@ Error detail::identify_qt64(ByteView p, Model& model) noexcept {
   return Error::ok;
 }
 
-Error Decoder::validate_qt64(ByteView p, PacketInfo& info) noexcept {
+Error Qt64Code::validate(Decoder&, ByteView p, PacketInfo& info) noexcept {
   using namespace qt64;
   info.blocks = kBlocks;
   info.flags = p[kFlags];
@@ -62,7 +89,7 @@ Error Decoder::validate_qt64(ByteView p, PacketInfo& info) noexcept {
   return detail::tail_time(detail::calendar_or_unix(dt, detail::pandar_year(dt[0])), 999999, info);
 }
 
-void Decoder::decode_qt64(const std::uint8_t* p, const PacketInfo& info, Output& out) const noexcept {
+void Qt64Code::walk(const Decoder& d, const std::uint8_t* p, const PacketInfo& info, DecodeOutput& out) noexcept {
   using namespace qt64;
   // One firing sequence (the vendor's firetime file has one column); in dual return the two
   // blocks of a firing share its start time (tables/qt64_tables.h).
@@ -70,7 +97,7 @@ void Decoder::decode_qt64(const std::uint8_t* p, const PacketInfo& info, Output&
   detail::BlockRef blocks[kBlocks];
   for (std::size_t b = 0; b < kBlocks; ++b)
     blocks[b] = {p + kBody + b * kBlockBytes + kBlockPoints, nullptr, kBlockNs[dual][b], 0};
-  emit_blocks<kUnitBytes>(blocks, kBlocks, kChannels, info, out);
+  emit_blocks<kUnitBytes>(d, blocks, kBlocks, kChannels, info, out);
 }
 
 }  // namespace hesai

@@ -1,6 +1,5 @@
-// Shared by decoder.cpp and the sensors' files (internal to the core): each sensor's
-// identification rule, defined in that sensor's file, and the conversion of the manuals'
-// block-time tables to integer nanoseconds.
+// Shared by decoder.cpp and the sensors' files (internal to the core): rounding to integer
+// nanoseconds, and the conversion of the manuals' block-time tables by it.
 #pragma once
 
 #include <array>
@@ -12,20 +11,6 @@
 #include "hesai/model.h"
 
 namespace hesai::detail {
-
-/// Pandar40 (1256 bytes) or Pandar40P (1262/1266): a payload starting FF EE that is not GPS.
-[[nodiscard]] Error identify_pandar40(ByteView p, Model& model) noexcept;
-/// True when an EE FF header names 64 lasers and 6 blocks (Pandar64).
-bool is_pandar64_header(ByteView p) noexcept;
-/// Pandar64 by length (1194, or 1198 with UDP sequence), once is_pandar64_header() holds.
-[[nodiscard]] Error identify_pandar64(ByteView p, Model& model) noexcept;
-/// QT128C2X: EE FF, protocol 3.2, 2 blocks, 128 lasers (1..128 with customised channels, flags
-/// bit 6), the length the laser num and flags imply.
-[[nodiscard]] Error identify_qt128(ByteView p, Model& model) noexcept;
-/// PandarQT64: EE FF, point cloud protocol 3.1 (sensors/qt64.cpp).
-[[nodiscard]] Error identify_qt64(ByteView p, Model& model) noexcept;
-/// PandarXT16, XT32, XT32M2X: EE FF, point cloud protocol 6.1 (sensors/xt.cpp).
-[[nodiscard]] Error identify_xt(ByteView p, Model& model) noexcept;
 
 constexpr std::int32_t round_to_int(double v) {
   return static_cast<std::int32_t>(v < 0 ? v - 0.5 : v + 0.5);

@@ -10,11 +10,15 @@
 #include "hesai/xt_packet.h"
 #include "block_points.h"
 #include "field_checks.h"
+#include "sensor.h"
 #include "sensor_rules.h"
 
 namespace hesai {
 
 namespace {
+
+struct XtFamily;  // this file's SensorCode
+constexpr Model kModels[] = {Model::pandar_xt16, Model::pandar_xt32, Model::pandar_xt32m2x};
 
 constexpr std::int32_t kFiringPeriodNs = detail::round_to_int(tables::xt_firing_period_us * 1000.0);
 static_assert(kFiringPeriodNs == 50000);
@@ -42,7 +46,37 @@ std::uint8_t xt_returns(std::uint8_t byte) {
 
 }  // namespace
 
-Error detail::identify_xt(ByteView p, Model& model) noexcept {
+template <>
+struct SensorCode<XtFamily> : SensorBase {
+  // EE FF, point cloud protocol 6.1.
+  static bool claims(ByteView p) noexcept {
+    return p[0] == 0xEE && p[1] == 0xFF && p[2] == 0x06 && p[3] == 0x01;
+  }
+  static Error identify(ByteView p, Model& model) noexcept;
+  // Every design azimuth offset of the XT family is 0 (xt_tables.h).
+  static void design(Decoder& d) noexcept {
+    switch (d.model()) {
+      case Model::pandar_xt16: set_design_tables(d, tables::xt16_elevation_deg, nullptr, tables::xt16_firetime_us); break;
+      case Model::pandar_xt32: set_design_tables(d, tables::xt32_elevation_deg, nullptr, tables::xt32_firetime_us); break;
+      default: set_design_tables(d, tables::xt32m2x_elevation_deg, nullptr, tables::xt32m2x_firetime_us); break;
+    }
+  }
+  static Error validate(Decoder& d, ByteView p, PacketInfo& info) noexcept;
+  static void walk(const Decoder& d, const std::uint8_t* p, const PacketInfo& info, DecodeOutput& out) noexcept;
+  // With flags bit 0, at the end of the tail (protocol 6.1 has no CRC).
+  static std::size_t sequence_at(ByteView p) noexcept {
+    using namespace xt;
+    return (p[kFlags] & kFlagSequence) ? tail_offset(p[kLaserNum], p[kBlockNum]) + kTailSequence : 0;
+  }
+};
+using XtCode = SensorCode<XtFamily>;
+
+extern const SensorDescriptor kXtSensor;
+const SensorDescriptor kXtSensor = {
+    kModels, 3, XtCode::claims, XtCode::identify, XtCode::design, XtCode::validate, XtCode::walk, XtCode::sequence_at,
+    nullptr, /*firing_loops=*/1, /*min_distance=*/1};
+
+Error XtCode::identify(ByteView p, Model& model) noexcept {
   using namespace xt;
   if (p.size < kHeaderEnd) return Error::bad_length;
   // The three models of protocol 6.1 by laser and block numbers (udp_protocol_v6_1.h gives them
@@ -62,7 +96,7 @@ Error detail::identify_xt(ByteView p, Model& model) noexcept {
   return Error::ok;
 }
 
-Error Decoder::validate_xt(ByteView p, PacketInfo& info) noexcept {
+Error XtCode::validate(Decoder&, ByteView p, PacketInfo& info) noexcept {
   using namespace xt;
   // identify() has checked magic, version, laser and block numbers and the length.
   const std::size_t lasers = p[kLaserNum];
@@ -90,7 +124,7 @@ Error Decoder::validate_xt(ByteView p, PacketInfo& info) noexcept {
   return detail::tail_time(t, 999999, info);
 }
 
-void Decoder::decode_xt(const std::uint8_t* p, const PacketInfo& info, Output& out) const noexcept {
+void XtCode::walk(const Decoder& d, const std::uint8_t* p, const PacketInfo& info, DecodeOutput& out) noexcept {
   using namespace xt;
   const std::size_t lasers = p[kLaserNum];
   const std::size_t blocks = info.blocks;
@@ -107,7 +141,7 @@ void Decoder::decode_xt(const std::uint8_t* p, const PacketInfo& info, Output& o
     refs[b] = {p + kBody + b * stride + kBlockPoints, nullptr, -kFiringPeriodNs * firings_after, 0};
     if (--left_in_firing == 0) --firings_after, left_in_firing = info.returns;
   }
-  emit_blocks<kUnitBytes>(refs, blocks, lasers, info, out);
+  emit_blocks<kUnitBytes>(d, refs, blocks, lasers, info, out);
 }
 
 }  // namespace hesai

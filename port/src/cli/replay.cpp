@@ -8,10 +8,7 @@
 
 #include "hesai/ct.h"
 #include "hesai/decoder.h"
-#include "hesai/pandar40_packet.h"
-#include "hesai/pandar64_packet.h"
 #include "hesai/qt128_packet.h"
-#include "hesai/xt_packet.h"
 #include "hesai_port/capture.h"
 #include "hesai_port/ptc_server.h"
 #include "hesai_port/udp.h"
@@ -24,23 +21,7 @@ namespace {
 // Writes `seq` into a packet's UDP sequence field, if it has one (QT128: CRC3 re-sealed).
 // Returns false for packets without a sequence field.
 bool renumber(std::vector<std::uint8_t>& p, std::uint32_t seq) {
-  Model m = Model::unknown;
-  PacketKind kind = PacketKind::point_cloud;
-  if (identify(ByteView{p.data(), p.size()}, m, kind) != Error::ok || kind != PacketKind::point_cloud) return false;
-  if (m == Model::pandar64 && p.size() == pandar64::kSequencePacketBytes) {
-    store_le32(&p[pandar64::kSequence], seq);
-  } else if (m == Model::pandar40p && p.size() == pandar40::kPandar40PSequenceBytes) {
-    store_le32(&p[pandar40::kSequence], seq);
-  } else if (m == Model::qt128c2x && (p[qt128::kFlags] & qt128::kFlagSequence)) {
-    store_le32(&p[qt128::Layout::from_header(p[qt128::kLaserNum], p[qt128::kFlags]).tail + qt128::kTailSequence], seq);
-    return qt128::seal(p.data(), p.size()) == Error::ok;  // identify() checked the length
-  } else if ((m == Model::pandar_xt16 || m == Model::pandar_xt32 || m == Model::pandar_xt32m2x) &&
-             (p[xt::kFlags] & xt::kFlagSequence)) {
-    store_le32(&p[xt::tail_offset(p[xt::kLaserNum], p[xt::kBlockNum]) + xt::kTailSequence], seq);  // no CRC in 6.1
-  } else {
-    return false;
-  }
-  return true;
+  return write_udp_sequence(p.data(), p.size(), seq) == Error::ok;
 }
 
 // The model and motor speed of a capture's first point-cloud packet (Model::unknown: none).
