@@ -52,7 +52,7 @@ typedef enum hesai_error {
  * in its order from 1; 0 is unknown. */
 typedef enum hesai_model {
   HESAI_MODEL_unknown = 0,
-#define HESAI_C_MODEL(id, name, channels, blocks) HESAI_MODEL_##id,
+#define HESAI_C_MODEL(id, name, channels, blocks, firings, ptc) HESAI_MODEL_##id,
   HESAI_MODEL_LIST(HESAI_C_MODEL)
 #undef HESAI_C_MODEL
   HESAI_MODEL_COUNT /* number of values, unknown included; not a model */

@@ -7,15 +7,21 @@
 #ifndef HESAI_MODEL_LIST_H
 #define HESAI_MODEL_LIST_H
 
-/* X(id, display name, laser channels, blocks per packet), once per model in value order. */
-#define HESAI_MODEL_LIST(X)                                                                               \
-  X(pandar40, "Pandar40", 40, 10)           /* older firmware: 1256-byte packets, 16-byte tail, no date */ \
-  X(pandar40p, "Pandar40P", 40, 10)         /* 1262 bytes, 1266 with UDP sequence */                       \
-  X(pandar64, "Pandar64", 64, 6)            /* 1194 bytes, 1198 with UDP sequence */                       \
-  X(qt128c2x, "QT128C2X", 128, 2)           /* point cloud protocol 3.2, up to 1127 bytes */               \
-  X(pandar_qt64, "PandarQT64", 64, 4)       /* point cloud protocol 3.1 */                                 \
-  X(pandar_xt16, "PandarXT16", 16, 8)       /* point cloud protocol 6.1 */                                 \
-  X(pandar_xt32, "PandarXT32", 32, 8)       /* point cloud protocol 6.1 */                                 \
-  X(pandar_xt32m2x, "PandarXT32M2X", 32, 6) /* point cloud protocol 6.1 */
+/* X(id, display name, laser channels, blocks per packet, firings per rotation at 600 rpm, PTC
+ * product number), once per model in value order.
+ * - Firings per rotation: 360 degrees over the azimuth step at 10 Hz: 0.2 degrees (Pandar40 and
+ *   Pandar64 manuals, "Horizontal resolution"), 0.4 (QT128C2X manual, "Resolution (Horizontal)");
+ *   0.6 (PandarQT64) and 0.18 (XT family) as the bundled captures' block azimuths step.
+ * - PTC product number: the model byte of the PTC inventory (PTC 0x07; tier4/nebula
+ *   hesai_hw_interface.cpp nebula_model_to_hesai_model_no); 255 for the Pandar40, which has no PTC. */
+#define HESAI_MODEL_LIST(X)                                                                                        \
+  X(pandar40, "Pandar40", 40, 10, 1800, 255)        /* older firmware: 1256-byte packets, 16-byte tail, no date */ \
+  X(pandar40p, "Pandar40P", 40, 10, 1800, 0)        /* 1262 bytes, 1266 with UDP sequence */                       \
+  X(pandar64, "Pandar64", 64, 6, 1800, 2)           /* 1194 bytes, 1198 with UDP sequence */                       \
+  X(qt128c2x, "QT128C2X", 128, 2, 900, 32)          /* point cloud protocol 3.2, up to 1127 bytes */               \
+  X(pandar_qt64, "PandarQT64", 64, 4, 600, 15)      /* point cloud protocol 3.1 */                                 \
+  X(pandar_xt16, "PandarXT16", 16, 8, 2000, 26)     /* point cloud protocol 6.1 */                                 \
+  X(pandar_xt32, "PandarXT32", 32, 8, 2000, 25)     /* point cloud protocol 6.1 */                                 \
+  X(pandar_xt32m2x, "PandarXT32M2X", 32, 6, 2000, 38) /* point cloud protocol 6.1 */
 
 #endif /* HESAI_MODEL_LIST_H */

@@ -50,7 +50,7 @@ HESAI_ERROR_LIST(HESAI_SAME_ERROR)
 static_assert(HESAI_ERROR_COUNT == hesai::kErrorCount);
 
 // hesai_model is made from the same list as hesai::Model (hesai/model_list.h); checked anyway.
-#define HESAI_SAME_MODEL(id, name, channels, blocks) static_assert(HESAI_MODEL_##id == static_cast<int>(Model::id));
+#define HESAI_SAME_MODEL(id, name, channels, blocks, firings, ptc) static_assert(HESAI_MODEL_##id == static_cast<int>(Model::id));
 HESAI_MODEL_LIST(HESAI_SAME_MODEL)
 #undef HESAI_SAME_MODEL
 static_assert(HESAI_MODEL_unknown == static_cast<int>(Model::unknown) && HESAI_MODEL_COUNT == hesai::kModelCount);

@@ -88,28 +88,13 @@ Error check_response(ByteView header, Command expected, std::uint32_t max_length
 
 // ---- Inventory ----
 
-namespace {
-struct ProductNumber {
-  std::uint8_t number;
-  Model model;
-};
-constexpr ProductNumber kProductNumbers[] = {
-    {0, Model::pandar40p},    {2, Model::pandar64},    {15, Model::pandar_qt64},    {25, Model::pandar_xt32},
-    {26, Model::pandar_xt16}, {32, Model::qt128c2x},   {38, Model::pandar_xt32m2x},
-};
-}  // namespace
-
 Model model_from_product_number(std::uint8_t number) noexcept {
-  for (const ProductNumber& p : kProductNumbers)
-    if (p.number == number) return p.model;
+  for (std::size_t i = 1; i < kModelCount && number != 255; ++i)
+    if (ptc_product_number(static_cast<Model>(i)) == number) return static_cast<Model>(i);
   return Model::unknown;
 }
 
-std::uint8_t product_number(Model model) noexcept {
-  for (const ProductNumber& p : kProductNumbers)
-    if (p.model == model) return p.number;
-  return 255;
-}
+std::uint8_t product_number(Model model) noexcept { return ptc_product_number(model); }
 
 Error parse_inventory(ByteView payload, Inventory& out) noexcept {
   if (payload.size < kInvCommonBytes) return Error::ptc_payload_length;
