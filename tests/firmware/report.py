@@ -80,7 +80,7 @@ DOUBLE_ROUTINE = re.compile(r'^(__aeabi_d\w+|__aeabi_\w+2d|__\w+df\d?)$')
 # new source file cannot drop out of the report.
 COMPONENTS = [
     ('sensors/: identify, validate, decode (every sensor)', 'sensors',
-     ['decoder', 'pandar40', 'pandar64', 'qt128', 'qt64', 'xt', 'tables', 'columns_x86', 'columns_neon']),
+     ['decoder', 'pandar40', 'pandar64', 'qt128', 'qt64', 'xt', 'registry', 'tables', 'columns_x86', 'columns_neon']),
     ('base/: error names, x86-64 CPU features', 'base', ['error', 'cpu_x86']),
     ('crc/: CRC-32/MPEG-2', 'crc', ['crc32', 'crc32_arm', 'crc32_x86']),
     ('crypto/: SHA-256 + HMAC-SHA256', 'crypto', ['sha256', 'hmac', 'ct']),

@@ -19,6 +19,8 @@ namespace hesai {
 namespace {
 
 constexpr std::size_t kGpsBytes = 512;
+// Both GPS layouts start FF EE, as the Pandar40 family's first block does (p.size >= 4).
+bool is_gps(ByteView p) { return p[0] == 0xFF && p[1] == 0xEE && p.size == kGpsBytes; }
 /// Largest firing-time offset accepted, us: well beyond any block period of the manuals
 /// (55.56 us Pandar, 111.11 us QT128); keeps the ns value in range of an int32.
 constexpr double kMaxFiretimeUs = 1000.0;
@@ -29,8 +31,7 @@ Error identify(ByteView p, Model& model, PacketKind& kind) noexcept {
   model = Model::unknown;
   kind = PacketKind::point_cloud;
   if (p.size < 4) return Error::bad_length;
-  // A GPS packet: both GPS layouts start FF EE, as the Pandar40 family's first block does.
-  if (p[0] == 0xFF && p[1] == 0xEE && p.size == kGpsBytes) {
+  if (is_gps(p)) {
     kind = PacketKind::gps;
     return Error::ok;
   }
@@ -311,7 +312,10 @@ Error Decoder::validate(ByteView payload, PacketInfo& info) noexcept {
   info = PacketInfo{};
   Model m = Model::unknown;
   PacketKind kind = PacketKind::point_cloud;
-  const Error e = identify(payload, m, kind);
+  // The decoder's own sensor first, where identify() would ask each in turn: the same answer.
+  const SensorDescriptor* own = sensor_of(model_);
+  const bool own_header = own != nullptr && payload.size >= 4 && !is_gps(payload) && own->claims(payload);
+  const Error e = own_header ? own->identify(payload, m) : identify(payload, m, kind);
   if (e != Error::ok) return e;
   if (kind != PacketKind::point_cloud || m != model_) return Error::model_mismatch;
   info.model = m;

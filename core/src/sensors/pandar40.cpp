@@ -14,7 +14,6 @@ namespace hesai {
 
 namespace {
 struct Pandar40Family;  // this file's SensorCode
-constexpr Model kModels[] = {Model::pandar40, Model::pandar40p};
 constexpr std::int64_t kUsPerHour = 3600LL * 1000000;
 constexpr auto kBlockNs = detail::block_ns(tables::pandar40_block_end_us_single, tables::pandar40_block_end_us_dual);
 }  // namespace
@@ -40,7 +39,7 @@ using Pandar40Code = SensorCode<Pandar40Family>;
 
 extern const SensorDescriptor kPandar40Sensor;
 const SensorDescriptor kPandar40Sensor = {
-    kModels, 2, Pandar40Code::claims, Pandar40Code::identify, Pandar40Code::design, Pandar40Code::validate,
+    Pandar40Code::claims, Pandar40Code::identify, Pandar40Code::design, Pandar40Code::validate,
     Pandar40Code::walk, Pandar40Code::sequence_at, nullptr, /*firing_loops=*/1, /*min_distance=*/1};
 
 Error Pandar40Code::identify(ByteView p, Model& model) noexcept {

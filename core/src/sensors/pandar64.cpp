@@ -13,7 +13,6 @@ namespace hesai {
 
 namespace {
 struct Pandar64Tag;  // this file's SensorCode
-constexpr Model kModels[] = {Model::pandar64};
 constexpr auto kBlockNs = detail::block_ns(tables::pandar64_block_end_us_single, tables::pandar64_block_end_us_dual);
 // Pandar64 App. B.3: block 1 of 6 ends at t0 - 42.58 - 55.56 x 5 us, or x 2 in dual return.
 static_assert(kBlockNs[0][0] == -320380 && kBlockNs[1][0] == -153700);
@@ -55,7 +54,7 @@ using Pandar64Code = SensorCode<Pandar64Tag>;
 
 extern const SensorDescriptor kPandar64Sensor;
 const SensorDescriptor kPandar64Sensor = {
-    kModels, 1, Pandar64Code::claims, Pandar64Code::identify, Pandar64Code::design, Pandar64Code::validate,
+    Pandar64Code::claims, Pandar64Code::identify, Pandar64Code::design, Pandar64Code::validate,
     Pandar64Code::walk, Pandar64Code::sequence_at, nullptr, /*firing_loops=*/1, /*min_distance=*/1};
 
 Error Pandar64Code::identify(ByteView p, Model& model) noexcept {

@@ -20,7 +20,6 @@ namespace hesai {
 namespace {
 
 struct Qt128Tag;  // this file's SensorCode
-constexpr Model kModels[] = {Model::qt128c2x};
 
 constexpr auto kBlockNs = detail::block_ns(tables::qt128_block_start_us_single, tables::qt128_block_start_us_dual);
 static_assert(kBlockNs[0][1] == 120110 && kBlockNs[1][1] == 9000);
@@ -108,7 +107,7 @@ using Qt128Code = SensorCode<Qt128Tag>;
 
 extern const SensorDescriptor kQt128Sensor;
 const SensorDescriptor kQt128Sensor = {
-    kModels, 1, Qt128Code::claims, Qt128Code::identify, Qt128Code::design, Qt128Code::validate, Qt128Code::walk,
+    Qt128Code::claims, Qt128Code::identify, Qt128Code::design, Qt128Code::validate, Qt128Code::walk,
     Qt128Code::sequence_at, qt128::seal, /*firing_loops=*/2, /*min_distance=*/2};  // distance 1 is a marker
 
 Error Qt128Code::identify(ByteView p, Model& model) noexcept {

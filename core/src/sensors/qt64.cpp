@@ -15,7 +15,6 @@ namespace hesai {
 
 namespace {
 struct Qt64Tag;  // this file's SensorCode
-constexpr Model kModels[] = {Model::pandar_qt64};
 constexpr auto kBlockNs = detail::block_ns(tables::qt64_block_start_us_single, tables::qt64_block_start_us_dual);
 // SDK: 25 710 + {0, 166 670, 333 330, 500 000} ns by firing; dual return, two blocks a firing.
 static_assert(kBlockNs[0][1] == 192380 && kBlockNs[0][3] == 525710 && kBlockNs[1][1] == 25710 &&
@@ -43,7 +42,7 @@ using Qt64Code = SensorCode<Qt64Tag>;
 
 extern const SensorDescriptor kQt64Sensor;
 const SensorDescriptor kQt64Sensor = {
-    kModels, 1, Qt64Code::claims, Qt64Code::identify, Qt64Code::design, Qt64Code::validate, Qt64Code::walk,
+    Qt64Code::claims, Qt64Code::identify, Qt64Code::design, Qt64Code::validate, Qt64Code::walk,
     Qt64Code::sequence_at, nullptr, /*firing_loops=*/1, /*min_distance=*/1};
 
 Error Qt64Code::identify(ByteView p, Model& model) noexcept {

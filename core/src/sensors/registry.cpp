@@ -12,20 +12,53 @@ extern const SensorDescriptor kQt64Sensor;      // qt64.cpp: PandarQT64
 extern const SensorDescriptor kXtSensor;        // xt.cpp: PandarXT16, XT32, XT32M2X
 
 namespace {
-constexpr const SensorDescriptor* kSensors[] = {&kPandar40Sensor, &kPandar64Sensor, &kQt128Sensor, &kQt64Sensor,
-                                                &kXtSensor};
+
+// One line per sensor file: its descriptor and the models it decodes.
+struct Entry {
+  const SensorDescriptor* sensor;
+  Model models[3];  // Model::unknown after the last
+};
+constexpr Entry kSensors[] = {
+    {&kPandar40Sensor, {Model::pandar40, Model::pandar40p}},
+    {&kPandar64Sensor, {Model::pandar64}},
+    {&kQt128Sensor, {Model::qt128c2x}},
+    {&kQt64Sensor, {Model::pandar_qt64}},
+    {&kXtSensor, {Model::pandar_xt16, Model::pandar_xt32, Model::pandar_xt32m2x}},
+};
+
+// The same by model, for a lookup in one step; every model of model_list.h has exactly one sensor.
+struct ByModel {
+  const SensorDescriptor* sensor[kModelCount] = {};
+  std::size_t claimed[kModelCount] = {};
+};
+constexpr ByModel by_model() {
+  ByModel t;
+  for (const Entry& e : kSensors)
+    for (const Model m : e.models)
+      if (m != Model::unknown) {
+        t.sensor[static_cast<std::size_t>(m)] = e.sensor;
+        ++t.claimed[static_cast<std::size_t>(m)];
+      }
+  return t;
+}
+constexpr ByModel kByModel = by_model();
+constexpr bool every_model_has_one_sensor() {
+  for (std::size_t m = 1; m < kModelCount; ++m)
+    if (kByModel.claimed[m] != 1) return false;
+  return kByModel.claimed[0] == 0;
+}
+static_assert(every_model_has_one_sensor(), "registry.cpp: every model of model_list.h needs one line's sensor");
+
 }  // namespace
 
 const SensorDescriptor* sensor_of(Model model) noexcept {
-  for (const SensorDescriptor* s : kSensors)
-    for (std::size_t i = 0; i < s->model_count; ++i)
-      if (s->models[i] == model) return s;
-  return nullptr;
+  const auto i = static_cast<std::size_t>(model);
+  return i < kModelCount ? kByModel.sensor[i] : nullptr;
 }
 
 const SensorDescriptor* sensor_claiming(ByteView p) noexcept {
-  for (const SensorDescriptor* s : kSensors)
-    if (s->claims(p)) return s;
+  for (const Entry& e : kSensors)
+    if (e.sensor->claims(p)) return e.sensor;
   return nullptr;
 }
 

@@ -9,7 +9,8 @@
 // (the design-table set-up and the hand-over of a packet's blocks to the per-point code).
 //
 // Adding a sensor: its line in hesai/model_list.h, its file here with its descriptor, one line
-// in registry.cpp, and its tests (docs/DESIGN.md).
+// in registry.cpp (its descriptor and models; a model without one does not compile), and its
+// tests (docs/DESIGN.md).
 #pragma once
 
 #include <array>
@@ -31,9 +32,6 @@ struct BlockRef;  // one block of a packet for the per-point code (columns_simd.
 
 /// One sensor's code, as the registry lists it.
 struct SensorDescriptor {
-  /// The models this file decodes (Pandar40 and 40P; the three of the XT family), `model_count` of them.
-  const Model* models;
-  std::size_t model_count;
   /// True when a payload of at least 4 bytes carries this sensor's magic and protocol bytes: its
   /// identify() then decides, and no other sensor's (the families' headers do not overlap).
   bool (*claims)(ByteView p) noexcept;
@@ -55,8 +53,9 @@ struct SensorDescriptor {
   std::uint16_t min_distance;
 };
 
-/// The registry (registry.cpp): the descriptor of `model`'s file (nullptr for unknown), and the
-/// descriptor whose claims() holds for a payload (nullptr: no sensor's header).
+/// The registry (registry.cpp, which also names the models each file decodes): the descriptor of
+/// `model`'s file (nullptr for unknown), and the descriptor whose claims() holds for a payload
+/// (nullptr: no sensor's header).
 const SensorDescriptor* sensor_of(Model model) noexcept;
 const SensorDescriptor* sensor_claiming(ByteView p) noexcept;
 

@@ -18,7 +18,6 @@ namespace hesai {
 namespace {
 
 struct XtFamily;  // this file's SensorCode
-constexpr Model kModels[] = {Model::pandar_xt16, Model::pandar_xt32, Model::pandar_xt32m2x};
 
 constexpr std::int32_t kFiringPeriodNs = detail::round_to_int(tables::xt_firing_period_us * 1000.0);
 static_assert(kFiringPeriodNs == 50000);
@@ -73,7 +72,7 @@ using XtCode = SensorCode<XtFamily>;
 
 extern const SensorDescriptor kXtSensor;
 const SensorDescriptor kXtSensor = {
-    kModels, 3, XtCode::claims, XtCode::identify, XtCode::design, XtCode::validate, XtCode::walk, XtCode::sequence_at,
+    XtCode::claims, XtCode::identify, XtCode::design, XtCode::validate, XtCode::walk, XtCode::sequence_at,
     nullptr, /*firing_loops=*/1, /*min_distance=*/1};
 
 Error XtCode::identify(ByteView p, Model& model) noexcept {
