@@ -17,11 +17,11 @@
 #include "hesai/crc32.h"
 #include "hesai/decoder.h"
 #include "hesai/hmac.h"
-#include "hesai/pandar40_packet.h"
-#include "hesai/pandar64_packet.h"
-#include "hesai/qt128_packet.h"
-#include "hesai/qt64_packet.h"
-#include "hesai/xt_packet.h"
+#include "hesai/detail/pandar40_packet.h"
+#include "hesai/detail/pandar64_packet.h"
+#include "hesai/detail/qt128_packet.h"
+#include "hesai/detail/qt64_packet.h"
+#include "hesai/detail/xt_packet.h"
 #include "hesai/sha256.h"
 
 #ifdef HESAI_BENCH_OPENSSL

@@ -8,7 +8,7 @@
 
 #include "fuzz_common.h"
 #include "hesai/calibration.h"
-#include "hesai/qt128_packet.h"
+#include "hesai/detail/qt128_packet.h"
 
 namespace {
 

@@ -4,7 +4,7 @@
 #include <cstdint>
 
 #include "fuzz_common.h"
-#include "hesai/qt128_packet.h"
+#include "hesai/detail/qt128_packet.h"
 
 namespace {
 

@@ -36,7 +36,7 @@ def crc32_mpeg2(data, crc=0xFFFFFFFF):
     return crc
 
 
-# QT128C2X protocol 3.2 layout (core/include/hesai/qt128_packet.h).
+# QT128C2X protocol 3.2 layout (core/include/hesai/detail/qt128_packet.h).
 QT_BODY_END, QT_FS, QT_TAIL = 1044, 17, 26
 
 
@@ -157,7 +157,7 @@ def main():
     write('qt128', 'unix_time_3byte', qt128_with_flags(qt[0], 0x0D, unix_time=1602245009))
     write('qt128', 'fs_fault', qt128_with_flags(qt[6], 0x05, fs=fix_fs_crc(bytes([1, 2, 0x11, 0x34, 0x12]) + bytes(8) + bytes(4))))
 
-    # PandarQT64, protocol 3.1 (core/include/hesai/qt64_packet.h): tail at 1044, flags byte 11.
+    # PandarQT64, protocol 3.1 (core/include/hesai/detail/qt64_packet.h): tail at 1044, flags byte 11.
     q64 = payloads('pandar_qt64.pcap')
     for i, p in enumerate(pick(q64, 3)):
         write('qt64', 'real_%d' % i, p)
@@ -281,7 +281,7 @@ def main():
         qt_fs(qt[0], 600000, 1, 0, 2), qt_fs(qt[1], 610000, 1, 0, 2), qt_fs(qt[2], 621000, 2, 1, 2, (2, 1, 0x0102)),
         qt_fs(qt[3], 625000, 4, 2, 2, (2, 2, 0x0304)), qt_fs(qt[4], 100000, 6, 3, 3), qt_fs(qt[5], 200000, 7, 0, 3)]))
 
-    # PandarXT16/XT32/XT32M2X, protocol 6.1 (core/include/hesai/xt_packet.h): real packets, cuts,
+    # PandarXT16/XT32/XT32M2X, protocol 6.1 (core/include/hesai/detail/xt_packet.h): real packets, cuts,
     # every return mode of the family on the XT32M2X (triple with its block azimuths in threes),
     # the Unix-seconds date-time (year byte 0) and the sequence flag clear; frames across a gap.
     xts = {n: payloads('pandar_%s.pcap' % n) for n in ('xt16', 'xt32', 'xt32m2x')}

@@ -11,7 +11,7 @@
 #include "hesai/bytes.h"
 #include "hesai/hmac.h"
 #include "hesai/model.h"
-#include "hesai/qt128_packet.h"
+#include "hesai/detail/qt128_packet.h"
 
 namespace hesai_test {
 

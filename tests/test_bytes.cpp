@@ -8,7 +8,7 @@
 #include "hesai/bytes.h"
 #include "hesai/civil_time.h"
 #include "hesai/error.h"
-#include "hesai/math.h"
+#include "hesai/detail/math.h"
 
 using namespace hesai;
 

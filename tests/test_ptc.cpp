@@ -11,7 +11,7 @@
 #include "hesai/decoder.h"
 #include "hesai/hkdf.h"
 #include "hesai/ptc.h"
-#include "hesai/qt128_packet.h"
+#include "hesai/detail/qt128_packet.h"
 #include "test_support.h"
 
 namespace {

@@ -14,7 +14,7 @@
 
 #include "hesai/calibration.h"
 #include "hesai/decoder.h"
-#include "hesai/tables/pandar64_tables.h"
+#include "hesai/detail/tables/pandar64_tables.h"
 #include "packet_builder.h"
 #include "test_support.h"
 

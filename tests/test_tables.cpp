@@ -11,10 +11,10 @@
 #include <string>
 #include <vector>
 
-#include "hesai/tables/block_times.h"
-#include "hesai/tables/pandar40_tables.h"
-#include "hesai/tables/pandar64_tables.h"
-#include "hesai/tables/qt128_tables.h"
+#include "hesai/detail/tables/block_times.h"
+#include "hesai/detail/tables/pandar40_tables.h"
+#include "hesai/detail/tables/pandar64_tables.h"
+#include "hesai/detail/tables/qt128_tables.h"
 #include "pandar64_manual.h"
 
 namespace {

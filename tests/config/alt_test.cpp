@@ -14,7 +14,7 @@
 #include "hesai/decoder.h"
 #include "hesai/hkdf.h"
 #include "hesai/hmac.h"
-#include "hesai/qt128_packet.h"
+#include "hesai/detail/qt128_packet.h"
 #include "hesai/sha256.h"
 #include "../test_support.h"
 

@@ -85,7 +85,7 @@ pts['qt64 ch10'] = point(27, 4, 10.20, 6.554, -34.320, 21.22, 600, QT64_T0, 25.7
 pts['qt64 ch54'] = point(1246, 4, 10.20, -5.740, 32.627, 115.49, 600, QT64_T0, 25.71 + 166.67)
 # PandarXT16, XT32, XT32M2X (point cloud protocol 6.1; no manual among the seeds: layout from the
 # vendor SDK's udp_protocol_v6_1.h, block timing from its udp6_1_parser.cc, design tables from
-# core/include/hesai/tables/xt_tables.h with their sources). Tail: return mode +10, rpm +11,
+# core/include/hesai/detail/tables/xt_tables.h with their sources). Tail: return mode +10, rpm +11,
 # date-time +13 (year - 1900), timestamp +19. Dual return: the 4 (XT16, XT32) or 3 (XT32M2X)
 # firings of a packet are 50 us apart, the last at t0; block pairs share one firing. Design
 # azimuth offsets are 0.

@@ -18,7 +18,7 @@
 #include <cstdint>
 
 #include "hesai/bytes.h"
-#include "hesai/decimal.h"  // parse_decimal(), which the parsers use for every number
+#include "hesai/detail/decimal.h"  // parse_decimal(), which the parsers use for every number
 #include "hesai/error.h"
 #include "hesai/model.h"
 

@@ -80,6 +80,26 @@ enum class PacketKind : std::uint8_t { point_cloud, gps };
 /// packet (and for GPS packets); identify()'s errors for a payload it does not recognise.
 [[nodiscard]] Error write_udp_sequence(std::uint8_t* payload, std::size_t size, std::uint32_t sequence) noexcept;
 
+namespace qt128 {
+/// Rewrites CRC1 (body), CRC2 (functional safety, when present) and CRC3 (tail) of a QT128
+/// packet from its bytes, where the layout of its header's laser num and flags puts them: for tools
+/// that change a field (a replayer renumbering the UDP sequence, a test building packets). The
+/// signature, when present, is left as it is (it no longer verifies once a signed byte changed).
+/// Error::bad_length (nothing written) when `size` is not the length the header implies;
+/// Error::bad_magic when the packet does not start with EE FF.
+Error seal(std::uint8_t* payload, std::size_t size) noexcept;
+
+/// Writes the signature of a QT128 packet whose flags announce one (bit 3): HMAC-SHA256 under the
+/// 32-byte session key of every byte before the signature (QT128C2X manual 3.1.2 and 4.9.3): what
+/// a sensor does once a signature session started, for a tool that stands in for one. The CRCs are
+/// not touched (they do not cover the signature). Error::bad_length (nothing written) when `size`
+/// is not the length the header implies, Error::bad_magic without EE FF, Error::signature_missing
+/// when the flags announce no signature, Error::unsupported_feature in a core built with
+/// HESAI_SIGNATURE 0.
+Error sign(std::uint8_t* payload, std::size_t size, const std::uint8_t key[32]) noexcept;
+
+}  // namespace qt128
+
 /// Return-mode bytes of the manuals.
 enum class ReturnMode : std::uint8_t {
   first = 0x33,                   ///< QT128

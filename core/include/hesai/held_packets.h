@@ -12,11 +12,11 @@
 #include <cstring>
 
 #include "hesai/bytes.h"
-#include "hesai/pandar40_packet.h"
-#include "hesai/pandar64_packet.h"
-#include "hesai/qt128_packet.h"
-#include "hesai/qt64_packet.h"
-#include "hesai/xt_packet.h"
+#include "hesai/detail/pandar40_packet.h"
+#include "hesai/detail/pandar64_packet.h"
+#include "hesai/detail/qt128_packet.h"
+#include "hesai/detail/qt64_packet.h"
+#include "hesai/detail/xt_packet.h"
 
 namespace hesai {
 

@@ -1,11 +1,11 @@
-// Decimal text to the nearest double, without the C library (hesai/decimal.h).
+// Decimal text to the nearest double, without the C library (hesai/detail/decimal.h).
 //
 // The significant digits (at most 19, more are dropped) form an integer m; the value is
 // m * 10^e10. When m <= 2^53 and |e10| <= 22, m and 10^|e10| are exact doubles and one IEEE
 // multiplication or division gives the nearest double. Otherwise the product or quotient is
 // formed in double-double arithmetic (about 104 bits: Dekker's error-free transformations)
 // and rounded once at the end, which is within 1 ulp, and the nearest outside near-halfway cases.
-#include "hesai/decimal.h"
+#include "hesai/detail/decimal.h"
 
 #include <array>
 #include <cstdint>

@@ -15,7 +15,7 @@
 #include "hesai/hkdf.h"
 #include "hesai/model.h"
 #include "hesai/point.h"
-#include "hesai/tables/qt128_tables.h"
+#include "hesai/detail/tables/qt128_tables.h"
 
 namespace {
 

@@ -16,7 +16,7 @@
 #include "../base/compiler.h"
 #include "columns_simd.h"
 #include "hesai/decoder.h"
-#include "hesai/math.h"
+#include "hesai/detail/math.h"
 #include "sensor.h"
 
 namespace hesai {

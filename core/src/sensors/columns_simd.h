@@ -15,7 +15,7 @@
 
 #include "../base/compiler.h"
 #include "hesai/decoder.h"
-#include "hesai/math.h"
+#include "hesai/detail/math.h"
 #include "hesai/point.h"
 
 #if defined(__x86_64__) && HESAI_GNU

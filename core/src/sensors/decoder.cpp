@@ -6,7 +6,7 @@
 
 #include <cstring>
 
-#include "hesai/math.h"
+#include "hesai/detail/math.h"
 #include "../base/compiler.h"
 #include "block_points.h"
 #include "columns_simd.h"

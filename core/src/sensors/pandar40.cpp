@@ -1,10 +1,10 @@
 // Pandar40 (1256-byte packets) and Pandar40P (1262, or 1266 with UDP sequence): identification,
 // validation (and the Pandar40's hour-relative time) and the walk over their ten blocks.
-// Layout: hesai/pandar40_packet.h; tables: hesai/tables/pandar40_tables.h.
+// Layout: hesai/detail/pandar40_packet.h; tables: hesai/detail/tables/pandar40_tables.h.
 #include "hesai/decoder.h"
-#include "hesai/pandar40_packet.h"
-#include "hesai/tables/block_times.h"
-#include "hesai/tables/pandar40_tables.h"
+#include "hesai/detail/pandar40_packet.h"
+#include "hesai/detail/tables/block_times.h"
+#include "hesai/detail/tables/pandar40_tables.h"
 #include "block_points.h"
 #include "field_checks.h"
 #include "sensor.h"

@@ -1,9 +1,9 @@
 // Pandar64 (1194-byte packets, 1198 with UDP sequence): identification, validation and the
-// walk over its six blocks. Layout: hesai/pandar64_packet.h; tables: hesai/tables/pandar64_tables.h.
+// walk over its six blocks. Layout: hesai/detail/pandar64_packet.h; tables: hesai/detail/tables/pandar64_tables.h.
 #include "hesai/decoder.h"
-#include "hesai/pandar64_packet.h"
-#include "hesai/tables/block_times.h"
-#include "hesai/tables/pandar64_tables.h"
+#include "hesai/detail/pandar64_packet.h"
+#include "hesai/detail/tables/block_times.h"
+#include "hesai/detail/tables/pandar64_tables.h"
 #include "block_points.h"
 #include "field_checks.h"
 #include "sensor.h"

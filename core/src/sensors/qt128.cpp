@@ -2,14 +2,14 @@
 // flags imply), the channel configuration for customised packets, validation (the three CRCs,
 // the signature, then the fields) and the walk over its two blocks with their firing sequences;
 // and qt128::seal, which writes the CRCs validation checks.
-// Layout: hesai/qt128_packet.h; tables: hesai/tables/qt128_tables.h.
+// Layout: hesai/detail/qt128_packet.h; tables: hesai/detail/tables/qt128_tables.h.
 #include "hesai/crc32.h"
 #include "hesai/ct.h"
 #include "hesai/hmac.h"
 #include "hesai/decoder.h"
-#include "hesai/qt128_packet.h"
-#include "hesai/tables/block_times.h"
-#include "hesai/tables/qt128_tables.h"
+#include "hesai/detail/qt128_packet.h"
+#include "hesai/detail/tables/block_times.h"
+#include "hesai/detail/tables/qt128_tables.h"
 #include "block_points.h"
 #include "field_checks.h"
 #include "sensor.h"

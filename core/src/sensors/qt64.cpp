@@ -1,11 +1,11 @@
 // PandarQT64, point cloud protocol 3.1: identification (version, laser and block numbers, and the
 // length the flags imply), validation of every field with a published rule, and the walk over its
-// four blocks. Layout: hesai/qt64_packet.h; tables: hesai/tables/qt64_tables.h. Sources: the
+// four blocks. Layout: hesai/detail/qt64_packet.h; tables: hesai/detail/tables/qt64_tables.h. Sources: the
 // vendor SDK (HesaiLidar_SDK_2.0 ea7f86f: udp_protocol_v3_1.h, udp3_1_parser.cc), tier4/nebula
 // (606ac41f: pandar_qt64.hpp, hesai_packet.hpp), and the bundled capture data/pandar_qt64.pcap.
 #include "hesai/decoder.h"
-#include "hesai/qt64_packet.h"
-#include "hesai/tables/qt64_tables.h"
+#include "hesai/detail/qt64_packet.h"
+#include "hesai/detail/tables/qt64_tables.h"
 #include "block_points.h"
 #include "field_checks.h"
 #include "sensor.h"

@@ -1,13 +1,13 @@
 // PandarXT16, PandarXT32 and PandarXT32M2X, point cloud protocol 6.1: identification (laser and
 // block numbers, the length they imply), validation and the walk over their blocks.
-// Layout: hesai/xt_packet.h; tables: hesai/tables/xt_tables.h. Sources: the vendor SDK
+// Layout: hesai/detail/xt_packet.h; tables: hesai/detail/tables/xt_tables.h. Sources: the vendor SDK
 // (HesaiLidar_SDK_2.0, ea7f86f: udp_protocol_v6_1.h, UdpParser/src/udp6_1_parser.cc) and
 // tier4/nebula (606ac41f: pandar_xt16.hpp, pandar_xt32.hpp, pandar_xt32m.hpp, hesai_common.hpp),
 // confirmed on the bundled captures. Not implemented: the SDK's optional optical-centre distance
 // correction (distance_correction_flag, off by default in the SDK) and its XTM1 spot correction.
 #include "hesai/decoder.h"
-#include "hesai/tables/xt_tables.h"
-#include "hesai/xt_packet.h"
+#include "hesai/detail/tables/xt_tables.h"
+#include "hesai/detail/xt_packet.h"
 #include "block_points.h"
 #include "field_checks.h"
 #include "sensor.h"

@@ -15,11 +15,7 @@
 #include <vector>
 
 #include "hesai/ct.h"
-#include "hesai/pandar40_packet.h"
 #include "hesai/ptc.h"
-#include "hesai/pandar64_packet.h"
-#include "hesai/qt128_packet.h"
-#include "hesai/xt_packet.h"
 #include "hesai_port/capture.h"
 #include "hesai_port/udp.h"
 #include "commands.h"

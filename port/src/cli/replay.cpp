@@ -8,7 +8,6 @@
 
 #include "hesai/ct.h"
 #include "hesai/decoder.h"
-#include "hesai/qt128_packet.h"
 #include "hesai_port/capture.h"
 #include "hesai_port/ptc_server.h"
 #include "hesai_port/udp.h"

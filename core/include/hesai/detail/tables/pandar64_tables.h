@@ -5,7 +5,7 @@
 #include <cstddef>
 #include <cstdint>
 
-#include "hesai/tables/table_types.h"
+#include "hesai/detail/tables/table_types.h"
 
 namespace hesai::tables {
 
@@ -162,7 +162,7 @@ static_assert(detail::each_channel_once<pandar64_channel_count>(pandar64_fire_ro
 static_assert(detail::rows_ascending(pandar64_fire_rows));
 
 /// Firing-time offset of each channel in us, index = channel - 1: channel n of block m fires at
-/// t = T_end(m) + pandar64_firetime_us[n - 1], T_end(m) from hesai/tables/block_times.h
+/// t = T_end(m) + pandar64_firetime_us[n - 1], T_end(m) from hesai/detail/tables/block_times.h
 /// (manual App. B.4: t(m, n) = T(m) + dt(n)). All values are negative.
 inline constexpr std::array<double, 64> pandar64_firetime_us =
     detail::fire_offsets_by_channel<pandar64_channel_count>(pandar64_fire_rows, 1.0);

@@ -14,7 +14,7 @@
 #include <cstddef>
 #include <cstdint>
 
-#include "hesai/tables/table_types.h"
+#include "hesai/detail/tables/table_types.h"
 
 namespace hesai::tables {
 
@@ -133,7 +133,7 @@ static_assert(detail::rows_ascending(pandar40_fire_rows));
 
 /// Firing-time offset of each channel in us, index = channel - 1, normalised like the Pandar64:
 /// channel n of block m fires at t = T_end(m) + pandar40_firetime_us[n - 1], T_end(m) from
-/// hesai/tables/block_times.h. These are the manual's subtracted values, negated (all < 0).
+/// hesai/detail/tables/block_times.h. These are the manual's subtracted values, negated (all < 0).
 inline constexpr std::array<double, 40> pandar40_firetime_us =
     detail::fire_offsets_by_channel<pandar40_channel_count>(pandar40_fire_rows, -1.0);
 static_assert(pandar40_firetime_us.size() == pandar40_channel_count);

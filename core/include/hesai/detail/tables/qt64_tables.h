@@ -7,7 +7,7 @@
 #include <array>
 #include <cstddef>
 
-#include "hesai/tables/block_times.h"
+#include "hesai/detail/tables/block_times.h"
 
 namespace hesai::tables {
 

@@ -120,21 +120,6 @@ static_assert(Layout::from_header(128, 0x0D).crc1 == 12 + 772 && Layout::from_he
 // 80 customised channels of 4 bytes (0x5D): 2 x (2 + 80 x 4) = 644 body bytes, 1127 - 384 = 743.
 static_assert(Layout::from_header(80, 0x5D).total == 743);
 
-/// Rewrites CRC1 (body), CRC2 (functional safety, when present) and CRC3 (tail) of a QT128
-/// packet from its bytes, where the layout of its header's laser num and flags puts them: for tools
-/// that change a field (a replayer renumbering the UDP sequence, a test building packets). The
-/// signature, when present, is left as it is (it no longer verifies once a signed byte changed).
-/// Error::bad_length (nothing written) when `size` is not the length the header implies;
-/// Error::bad_magic when the packet does not start with EE FF.
-Error seal(std::uint8_t* payload, std::size_t size) noexcept;
-
-/// Writes the signature of a QT128 packet whose flags announce one (bit 3): HMAC-SHA256 under the
-/// 32-byte session key of every byte before the signature (QT128C2X manual 3.1.2 and 4.9.3): what
-/// a sensor does once a signature session started, for a tool that stands in for one. The CRCs are
-/// not touched (they do not cover the signature). Error::bad_length (nothing written) when `size`
-/// is not the length the header implies, Error::bad_magic without EE FF, Error::signature_missing
-/// when the flags announce no signature, Error::unsupported_feature in a core built with
-/// HESAI_SIGNATURE 0.
-Error sign(std::uint8_t* payload, std::size_t size, const std::uint8_t key[32]) noexcept;
+// qt128::seal() and qt128::sign(), which write what these fields check, are declared in hesai/decoder.h.
 
 }  // namespace hesai::qt128

@@ -1,7 +1,7 @@
 // Block time references of the Pandar40/40P, Pandar64 and QT128C2X, relative to the packet's
 // absolute time t0 (date-time + timestamp), in microseconds, as the manuals give them.
 // The firing time of a channel is this block time plus the channel's offset from the model's
-// firing-time table (hesai/tables/<model>_tables.h).
+// firing-time table (hesai/detail/tables/<model>_tables.h).
 //
 // Pandar40/40P and Pandar64 give block END times (the last firing of the block ends); QT128C2X
 // gives block START times (the first firing starts). In dual return the two blocks holding the

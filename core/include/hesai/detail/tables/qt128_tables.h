@@ -6,7 +6,7 @@
 #include <cstddef>
 #include <cstdint>
 
-#include "hesai/tables/table_types.h"
+#include "hesai/detail/tables/table_types.h"
 
 namespace hesai::tables {
 
@@ -351,7 +351,7 @@ static_assert(detail::qt_loop_avoids(qt128_fire_rows, 2, 33, 64), "bank B rests 
 
 /// Firing-time offset of each channel in firing sequence 1 (Loop1), in us, index = channel - 1:
 /// channel n of a block fired with sequence 1 fires at t = T_start + qt128_firetime_us_loop1[n-1],
-/// T_start from hesai/tables/block_times.h. Meaningful only where qt128_fires_in_loop1 is true
+/// T_start from hesai/detail/tables/block_times.h. Meaningful only where qt128_fires_in_loop1 is true
 /// (0 elsewhere).
 inline constexpr std::array<double, 128> qt128_firetime_us_loop1 = detail::qt_loop_times(qt128_fire_rows, 1);
 /// As qt128_firetime_us_loop1, for firing sequence 2 (Loop2).
