@@ -35,7 +35,7 @@
 //   at most kMaxPointsPerPacket (400) points. When the spin rate differs from the previous packet's
 //   (the first packet, a speed change), the per-rate cache is rebuilt first: at most 2 x 128
 //   channels of a few multiplications, no trigonometric call.
-// - Stack: under 1 KiB per call on Cortex-M (README, "Bare metal": measured and from the call graph).
+// - Stack: under 1 KiB per call on Cortex-M (docs/FIRMWARE.md: measured and from the call graph).
 //
 // Memory (the caller owns every object; the core has no static RAM but the one CPUID byte on
 // x86-64; sizes checked by static_assert in tests/test_contract.cpp on every CI target, 32- and
@@ -358,7 +358,7 @@ class Decoder {
 #endif
 };
 
-// The budget for a decoder context, also what a firmware image can afford per sensor.
+// The budget for a decoder context: what a firmware image can afford per sensor.
 static_assert(sizeof(Decoder) <= 8 * 1024, "decoder state must stay within 8 KiB");
 
 }  // namespace hesai

@@ -41,7 +41,7 @@ const char* const kDecodeOptionsHelp =
     "                          nonlinear mapping (manual Appendix D) as a percentage\n"
     "  --no-firetime-azimuth   do not add firing time x spin rate to each point's azimuth\n"
     "  --rotation auto|cw|ccw  direction the sensor spins (default auto: detected per sensor from\n"
-    "                          its block azimuths; clockwise until known, see README)\n"
+    "                          its block azimuths; clockwise until known, see docs/CLI.md)\n"
     "  --packets FIRST:END     keep point-cloud packets FIRST <= index < END (0-based)\n"
     "  --cut-angle DEG         azimuth where a frame ends (default 0)\n"
     "  --fov START:END         keep points with START <= azimuth < END (degrees, may wrap)\n"
@@ -58,7 +58,7 @@ const char* const kKeyOptionsHelp =
     "  --allow-unsigned        with a key, accept packets that carry no signature\n";
 const char* const kOutputOptionsHelp =
     "  --format csv|pcd|ply|png|mcap  output format (default csv); mcap: a ROS 2 bag of one\n"
-    "                          sensor_msgs/PointCloud2 per frame (see README)\n"
+    "                          sensor_msgs/PointCloud2 per frame (see docs/CLI.md)\n"
     "  --out PATH              output file ('-' = stdout for csv); a directory with --per-frame\n"
     "  --per-frame             one file per frame in --out: frame_000001.pcd, ...\n"
     "  --png-range M           PNG: metres from the sensor to the image edge (default 60)\n"
