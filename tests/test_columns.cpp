@@ -228,6 +228,27 @@ TEST(Columns, PointsVectorPathEqualsScalarOnEveryCapture) {
     ASSERT_EQ(dec.decode(view(v), info, b, DecodePath::best), Error::ok);
     expect_same_point_fields(a, b, "3-byte units, packet " + std::to_string(i));
   }
+  // QT128 confidence bytes, all 0 in the capture: a different one in each unit of a block (not
+  // in the resting channels' units, which must stay 0).
+  std::size_t confident = 0;
+  for (std::size_t i = 0; i < 64; ++i) {
+    auto v = qt[i];
+    const auto l = qt128::Layout::from_header(v[qt128::kLaserNum], v[qt128::kFlags]);
+    ASSERT_EQ(l.unit, 4u);
+    for (std::size_t blk = 0; blk < qt128::kBlocks; ++blk) {
+      for (std::size_t j = 0; j < l.lasers; ++j) {
+        std::uint8_t* u = &v[qt128::kBody + blk * l.block + qt128::kBlockPoints + j * l.unit];
+        if ((u[0] | u[1] | u[2]) != 0) u[3] = static_cast<std::uint8_t>(1 + j + 128 * blk + i);
+      }
+    }
+    qt128_seal(v);
+    PacketInfo info;
+    ASSERT_EQ(dec.decode(view(v), info, a, DecodePath::portable), Error::ok);
+    ASSERT_EQ(dec.decode(view(v), info, b, DecodePath::best), Error::ok);
+    expect_same_point_fields(a, b, "confidence bytes, packet " + std::to_string(i));
+    for (std::size_t n = 0; n < a.count; ++n) confident += a.points[n].confidence != 0;
+  }
+  EXPECT_GT(confident, 0u);
 }
 
 // Storage sized per model: PacketColumns<max_points(model)> suffices; one element less is refused
