@@ -5,6 +5,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <string>
 #include <vector>
 
@@ -172,14 +174,26 @@ TEST(Columns, Qt128ThreeByteUnitsAndCustomisedChannels) {
   EXPECT_GT(points, 0u);
 }
 
-// Points by the vector path (AVX-512 or AVX2 on x86-64) and by the portable one: every field of every point.
+// The same bits (== would take -0 for +0).
+bool same_bits(float a, float b) {
+  std::uint32_t u, v;
+  std::memcpy(&u, &a, sizeof u);
+  std::memcpy(&v, &b, sizeof v);
+  return u == v;
+}
+
+// Points by the vector path (AVX-512 or AVX2 on x86-64, NEON on AArch64) and by the portable one:
+// every field of every point, the floats bit for bit.
 void expect_same_point_fields(const PacketPoints& a, const PacketPoints& b, const std::string& what) {
   ASSERT_EQ(a.count, b.count) << what;
   for (std::size_t i = 0; i < a.count; ++i) {
     const Point& p = a.points[i];
     const Point& q = b.points[i];
-    ASSERT_TRUE(p.x == q.x && p.y == q.y && p.z == q.z && p.distance_m == q.distance_m) << what << " point " << i;
-    ASSERT_TRUE(p.azimuth_deg == q.azimuth_deg && p.elevation_deg == q.elevation_deg) << what << " point " << i;
+    ASSERT_TRUE(same_bits(p.x, q.x) && same_bits(p.y, q.y) && same_bits(p.z, q.z) &&
+                same_bits(p.distance_m, q.distance_m))
+        << what << " point " << i;
+    ASSERT_TRUE(same_bits(p.azimuth_deg, q.azimuth_deg) && same_bits(p.elevation_deg, q.elevation_deg))
+        << what << " point " << i;
     ASSERT_EQ(p.time_ns, q.time_ns) << what << " point " << i;
     ASSERT_TRUE(p.intensity == q.intensity && p.channel == q.channel && p.return_index == q.return_index &&
                 p.confidence == q.confidence && p.block == q.block)
@@ -214,6 +228,27 @@ TEST(Columns, PointsVectorPathEqualsScalarOnEveryCapture) {
     ASSERT_EQ(dec.decode(view(v), info, b, DecodePath::best), Error::ok);
     expect_same_point_fields(a, b, "3-byte units, packet " + std::to_string(i));
   }
+  // QT128 confidence bytes, all 0 in the capture: a different one in each unit of a block (not
+  // in the resting channels' units, which must stay 0).
+  std::size_t confident = 0;
+  for (std::size_t i = 0; i < 64; ++i) {
+    auto v = qt[i];
+    const auto l = qt128::Layout::from_header(v[qt128::kLaserNum], v[qt128::kFlags]);
+    ASSERT_EQ(l.unit, 4u);
+    for (std::size_t blk = 0; blk < qt128::kBlocks; ++blk) {
+      for (std::size_t j = 0; j < l.lasers; ++j) {
+        std::uint8_t* u = &v[qt128::kBody + blk * l.block + qt128::kBlockPoints + j * l.unit];
+        if ((u[0] | u[1] | u[2]) != 0) u[3] = static_cast<std::uint8_t>(1 + j + 128 * blk + i);
+      }
+    }
+    qt128_seal(v);
+    PacketInfo info;
+    ASSERT_EQ(dec.decode(view(v), info, a, DecodePath::portable), Error::ok);
+    ASSERT_EQ(dec.decode(view(v), info, b, DecodePath::best), Error::ok);
+    expect_same_point_fields(a, b, "confidence bytes, packet " + std::to_string(i));
+    for (std::size_t n = 0; n < a.count; ++n) confident += a.points[n].confidence != 0;
+  }
+  EXPECT_GT(confident, 0u);
 }
 
 // Storage sized per model: PacketColumns<max_points(model)> suffices; one element less is refused
@@ -273,7 +308,8 @@ TEST(Columns, ErrorGivesNoPoints) {
 }  // namespace
 
 // The beam-direction cache rebuilt at a new spin rate (Decoder::update_spin) by each path's loop
-// (AVX-512, AVX2, scalar on x86-64) gives the same bits: three decoders, one per path, each
+// (AVX-512, AVX2, scalar on x86-64; the scalar loop on every path on AArch64, where the Points of
+// DecodePath::best are then written by NEON) gives the same bits: three decoders, one per path, each
 // rebuilding on every packet (the motor speed rewritten to (97 i) mod 1501 rpm, every accepted
 // rate from 0 to 1500 in turn), both rotations, the design angles and random angle offsets
 // over the accepted range (-360..360 degrees, so that every azimuth wrap is taken): every field

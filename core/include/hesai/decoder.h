@@ -194,15 +194,15 @@ enum class Reflectivity : std::uint8_t {
 };
 
 /// Which per-point code decode() runs: the best the CPU has (x86-64, chosen at run time from
-/// CPUID: AVX-512 where present, else AVX2; AArch64: NEON for columns), the portable scalar code
+/// CPUID: AVX-512 where present, else AVX2; AArch64: NEON), the portable scalar code
 /// every target has (the only one on Cortex-M), or `avx2`: the AVX2 code even where AVX-512 is
 /// present, for tests and benchmarks (elsewhere the same as `best`). Every path gives the same
 /// points: the same float operations in the same order (tests/test_columns.cpp).
 enum class DecodePath : std::uint8_t { best, portable, avx2 };
 /// Whether DecodePath::best runs vector code on this CPU.
 bool decode_simd_available() noexcept;
-/// The vector code DecodePath::best runs on this CPU: "avx512", "avx2", "neon" (columns; Points
-/// by the scalar loop) or "none".
+/// The vector code DecodePath::best runs on this CPU, for columns and Points: "avx512", "avx2",
+/// "neon" or "none".
 const char* decode_simd_name() noexcept;
 
 /// Decoder state for one sensor: per-channel geometry from the built-in tables or a

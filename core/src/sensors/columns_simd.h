@@ -5,7 +5,8 @@
 // multiply-add (tests/test_columns.cpp checks every point of every capture on every path).
 // - x86-64 (GNU compilers), chosen at run time from CPUID: AVX-512 (F, BW, DQ, VL) where present,
 //   else AVX2, for columns and Points (columns_x86.cpp).
-// - AArch64 (GNU compilers, little-endian): NEON for columns, at compile time (columns_neon.cpp).
+// - AArch64 (GNU compilers, little-endian): NEON for columns and Points, at compile time
+//   (columns_neon.cpp).
 // - Elsewhere (Cortex-M, ...): none; the scalar loops write every unit.
 #pragma once
 
@@ -148,7 +149,7 @@ inline constexpr std::size_t kSecond[2] = {8, 16};
 // `out` by value: stores through its byte columns may alias anything in memory but not a local
 // copy, whose pointers then stay in registers.
 bool columns_simd(const PacketConstants& k, DecodePath path, PointColumns out, std::size_t& count) noexcept;
-// The same as Points at out[count...] (x86-64 only so far: false on AArch64).
+// The same as Points at out[count...].
 bool points_simd(const PacketConstants& k, DecodePath path, Point* out, std::size_t& count) noexcept;
 /// Whether DecodePath::best runs vector code on this CPU, and which (hesai::decode_simd_name()).
 bool columns_simd_available() noexcept;
