@@ -2,7 +2,7 @@
 """The core's layering (core/src/README.md): every file of the core, source or public header,
 belongs to one concern, and includes only headers of its own concern or of the concerns below it.
 
-    base <- crc, crypto, calibration, ptc <- sensors <- streams <- capi
+    base <- crc, crypto, calibration, ptc, kernels <- sensors <- streams <- capi
 
 A public header's concern is given below; a file under core/src/<folder>/ has that folder's, and
 so has a private header reached from another folder as "../<folder>/name.h".
@@ -18,9 +18,10 @@ BELOW = {  # concern -> the concerns it may include
     'crypto': {'base'},
     'calibration': {'base'},
     'ptc': {'base'},
-    'sensors': {'base', 'crc', 'crypto', 'calibration'},
-    'streams': {'base', 'crc', 'crypto', 'calibration', 'ptc', 'sensors'},
-    'capi': {'base', 'crc', 'crypto', 'calibration', 'ptc', 'sensors', 'streams'},
+    'kernels': {'base'},
+    'sensors': {'base', 'crc', 'crypto', 'calibration', 'kernels'},
+    'streams': {'base', 'crc', 'crypto', 'calibration', 'ptc', 'kernels', 'sensors'},
+    'capi': {'base', 'crc', 'crypto', 'calibration', 'ptc', 'kernels', 'sensors', 'streams'},
 }
 HEADERS = {  # public header (under core/include/hesai/) -> concern
     'config.h': 'base', 'bytes.h': 'base', 'error.h': 'base', 'error_list.h': 'base', 'model.h': 'base', 'model_list.h': 'base',
@@ -29,7 +30,7 @@ HEADERS = {  # public header (under core/include/hesai/) -> concern
     'sha256.h': 'crypto', 'hmac.h': 'crypto', 'hkdf.h': 'crypto', 'ct.h': 'crypto',
     'calibration.h': 'calibration', 'detail/decimal.h': 'calibration',
     'ptc.h': 'ptc',
-    'decoder.h': 'sensors', 'point.h': 'sensors', 'gps.h': 'sensors', 'detail/pandar40_packet.h': 'sensors',
+    'decoder.h': 'sensors', 'point.h': 'kernels', 'gps.h': 'sensors', 'detail/pandar40_packet.h': 'sensors',
     'detail/pandar64_packet.h': 'sensors', 'detail/qt128_packet.h': 'sensors', 'detail/xt_packet.h': 'sensors',
     'detail/tables/': 'sensors', 'detail/qt64_packet.h': 'sensors',
     'frame.h': 'streams', 'sequence.h': 'streams', 'stats.h': 'streams', 'safety.h': 'streams',

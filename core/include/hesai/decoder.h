@@ -193,12 +193,7 @@ enum class Reflectivity : std::uint8_t {
   nonlinear,  ///< Pandar64 set to "Nonlinear Mapping": the byte mapped by the manual's Appendix D to a percentage
 };
 
-/// Which per-point code decode() runs: the best the CPU has (x86-64, chosen at run time from
-/// CPUID: AVX-512 where present, else AVX2; AArch64: NEON), the portable scalar code
-/// every target has (the only one on Cortex-M), or `avx2`: the AVX2 code even where AVX-512 is
-/// present, for tests and benchmarks (elsewhere the same as `best`). Every path gives the same
-/// points: the same float operations in the same order (tests/test_columns.cpp).
-enum class DecodePath : std::uint8_t { best, portable, avx2 };
+/// DecodePath (which per-point code decode() runs) is in point.h.
 /// Whether DecodePath::best runs vector code on this CPU.
 bool decode_simd_available() noexcept;
 /// The vector code DecodePath::best runs on this CPU, for columns and Points: "avx512", "avx2",

@@ -14,7 +14,7 @@
 #include <type_traits>
 
 #include "../base/compiler.h"
-#include "columns_simd.h"
+#include "../kernels/vector_kernels.h"
 #include "hesai/decoder.h"
 #include "hesai/detail/math.h"
 #include "sensor.h"
@@ -37,7 +37,7 @@ struct DecodeOutput {
   }
 };
 
-namespace detail {
+namespace kernels {
 
 // The units of one block with their channel: unit j is channel j, or channel_of[j] with a map.
 // The loop exists twice, with a map (customised QT128 channels) and without, where one
@@ -115,7 +115,7 @@ inline std::size_t write_points(const BlockConstants k, const std::uint8_t* unit
   return n;
 }
 
-}  // namespace detail
+}  // namespace kernels
 
 // Optimising for size (-Os, the firmware builds), every sensor calls one shared copy per unit
 // size: inlined into each sensor's block walk it took 0.8 KB more flash on the Cortex-M0+.
@@ -128,16 +128,16 @@ inline std::size_t write_points(const BlockConstants k, const std::uint8_t* unit
 // mispredict. n <= the units before this one, so the writes stay below blocks x channels =
 // max_points(d.model()), the capacity decode() checked.
 template <std::size_t kUnitBytes>
-HESAI_NOINLINE_FOR_SIZE void SensorBase::emit_blocks(const Decoder& d, const detail::BlockRef* blocks,
+HESAI_NOINLINE_FOR_SIZE void SensorBase::emit_blocks(const Decoder& d, const kernels::BlockRef* blocks,
                                                      std::size_t block_count, std::size_t unit_count,
                                                      const PacketInfo& info, DecodeOutput& out) noexcept {
   const Decoder::Geometry& geo_ = d.geo_;
   const Decoder::SpinCache& spin_ = d.spin_;
   const float unit_m = static_cast<float>(info.dis_unit_mm) * 0.001f;
   const std::uint16_t min_distance = sensor_of(d.model_)->min_distance;
-#if defined(HESAI_DECODE_SIMD)
-  if (out.path != DecodePath::portable && block_count <= detail::kMaxBlocks) {
-    detail::PacketConstants k;
+#if defined(HESAI_KERNELS_VECTOR)
+  if (out.path != DecodePath::portable && block_count <= kernels::kMaxBlocks) {
+    kernels::PacketConstants k;
     k.blocks = block_count;
     k.units = unit_count;
     k.unit_bytes = kUnitBytes;
@@ -157,28 +157,29 @@ HESAI_NOINLINE_FOR_SIZE void SensorBase::emit_blocks(const Decoder& d, const det
     k.returns = info.returns;
     bool mapped = false;
     for (std::size_t b = 0; b < block_count; ++b) mapped = mapped || blocks[b].channel_of != nullptr;
-    if (!mapped && (out.points != nullptr ? detail::points_simd(k, out.path, out.points, out.count)
-                                          : detail::columns_simd(k, out.path, out.columns, out.count)))
+    const kernels::VectorIsa isa = kernels::vector_isa(out.path);
+    if (!mapped && (out.points != nullptr ? kernels::points_vector(k, isa, out.points, out.count)
+                                          : kernels::columns_vector(k, isa, out.columns, out.count)))
       return;
   }
 #endif
   for (std::size_t b = 0; b < block_count; ++b) {
-    const detail::BlockRef& r = blocks[b];
+    const kernels::BlockRef& r = blocks[b];
     const std::uint16_t block_azimuth = info.block_azimuth[b];
     const SinCosF ab = sin_cos_centideg(block_azimuth);
-    detail::BlockConstants k;
+    kernels::BlockConstants k;
     k.sin_a = ab.sin;
     k.cos_a = ab.cos;
     k.unit_m = unit_m;
     k.min_distance = min_distance;
-    k.return_index = detail::return_index(info.returns, b);
+    k.return_index = kernels::return_index(info.returns, b);
     k.offset_ns = r.offset_ns;
     k.dir_cos = spin_.dir_cos[r.loop].data();
     k.dir_sin = spin_.dir_sin[r.loop].data();
     k.sin_el = geo_.sin_el.data();
     k.fire_ns = geo_.fire_ns[r.loop].data();
     if (out.points == nullptr) {
-      out.count = detail::write_columns<kUnitBytes>(k, r.units, unit_count, r.channel_of, out.columns, out.count);
+      out.count = kernels::write_columns<kUnitBytes>(k, r.units, unit_count, r.channel_of, out.columns, out.count);
       continue;
     }
     // The Points' own fields.
@@ -187,7 +188,7 @@ HESAI_NOINLINE_FOR_SIZE void SensorBase::emit_blocks(const Decoder& d, const det
     k.block = static_cast<std::uint8_t>(b);
     k.azimuth_deg = spin_.azimuth_deg[r.loop].data();
     k.elevation_deg = geo_.elevation_deg.data();
-    out.count = detail::write_points<kUnitBytes>(k, r.units, unit_count, r.channel_of, out.points, out.count);
+    out.count = kernels::write_points<kUnitBytes>(k, r.units, unit_count, r.channel_of, out.points, out.count);
   }
 }
 

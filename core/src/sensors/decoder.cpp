@@ -8,9 +8,9 @@
 
 #include "hesai/detail/math.h"
 #include "../base/compiler.h"
+#include "../kernels/beam_cache.h"
+#include "../kernels/vector_isa.h"
 #include "block_points.h"
-#include "columns_simd.h"
-#include "../base/cpu_x86.h"
 #include "sensor.h"
 #include "sensor_rules.h"
 
@@ -98,124 +98,8 @@ void Decoder::set_rotation(Rotation rotation) noexcept {
   spin_.rpm = SpinCache::kStale;
 }
 
-namespace {
 
-// Float comparisons as integer ones on the bits, exact for the finite values update_spin() sees:
-// for float a and b >= 0, a >= b (a > b) exactly when bits(a) >= bits(b) (>) as int32 (a negative a has a
-// negative int32), and a < 0 exactly when bits(-a) > 0 as int32 (-0 is not below 0). Written so
-// because a float comparison may trap (-ftrapping-math, GCC's default), and a selection under a
-// trapping comparison is not turned into a vector blend: with them the loop below is scalar code
-// with two branches per channel; with these, 4 or 8 channels at a time.
-// The bits of a float and back (the GNU builtin where there is one: a 4-byte memcpy to a float
-// register stays a library call at -Os on Arm).
-template <class To, class From>
-HESAI_ALWAYS_INLINE inline To same_bits(From v) noexcept {
-  static_assert(sizeof(To) == sizeof(From), "same size");
-#if HESAI_GNU
-  return __builtin_bit_cast(To, v);
-#else
-  To t;
-  std::memcpy(&t, &v, sizeof t);
-  return t;
-#endif
-}
-HESAI_ALWAYS_INLINE inline std::int32_t bits(float v) noexcept { return same_bits<std::int32_t>(v); }
-HESAI_ALWAYS_INLINE inline bool below_zero(float a) noexcept { return bits(-a) > 0; }
-HESAI_ALWAYS_INLINE inline bool at_least(float a, float positive) noexcept { return bits(a) >= bits(positive); }
-HESAI_ALWAYS_INLINE inline bool above(float a, float positive) noexcept { return bits(a) > bits(positive); }
-// c ? a : b on the bits: both computed, neither moved into a branch (which GCC does to a float
-// ternary's operands, and then cannot make a blend of it).
-HESAI_ALWAYS_INLINE inline float select(bool c, float a, float b) noexcept {
-  return same_bits<float>(bits(b) ^ ((bits(a) ^ bits(b)) & -static_cast<std::int32_t>(c)));
-}
-
-// A key whose int32 order is the order of the floats (no NaN): negative floats' magnitude bits
-// reversed. -0 and +0 get keys -1 and 0.
-HESAI_ALWAYS_INLINE inline std::int32_t order_key(float v) noexcept {
-  const std::int32_t b = bits(v);
-  return b ^ ((b >> 31) & 0x7FFFFFFF);
-}
-HESAI_ALWAYS_INLINE inline float from_order_key(std::int32_t k) noexcept {
-  return same_bits<float>(k ^ ((k >> 31) & 0x7FFFFFFF));
-}
-
-}  // namespace
-
-namespace {
-
-// One firing loop of the per-spin-rate cache. Rebuilt on every change of spin rate, which real
-// units make every few hundred packets and a stream may make on every packet: no branch per
-// channel, so that the compiler vectorises it. lo_key and hi_key take the spread's order keys.
-HESAI_ALWAYS_INLINE inline void spin_loop(const std::int32_t* fire_ns, const float* cos_el_cos_az,
-                                          const float* cos_el_sin_az, const float* offset_deg, float* dir_cos,
-                                          float* dir_sin, float* azimuth_deg, std::size_t channels, float omega,
-                                          std::int32_t& lo_key, std::int32_t& hi_key) noexcept {
-  constexpr float kRadToDeg = static_cast<float>(180.0 / kPi);
-  std::int32_t lo = lo_key, hi = hi_key;  // locals: through the references the loop stays scalar
-  for (std::size_t ch = 0; ch < channels; ++ch) {
-    // Beam azimuth b = azimuth offset + firing-time correction d (|d| < 0.01 rad at the manuals'
-    // firing times; <= 0.16 rad at 1 000 us and 1 500 rpm, the most accepted: a short series).
-    const float d = static_cast<float>(fire_ns[ch]) * omega;
-    const float cos_d = 1.0f - 0.5f * d * d;
-    const float sin_d = d - d * d * d * (1.0f / 6.0f);
-    const float cc = cos_el_cos_az[ch];
-    const float cs = cos_el_sin_az[ch];
-    dir_cos[ch] = cc * cos_d - cs * sin_d;
-    dir_sin[ch] = cs * cos_d + cc * sin_d;
-    // In [0, 360): the offset lies in [-360, 360] (set_angles) and d within 9 degrees, so at most
-    // two additions of 360 or one subtraction, each rounded as a loop of them would round it.
-    const float az0 = offset_deg[ch] + d * kRadToDeg;
-    const float up0 = az0 + 360.0f;
-    const float az1 = select(below_zero(az0), up0, az0);
-    const float up1 = az1 + 360.0f;
-    const float az2 = select(below_zero(az1), up1, az1);
-    const float down = az2 - 360.0f;
-    const float az = select(at_least(az2, 360.0f), down, az2);
-    azimuth_deg[ch] = az;
-    // The spread, of the azimuth folded into (-180, 180].
-    const float folded = az - 360.0f;
-    const std::int32_t key = order_key(select(above(az, 180.0f), folded, az));
-    lo = key < lo ? key : lo;
-    hi = key > hi ? key : hi;
-  }
-  lo_key = lo;
-  hi_key = hi;
-}
-
-#if defined(HESAI_COLUMNS_AVX2)
-// The same loop for AVX2 (8 channels a step, native blends and integer minima: a third of the
-// time of the SSE2 baseline per QT128 rebuild), where the decode finds AVX2 (from CPUID) and the
-// caller's DecodePath allows it. No FMA: the same operations, so the same bits.
-// __restrict: without it GCC 12 needs more run-time overlap checks than it allows and leaves the
-// loop scalar (the baseline, inlined into update_spin, sees the arrays as members of one object).
-__attribute__((target("avx2"))) void spin_loop_avx2(const std::int32_t* fire_ns, const float* cos_el_cos_az,
-                                                    const float* cos_el_sin_az, const float* offset_deg,
-                                                    float* __restrict dir_cos, float* __restrict dir_sin,
-                                                    float* __restrict azimuth_deg,
-                                                    std::size_t channels, float omega, std::int32_t& lo_key,
-                                                    std::int32_t& hi_key) noexcept {
-  spin_loop(fire_ns, cos_el_cos_az, cos_el_sin_az, offset_deg, dir_cos, dir_sin, azimuth_deg, channels, omega,
-            lo_key, hi_key);
-}
-
-// And for AVX-512 (16 channels a step), where the decode finds it.
-#if defined(__clang__)
-#define HESAI_SPIN_AVX512 __attribute__((target("avx512f,avx512bw,avx512dq,avx512vl,avx2")))
-#else  // GCC otherwise vectorises it 8 channels wide
-#define HESAI_SPIN_AVX512 __attribute__((target("avx512f,avx512bw,avx512dq,avx512vl,avx2,prefer-vector-width=512")))
-#endif
-HESAI_SPIN_AVX512 void spin_loop_avx512(
-    const std::int32_t* fire_ns, const float* cos_el_cos_az, const float* cos_el_sin_az, const float* offset_deg,
-    float* __restrict dir_cos, float* __restrict dir_sin, float* __restrict azimuth_deg, std::size_t channels,
-    float omega, std::int32_t& lo_key, std::int32_t& hi_key) noexcept {
-  spin_loop(fire_ns, cos_el_cos_az, cos_el_sin_az, offset_deg, dir_cos, dir_sin, azimuth_deg, channels, omega,
-            lo_key, hi_key);
-}
-#endif
-
-}  // namespace
-
-void Decoder::update_spin(std::uint16_t rpm, [[maybe_unused]] DecodePath path) noexcept {
+void Decoder::update_spin(std::uint16_t rpm, DecodePath path) noexcept {
   // Spin rate in radians per nanosecond: rpm x 2 pi / 60e9, negative for a counter-clockwise
   // unit: azimuths grow clockwise whichever way it spins (Pandar40 manual Section 4.2, item 6), so a
   // channel fired later lies further clockwise on a clockwise unit and further back on the other.
@@ -225,27 +109,15 @@ void Decoder::update_spin(std::uint16_t rpm, [[maybe_unused]] DecodePath path) n
   const SensorDescriptor* sensor = sensor_of(model_);
   const std::size_t loops = sensor != nullptr ? sensor->firing_loops : 1;
   const std::size_t channels = channel_count(model_);
-  std::int32_t lo = order_key(180.0f), hi = order_key(-180.0f);
+  const kernels::VectorIsa isa = kernels::vector_isa(path);
+  std::int32_t lo = kernels::order_key(180.0f), hi = kernels::order_key(-180.0f);
   for (std::size_t loop = 0; loop < loops; ++loop) {
-#if defined(HESAI_COLUMNS_AVX2)
-    if (path == DecodePath::best && detail::x86_has(detail::X86Feature::avx512)) {
-      spin_loop_avx512(geo_.fire_ns[loop].data(), geo_.cos_el_cos_az.data(), geo_.cos_el_sin_az.data(),
-                       geo_.azimuth_deg.data(), spin_.dir_cos[loop].data(), spin_.dir_sin[loop].data(),
-                       spin_.azimuth_deg[loop].data(), channels, omega, lo, hi);
-      continue;
-    }
-    if (path != DecodePath::portable && detail::columns_simd_available()) {
-      spin_loop_avx2(geo_.fire_ns[loop].data(), geo_.cos_el_cos_az.data(), geo_.cos_el_sin_az.data(),
-                     geo_.azimuth_deg.data(), spin_.dir_cos[loop].data(), spin_.dir_sin[loop].data(),
-                     spin_.azimuth_deg[loop].data(), channels, omega, lo, hi);
-      continue;
-    }
-#endif
-    spin_loop(geo_.fire_ns[loop].data(), geo_.cos_el_cos_az.data(), geo_.cos_el_sin_az.data(),
-              geo_.azimuth_deg.data(), spin_.dir_cos[loop].data(), spin_.dir_sin[loop].data(),
-              spin_.azimuth_deg[loop].data(), channels, omega, lo, hi);
+    const kernels::BeamLoop l{geo_.fire_ns[loop].data(),     geo_.cos_el_cos_az.data(),     geo_.cos_el_sin_az.data(),
+                              geo_.azimuth_deg.data(),       spin_.dir_cos[loop].data(),    spin_.dir_sin[loop].data(),
+                              spin_.azimuth_deg[loop].data()};
+    kernels::rebuild_beams(l, channels, omega, isa, lo, hi);
   }
-  spin_.spread = channels != 0 ? AzimuthSpread{from_order_key(lo), from_order_key(hi)} : AzimuthSpread{};
+  spin_.spread = channels != 0 ? AzimuthSpread{kernels::from_order_key(lo), kernels::from_order_key(hi)} : AzimuthSpread{};
   spin_.rpm = rpm;
 }
 
@@ -341,8 +213,8 @@ Error Decoder::decode(ByteView payload, PacketInfo& info, const PointColumns& co
   return decode_into(payload, info, nullptr, &columns, columns.capacity, count, path);
 }
 
-bool decode_simd_available() noexcept { return detail::columns_simd_available(); }
-const char* decode_simd_name() noexcept { return detail::columns_simd_name(); }
+bool decode_simd_available() noexcept { return kernels::vector_isa(DecodePath::best) != kernels::VectorIsa::none; }
+const char* decode_simd_name() noexcept { return kernels::vector_isa_name(kernels::vector_isa(DecodePath::best)); }
 
 Error Decoder::decode_into(ByteView payload, PacketInfo& info, Point* points, const PointColumns* columns,
                            std::size_t capacity, std::size_t& count, DecodePath path) noexcept {

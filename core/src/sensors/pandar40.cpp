@@ -107,7 +107,7 @@ Error Pandar40Code::validate(Decoder& d, ByteView p, PacketInfo& info) noexcept 
 void Pandar40Code::walk(const Decoder& d, const std::uint8_t* p, const PacketInfo& info, DecodeOutput& out) noexcept {
   using namespace pandar40;
   const std::size_t dual = info.returns == 2 ? 1 : 0;
-  detail::BlockRef blocks[kBlocks];
+  kernels::BlockRef blocks[kBlocks];
   for (std::size_t b = 0; b < kBlocks; ++b) blocks[b] = {p + b * kBlockBytes + kBlockPoints, nullptr, kBlockNs[dual][b], 0};
   emit_blocks<kPointBytes>(d, blocks, kBlocks, kChannels, info, out);
 }

@@ -92,7 +92,7 @@ void Pandar64Code::walk(const Decoder& d, const std::uint8_t* p, const PacketInf
   using namespace pandar64;
   const std::size_t dual = info.returns == 2 ? 1 : 0;
   const std::size_t first = out.count;
-  detail::BlockRef blocks[kBlocks];
+  kernels::BlockRef blocks[kBlocks];
   for (std::size_t b = 0; b < kBlocks; ++b)
     blocks[b] = {p + kBody + b * kBlockBytes + kBlockPoints, nullptr, kBlockNs[dual][b], 0};
   emit_blocks<kPointBytes>(d, blocks, kBlocks, kChannels, info, out);

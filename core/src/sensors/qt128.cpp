@@ -240,7 +240,7 @@ void Qt128Code::walk(const Decoder& d, const std::uint8_t* p, const PacketInfo& 
   const bool custom = (info.flags & kFlagChannelCustom) != 0;
   const std::size_t dual = info.returns == 2 ? 1 : 0;
   // Customised channels: the configuration's column for the block's loop names each unit's channel.
-  detail::BlockRef blocks[kBlocks];
+  kernels::BlockRef blocks[kBlocks];
   for (std::size_t b = 0; b < kBlocks; ++b) {
     const std::size_t loop = block_loop(info.mode_flag, dual != 0, b);
     blocks[b] = {p + kBody + b * layout.block + kBlockPoints, custom ? d.custom_channel_[loop].data() : nullptr,

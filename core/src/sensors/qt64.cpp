@@ -93,7 +93,7 @@ void Qt64Code::walk(const Decoder& d, const std::uint8_t* p, const PacketInfo& i
   // One firing sequence (the vendor's firetime file has one column); in dual return the two
   // blocks of a firing share its start time (tables/qt64_tables.h).
   const std::size_t dual = info.returns == 2 ? 1 : 0;
-  detail::BlockRef blocks[kBlocks];
+  kernels::BlockRef blocks[kBlocks];
   for (std::size_t b = 0; b < kBlocks; ++b)
     blocks[b] = {p + kBody + b * kBlockBytes + kBlockPoints, nullptr, kBlockNs[dual][b], 0};
   emit_blocks<kUnitBytes>(d, blocks, kBlocks, kChannels, info, out);

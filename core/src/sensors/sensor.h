@@ -26,8 +26,8 @@ namespace hesai {
 
 struct DecodeOutput;  // where a decode writes: Points or columns (block_points.h)
 
-namespace detail {
-struct BlockRef;  // one block of a packet for the per-point code (columns_simd.h)
+namespace kernels {
+struct BlockRef;  // one block of a packet for the per-point code (kernels/kernel_inputs.h)
 }
 
 /// One sensor's code, as the registry lists it.
@@ -89,7 +89,7 @@ struct SensorBase {
   /// The per-point code for a packet's blocks: block b is blocks[b], each of unit_count units of
   /// kUnitBytes (block_points.h).
   template <std::size_t kUnitBytes>
-  static void emit_blocks(const Decoder& d, const detail::BlockRef* blocks, std::size_t block_count,
+  static void emit_blocks(const Decoder& d, const kernels::BlockRef* blocks, std::size_t block_count,
                           std::size_t unit_count, const PacketInfo& info, DecodeOutput& out) noexcept;
 };
 

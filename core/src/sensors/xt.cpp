@@ -133,7 +133,7 @@ void XtCode::walk(const Decoder& d, const std::uint8_t* p, const PacketInfo& inf
   // too, which would put its first firing on the previous packet's last one (150 us before t0
   // in dual); the SDK's header block count matches the capture's 150 us packet spacing.
   // Counted down without a division per block: a firing every `returns` blocks.
-  detail::BlockRef refs[8];  // 8 (XT16, XT32) or 6 (XT32M2X), as identify_xt accepts
+  kernels::BlockRef refs[8];  // 8 (XT16, XT32) or 6 (XT32M2X), as identify_xt accepts
   auto firings_after = static_cast<std::int32_t>((blocks - 1) / info.returns);
   std::size_t left_in_firing = (blocks - 1) % info.returns + 1;
   for (std::size_t b = 0; b < blocks; ++b) {

@@ -1,109 +1,14 @@
-// The decode with NEON on AArch64 (see columns_simd.h), for columns and Points: a packet's blocks
-// eight units a step, as two vectors of four. Compiled in for every little-endian AArch64 target (NEON is part of ARMv8-A);
-// empty on other targets.
-#include "columns_simd.h"
+// Points (hesai::Point, 40 bytes each) by NEON on AArch64: a packet's blocks eight units a step,
+// as two vectors of four. Empty on other targets.
+#include "vector_kernels.h"
 
-#if defined(HESAI_COLUMNS_NEON)
+#if defined(HESAI_KERNELS_NEON)
 
-#include <arm_neon.h>
+#include <cstddef>
 
-namespace hesai::detail {
-namespace {
+#include "neon_units.h"
 
-// For each 4-bit mask of kept 32-bit lanes, the byte shuffle that packs them to the front.
-constexpr std::array<std::array<std::uint8_t, 16>, 16> compress4_table() {
-  std::array<std::array<std::uint8_t, 16>, 16> t{};
-  for (std::size_t m = 0; m < 16; ++m) {
-    for (auto& b : t[m]) b = 0xFF;  // out of range: vqtbl1q gives 0
-    unsigned k = 0;
-    for (unsigned lane = 0; lane < 4; ++lane) {
-      if (!(m & (1u << lane))) continue;
-      for (unsigned b = 0; b < 4; ++b) t[m][4 * k + b] = static_cast<std::uint8_t>(4 * lane + b);
-      ++k;
-    }
-  }
-  return t;
-}
-constexpr std::array<std::array<std::uint8_t, 16>, 16> kCompress4 = compress4_table();
-
-inline uint8x16_t load_shuffle(const std::int8_t* p) noexcept { return vreinterpretq_u8_s8(vld1q_s8(p)); }
-
-// 32-bit lanes kept by `keep` stored packed at `to`.
-inline void store_packed(std::uint8_t* to, uint8x16_t lanes, unsigned keep) noexcept {
-  vst1q_u8(to, vqtbl1q_u8(lanes, vld1q_u8(kCompress4[keep].data())));
-}
-
-}  // namespace
-
-bool columns_simd_available() noexcept { return true; }
-const char* columns_simd_name() noexcept { return "neon"; }
-
-bool columns_simd(const PacketConstants& k, DecodePath path, const PointColumns out, std::size_t& count) noexcept {
-  if (path == DecodePath::portable || k.units % 8 != 0) return false;
-  const std::size_t wide = k.unit_bytes == 4 ? 1 : 0;
-  const std::size_t unit_bytes = k.unit_bytes, second = kSecond[wide];
-  const std::size_t blocks = k.blocks, units = k.units;
-  const uint8x16_t lo_distance = load_shuffle(kShuffle[wide][0].distance);
-  const uint8x16_t hi_distance = load_shuffle(kShuffle[wide][1].distance);
-  const uint8x16_t lo_intensity = load_shuffle(kShuffle[wide][0].intensity);
-  const uint8x16_t hi_intensity = load_shuffle(kShuffle[wide][1].intensity);
-  const float32x4_t unit_m = vdupq_n_f32(k.unit_m);
-  const uint32x4_t min_distance = vdupq_n_u32(k.min_distance);
-  const uint32_t lane_bit_values[4] = {1, 2, 4, 8};
-  const uint32x4_t lane_bits = vld1q_u32(lane_bit_values);
-  const std::uint8_t first_channels[8] = {1, 2, 3, 4, 5, 6, 7, 8};
-  const uint8x8_t eight = vdup_n_u8(8);
-  const float* const sin_el = k.sin_el;  // in registers: k may be aliased by the byte stores
-  const BlockSinCos sc = block_sin_cos(k);
-  std::size_t n = count;
-  for (std::size_t block = 0; block < blocks; ++block) {
-    const BlockRef& kb = k.block[block];
-    const std::uint8_t* const block_units = kb.units;
-    const float32x4_t sin_a = vdupq_n_f32(sc.sin[block]), cos_a = vdupq_n_f32(sc.cos[block]);
-    const int32x4_t offset = vdupq_n_s32(kb.offset_ns);
-    const uint8x8_t ret = vdup_n_u8(return_index(k.returns, block));
-    const float* const dir_cos = k.dir_cos[kb.loop];
-    const float* const dir_sin = k.dir_sin[kb.loop];
-    const std::int32_t* const fire_ns = k.fire_ns[kb.loop];
-    uint8x8_t channel = vld1_u8(first_channels);
-    for (std::size_t j = 0; j < units; j += 8) {
-      const std::uint8_t* p = block_units + j * unit_bytes;
-      const uint8x16_t a = vld1q_u8(p);
-      const uint8x16_t b = vld1q_u8(p + second);
-      const uint32x4_t raw[2] = {vreinterpretq_u32_u8(vqtbl1q_u8(a, lo_distance)),
-                                 vreinterpretq_u32_u8(vqtbl1q_u8(b, hi_distance))};
-      const uint8x8_t intensity =
-          vorr_u8(vget_low_u8(vqtbl1q_u8(a, lo_intensity)), vget_low_u8(vqtbl1q_u8(b, hi_intensity)));
-      unsigned keep[2];
-      for (std::size_t h = 0; h < 2; ++h) keep[h] = vaddvq_u32(vandq_u32(vcgeq_u32(raw[h], min_distance), lane_bits));
-      // The bytes of all eight at once, packed by the 8-lane table.
-      const uint8x8_t order = vcreate_u8(kCompress[keep[0] | keep[1] << 4]);
-      vst1_u8(out.intensity + n, vtbl1_u8(intensity, order));
-      vst1_u8(out.channel + n, vtbl1_u8(channel, order));
-      vst1_u8(out.return_index + n, ret);
-      channel = vadd_u8(channel, eight);
-      // The floats four at a time: the scalar loop's operations in its order (block_points.h,
-      // unit_xyz), no fused multiply-add.
-      for (std::size_t h = 0; h < 2; ++h) {
-        const std::size_t c = j + 4 * h;
-        const float32x4_t r = vmulq_f32(vcvtq_f32_u32(raw[h]), unit_m);
-        const float32x4_t dc = vld1q_f32(dir_cos + c);
-        const float32x4_t ds = vld1q_f32(dir_sin + c);
-        const float32x4_t x = vmulq_f32(r, vaddq_f32(vmulq_f32(sin_a, dc), vmulq_f32(cos_a, ds)));
-        const float32x4_t y = vmulq_f32(r, vsubq_f32(vmulq_f32(cos_a, dc), vmulq_f32(sin_a, ds)));
-        const float32x4_t z = vmulq_f32(r, vld1q_f32(sin_el + c));
-        const int32x4_t t = vaddq_s32(offset, vld1q_s32(fire_ns + c));
-        store_packed(reinterpret_cast<std::uint8_t*>(out.x + n), vreinterpretq_u8_f32(x), keep[h]);
-        store_packed(reinterpret_cast<std::uint8_t*>(out.y + n), vreinterpretq_u8_f32(y), keep[h]);
-        store_packed(reinterpret_cast<std::uint8_t*>(out.z + n), vreinterpretq_u8_f32(z), keep[h]);
-        store_packed(reinterpret_cast<std::uint8_t*>(out.time_ns + n), vreinterpretq_u8_s32(t), keep[h]);
-        n += static_cast<std::size_t>(__builtin_popcount(keep[h]));
-      }
-    }
-  }
-  count = n;
-  return true;
-}
+namespace hesai::kernels {
 
 // The 8 bytes of a Point from `intensity` on: intensity, channel, return index, confidence, block,
 // and the 3 bytes of padding (written as 0).
@@ -111,13 +16,13 @@ static_assert(offsetof(Point, y) == 4 && offsetof(Point, z) == 8 && offsetof(Poi
               offsetof(Point, azimuth_deg) == 16 && offsetof(Point, elevation_deg) == 20 &&
               offsetof(Point, time_ns) == 24 && offsetof(Point, intensity) == 32 && offsetof(Point, channel) == 33 &&
               offsetof(Point, return_index) == 34 && offsetof(Point, confidence) == 35 && offsetof(Point, block) == 36 &&
-              sizeof(Point) == 40, "points_simd (NEON) writes this layout");
+              sizeof(Point) == 40, "points_vector (NEON) writes this layout");
 
-// Points, eight units a step as columns_simd reads them; each point's 40 bytes in three stores
+// Points, eight units a step as columns_vector reads them; each point's 40 bytes in three stores
 // (x, y, z, distance; azimuth, elevation, time; the bytes) from the four lanes transposed. Every
 // unit's point is written at n, kept (n advanced) when its distance is valid, as the scalar loop.
-bool points_simd(const PacketConstants& k, DecodePath path, Point* out, std::size_t& count) noexcept {
-  if (path == DecodePath::portable || k.units % 8 != 0) return false;
+bool points_vector(const PacketConstants& k, VectorIsa isa, Point* out, std::size_t& count) noexcept {
+  if (isa != VectorIsa::neon || k.units % 8 != 0) return false;
   const std::size_t wide = k.unit_bytes == 4 ? 1 : 0;
   const std::size_t unit_bytes = k.unit_bytes, second = kSecond[wide];
   const std::size_t blocks = k.blocks, units = k.units;
@@ -211,6 +116,6 @@ bool points_simd(const PacketConstants& k, DecodePath path, Point* out, std::siz
   return true;
 }
 
-}  // namespace hesai::detail
+}  // namespace hesai::kernels
 
-#endif  // HESAI_COLUMNS_NEON
+#endif  // HESAI_KERNELS_NEON

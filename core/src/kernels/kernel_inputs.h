@@ -1,0 +1,82 @@
+// What the per-point kernels take (internal to the core): a packet's blocks as a sensor's walk
+// describes them (BlockRef), and the constants each block (BlockConstants, the scalar loops of
+// scalar_loops.h) or the whole packet (PacketConstants, the vector kernels) shares. The sensors'
+// code fills them (sensors/block_points.h); the kernels know no sensor.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+
+#include "../base/compiler.h"
+
+// Which vector kernels this target compiles: x86-64 (GNU compilers; AVX-512 or AVX2 chosen at
+// run time, vector_isa.h), AArch64 little-endian (GNU compilers; NEON), none elsewhere (Cortex-M...).
+#if defined(__x86_64__) && HESAI_GNU
+#define HESAI_KERNELS_X86 1
+#elif defined(__aarch64__) && HESAI_GNU && !defined(__ARM_BIG_ENDIAN)
+#define HESAI_KERNELS_NEON 1
+#endif
+#if defined(HESAI_KERNELS_X86) || defined(HESAI_KERNELS_NEON)
+#define HESAI_KERNELS_VECTOR 1
+#endif
+
+namespace hesai::kernels {
+
+// One block of a packet, as a sensor's walk describes it (Decoder::emit_blocks).
+struct BlockRef {
+  const std::uint8_t* units = nullptr;       // the block's first unit
+  const std::uint8_t* channel_of = nullptr;  // unit j is channel channel_of[j] (nullptr: channel j)
+  std::int32_t offset_ns = 0;                // block time from the packet time t0
+  std::uint8_t loop = 0;                     // firing sequence: 0, or 1 (the QT128's second)
+};
+
+// The blocks of a firing (2 in dual return, 3 in triple) come together: the k-th is return k.
+inline std::uint8_t return_index(std::size_t returns, std::size_t block) noexcept {
+  return static_cast<std::uint8_t>(returns > 1 ? block % returns : 0);
+}
+
+// What every unit of one block shares, for the scalar loops (block_points.h).
+struct BlockConstants {
+  float sin_a = 0, cos_a = 0;        // of the block azimuth
+  float unit_m = 0;                  // distance step, metres
+  std::int32_t offset_ns = 0;        // block time from the packet time
+  std::uint16_t min_distance = 1;    // raw distances below it yield no point
+  std::uint8_t return_index = 0;
+  const float* dir_cos = nullptr;    // [channel]: the spin cache of the block's firing loop
+  const float* dir_sin = nullptr;
+  const float* sin_el = nullptr;
+  const std::int32_t* fire_ns = nullptr;
+  // Points only.
+  float block_deg = 0;               // block azimuth, degrees
+  std::int64_t block_time_ns = 0;    // block time
+  std::uint8_t block = 0;            // block index
+  const float* azimuth_deg = nullptr;    // [channel]: beam azimuth of the block's firing loop
+  const float* elevation_deg = nullptr;  // [channel]
+};
+
+/// The most blocks a packet has (the Pandar40's 10; PacketInfo::block_azimuth holds as many).
+inline constexpr std::size_t kMaxBlocks = 10;
+
+// What the vector paths need of a whole packet: the same values as each block's BlockConstants,
+// the per-block ones once per block, the shared ones once.
+struct PacketConstants {
+  std::size_t blocks = 0;            // blocks in the packet
+  std::size_t units = 0;             // units per block; unit j is channel j
+  std::size_t unit_bytes = 3;        // 3 or 4 (a confidence byte)
+  float unit_m = 0;
+  std::uint16_t min_distance = 1;
+  std::int64_t time_ns = 0;          // packet time (Points)
+  const float* sin_el = nullptr;
+  const float* elevation_deg = nullptr;  // Points
+  // [firing loop][channel]
+  const float* dir_cos[2] = {};
+  const float* dir_sin[2] = {};
+  const float* azimuth_deg[2] = {};  // Points
+  const std::int32_t* fire_ns[2] = {};
+  const std::uint16_t* block_azimuth = nullptr;  // [block], 0.01 degree, below 36000 (validate())
+  const BlockRef* block = nullptr;               // [block]: no channel maps
+  std::uint8_t returns = 1;                      // block b is return b % returns of its firing
+};
+
+
+}  // namespace hesai::kernels
