@@ -61,11 +61,22 @@ HESAI_ALWAYS_INLINE inline Xyz unit_xyz(const BlockConstants& k, float r, std::s
           r * (k.cos_a * k.dir_cos[ch] - k.sin_a * k.dir_sin[ch]), r * k.sin_el[ch]};
 }
 
+// raw >= min_distance (min_distance >= 1) as 1 or 0: raw + 0x10000 - min_distance carries into
+// bit 16 exactly then. On ARMv7-M an add and an add with a shifted operand, where the comparison
+// took a compare, an IT and a conditional add.
+HESAI_ALWAYS_INLINE inline std::uint32_t keep_bias(std::uint16_t min_distance) noexcept {
+  return 0x10000u - min_distance;
+}
+HESAI_ALWAYS_INLINE inline std::size_t keep(std::uint16_t raw, std::uint32_t bias) noexcept {
+  return static_cast<std::size_t>((raw + bias) >> 16);
+}
+
 // The units of a block as columns at out[n...]; returns n advanced by the points kept. k and the columns by value: locals whose address does not escape, so that the stores
 // through the byte columns (which may alias anything in memory) leave them in registers.
 template <std::size_t kUnitBytes>
 inline std::size_t write_columns(const BlockConstants k, const std::uint8_t* units, std::size_t unit_count,
                                  const std::uint8_t* channel_of, const PointColumns out, std::size_t n) noexcept {
+  const std::uint32_t bias = keep_bias(k.min_distance);
   for_each_unit<kUnitBytes>(units, unit_count, channel_of, [&](const std::uint8_t* p, std::size_t ch) HESAI_ALWAYS_INLINE {
     const std::uint16_t raw = load_le16(p);
     const Xyz v = unit_xyz(k, static_cast<float>(raw) * k.unit_m, ch);
@@ -76,7 +87,7 @@ inline std::size_t write_columns(const BlockConstants k, const std::uint8_t* uni
     out.intensity[n] = p[2];
     out.channel[n] = static_cast<std::uint8_t>(ch + 1);
     out.return_index[n] = k.return_index;
-    n += static_cast<std::size_t>(raw >= k.min_distance);
+    n += keep(raw, bias);
   });
   return n;
 }
@@ -85,6 +96,7 @@ inline std::size_t write_columns(const BlockConstants k, const std::uint8_t* uni
 template <std::size_t kUnitBytes>
 inline std::size_t write_points(const BlockConstants k, const std::uint8_t* units, std::size_t unit_count,
                                 const std::uint8_t* channel_of, Point* const out, std::size_t n) noexcept {
+  const std::uint32_t bias = keep_bias(k.min_distance);
   for_each_unit<kUnitBytes>(units, unit_count, channel_of, [&](const std::uint8_t* p, std::size_t ch) HESAI_ALWAYS_INLINE {
     const std::uint16_t raw = load_le16(p);
     const float r = static_cast<float>(raw) * k.unit_m;
@@ -109,7 +121,7 @@ inline std::size_t write_points(const BlockConstants k, const std::uint8_t* unit
       o.confidence = 0;
     }
     o.block = k.block;
-    n += static_cast<std::size_t>(raw >= k.min_distance);
+    n += keep(raw, bias);
   });
   return n;
 }
