@@ -15,6 +15,7 @@
 
 #include "../base/compiler.h"
 #include "columns_simd.h"
+#include "hesai/bytes.h"
 #include "hesai/decoder.h"
 #include "hesai/math.h"
 
@@ -92,11 +93,28 @@ inline std::size_t write_columns(const BlockConstants k, const std::uint8_t* uni
   return n;
 }
 
+static_assert(offsetof(Point, channel) == offsetof(Point, intensity) + 1 &&
+                  offsetof(Point, return_index) == offsetof(Point, intensity) + 2 &&
+                  offsetof(Point, confidence) == offsetof(Point, intensity) + 3,
+              "write_points stores the four bytes as one word");
+
+// Bytes 0-3 of v to p[0..3], byte 0 first: with GNU C++ on a little-endian target one word store
+// (GCC does not merge store_le32's four byte stores, and -ffreestanding makes std::memcpy a call);
+// not on ARMv6-M, where GCC copies the word a byte at a time with more instructions than store_le32.
+HESAI_ALWAYS_INLINE inline void store_bytes4(std::uint8_t* p, std::uint32_t v) noexcept {
+#if HESAI_GNU && defined(__BYTE_ORDER__) && __BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__ && !defined(__ARM_ARCH_6M__)
+  __builtin_memcpy(p, &v, sizeof v);
+#else
+  store_le32(p, v);
+#endif
+}
+
 // The same as Points (k by value for the same reason).
 template <std::size_t kUnitBytes>
 inline std::size_t write_points(const BlockConstants k, const std::uint8_t* units, std::size_t unit_count,
                                 const std::uint8_t* channel_of, Point* const out, std::size_t n) noexcept {
   const std::uint32_t bias = keep_bias(k.min_distance);
+  const std::uint32_t return_index = std::uint32_t{k.return_index} << 16;
   for_each_unit<kUnitBytes>(units, unit_count, channel_of, [&](const std::uint8_t* p, std::size_t ch) HESAI_ALWAYS_INLINE {
     const std::uint16_t raw = load_le16(p);
     const float r = static_cast<float>(raw) * k.unit_m;
@@ -112,14 +130,10 @@ inline std::size_t write_points(const BlockConstants k, const std::uint8_t* unit
     o.azimuth_deg = az;
     o.elevation_deg = k.elevation_deg[ch];
     o.time_ns = k.block_time_ns + k.fire_ns[ch];
-    o.intensity = p[2];
-    o.channel = static_cast<std::uint8_t>(ch + 1);
-    o.return_index = k.return_index;
-    if constexpr (kUnitBytes == 4) {
-      o.confidence = p[3];
-    } else {
-      o.confidence = 0;
-    }
+    // intensity, channel, return_index, confidence: one little-endian word (a single store on
+    // ARMv7-M, where four byte stores took eight instructions with their operands).
+    const std::uint32_t confidence = kUnitBytes == 4 ? std::uint32_t{p[3]} << 24 : 0u;
+    store_bytes4(&o.intensity, std::uint32_t{p[2]} | static_cast<std::uint32_t>(ch + 1) << 8 | return_index | confidence);
     o.block = k.block;
     n += keep(raw, bias);
   });
