@@ -133,7 +133,9 @@ inline std::size_t write_points(const BlockConstants k, const std::uint8_t* unit
     // intensity, channel, return_index, confidence: one little-endian word (a single store on
     // ARMv7-M, where four byte stores took eight instructions with their operands).
     const std::uint32_t confidence = kUnitBytes == 4 ? std::uint32_t{p[3]} << 24 : 0u;
-    store_bytes4(&o.intensity, std::uint32_t{p[2]} | static_cast<std::uint32_t>(ch + 1) << 8 | return_index | confidence);
+    // (Through the Point's own bytes, so that the four lie within the object the pointer points into.)
+    store_bytes4(reinterpret_cast<std::uint8_t*>(&o) + offsetof(Point, intensity),
+                 std::uint32_t{p[2]} | static_cast<std::uint32_t>(ch + 1) << 8 | return_index | confidence);
     o.block = k.block;
     n += keep(raw, bias);
   });
