@@ -15,7 +15,7 @@ namespace hesai::detail {
 enum class X86Feature : std::uint8_t {
   clmul = 1,  ///< PCLMULQDQ with SSSE3 and SSE4.1 (crc/crc32_x86.cpp)
   sha_ni = 2, ///< SHA extensions with SSSE3 and SSE4.1 (crypto/sha256.cpp)
-  avx2 = 4,   ///< AVX2 and POPCNT, with the OS saving the AVX state (sensors/columns_x86.cpp)
+  avx2 = 4,   ///< AVX2 and POPCNT, with the OS saving the AVX state (kernels/x86_columns.cpp, x86_points.cpp)
   avx512 = 8, ///< AVX2 and AVX-512 F, BW, DQ and VL, with the OS saving the AVX-512 state
   vpclmul = 16, ///< PCLMULQDQ, AVX-512 (as avx512) and VPCLMULQDQ: 512-bit carry-less multiplication
 };

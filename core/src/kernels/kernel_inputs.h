@@ -22,7 +22,7 @@
 
 namespace hesai::kernels {
 
-// One block of a packet, as a sensor's walk describes it (Decoder::emit_blocks).
+// One block of a packet, as a sensor's walk describes it (sensors/block_points.h, SensorBase::emit_blocks).
 struct BlockRef {
   const std::uint8_t* units = nullptr;       // the block's first unit
   const std::uint8_t* channel_of = nullptr;  // unit j is channel channel_of[j] (nullptr: channel j)

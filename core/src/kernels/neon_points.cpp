@@ -46,7 +46,7 @@ bool points_vector(const PacketConstants& k, VectorIsa isa, Point* out, std::siz
     const BlockRef& kb = k.block[block];
     const std::uint8_t* const block_units = kb.units;
     const float32x4_t sin_a = vdupq_n_f32(sc.sin[block]), cos_a = vdupq_n_f32(sc.cos[block]);
-    // The Points' own block values, as Decoder::emit_blocks computes them for the scalar loop.
+    // The Points' own block values, as SensorBase::emit_blocks computes them for the scalar loop.
     const float32x4_t block_deg = vdupq_n_f32(static_cast<float>(k.block_azimuth[block]) * 0.01f);
     const int64x2_t block_time = vdupq_n_s64(k.time_ns + kb.offset_ns);
     const uint8x8_t ret = vdup_n_u8(return_index(k.returns, block));
