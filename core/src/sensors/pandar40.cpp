@@ -18,30 +18,26 @@ constexpr std::int64_t kUsPerHour = 3600LL * 1000000;
 constexpr auto kBlockNs = detail::block_ns(tables::pandar40_block_end_us_single, tables::pandar40_block_end_us_dual);
 }  // namespace
 
-template <>
-struct SensorCode<Pandar40Family> : SensorBase {
-  // No header: the first block's preamble, FF EE (GPS packets, 512 bytes, start so too).
-  static bool claims(ByteView p) noexcept { return p[0] == pandar40::kPreamble0 && p[1] == pandar40::kPreamble1; }
-  static Error identify(ByteView p, Model& model) noexcept;
-  static void design(Decoder& d) noexcept {
-    for (std::size_t i = 0; i < pandar40::kChannels; ++i)
-      set_channel(d, i, tables::pandar40_channel_angles[i].elevation_deg, tables::pandar40_channel_angles[i].azimuth_deg,
-                  tables::pandar40_firetime_us[i], tables::pandar40_firetime_us[i]);
-  }
-  static Error validate(Decoder& d, ByteView p, PacketInfo& info) noexcept;
-  static void walk(const Decoder& d, const std::uint8_t* p, const PacketInfo& info, DecodeOutput& out) noexcept;
-  // Pandar40P in its longer length only.
-  static std::size_t sequence_at(ByteView p) noexcept {
-    return p.size == pandar40::kPandar40PSequenceBytes ? pandar40::kSequence : 0;
-  }
-};
 using Pandar40Code = SensorCode<Pandar40Family>;
 
-extern const SensorDescriptor kPandar40Sensor;
-const SensorDescriptor kPandar40Sensor = {
-    Pandar40Code::claims, Pandar40Code::identify, Pandar40Code::design, Pandar40Code::validate,
-    Pandar40Code::walk, Pandar40Code::sequence_at, nullptr, /*firing_loops=*/1, /*min_distance=*/1};
+// No header: the first block's preamble, FF EE (GPS packets, 512 bytes, start so too).
+template <>
+bool Pandar40Code::claims(ByteView p) noexcept { return p[0] == pandar40::kPreamble0 && p[1] == pandar40::kPreamble1; }
 
+template <>
+void Pandar40Code::design(Decoder& d) noexcept {
+  for (std::size_t i = 0; i < pandar40::kChannels; ++i)
+    set_channel(d, i, tables::pandar40_channel_angles[i].elevation_deg, tables::pandar40_channel_angles[i].azimuth_deg,
+                tables::pandar40_firetime_us[i], tables::pandar40_firetime_us[i]);
+}
+
+// Pandar40P in its longer length only.
+template <>
+std::size_t Pandar40Code::sequence_at(ByteView p) noexcept {
+  return p.size == pandar40::kPandar40PSequenceBytes ? pandar40::kSequence : 0;
+}
+
+template <>
 Error Pandar40Code::identify(ByteView p, Model& model) noexcept {
   switch (p.size) {
     case pandar40::kPandar40Bytes: model = Model::pandar40; return Error::ok;
@@ -51,6 +47,7 @@ Error Pandar40Code::identify(ByteView p, Model& model) noexcept {
   }
 }
 
+template <>
 Error Pandar40Code::validate(Decoder& d, ByteView p, PacketInfo& info) noexcept {
   using namespace pandar40;
   const bool is_40p = info.model == Model::pandar40p;
@@ -104,6 +101,7 @@ Error Pandar40Code::validate(Decoder& d, ByteView p, PacketInfo& info) noexcept 
   return Error::ok;
 }
 
+template <>
 void Pandar40Code::walk(const Decoder& d, const std::uint8_t* p, const PacketInfo& info, DecodeOutput& out) noexcept {
   using namespace pandar40;
   const std::size_t dual = info.returns == 2 ? 1 : 0;
@@ -111,5 +109,8 @@ void Pandar40Code::walk(const Decoder& d, const std::uint8_t* p, const PacketInf
   for (std::size_t b = 0; b < kBlocks; ++b) blocks[b] = {p + b * kBlockBytes + kBlockPoints, nullptr, kBlockNs[dual][b], 0};
   emit_blocks<kPointBytes>(d, blocks, kBlocks, kChannels, info, out);
 }
+
+extern const SensorDescriptor kPandar40Sensor;  // registry.cpp
+const SensorDescriptor kPandar40Sensor = Pandar40Code::descriptor(nullptr, /*firing_loops=*/1, /*min_distance=*/1);
 
 }  // namespace hesai

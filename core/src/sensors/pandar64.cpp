@@ -31,38 +31,35 @@ constexpr std::array<std::uint8_t, 256> nonlinear_percent() {
 constexpr std::array<std::uint8_t, 256> kNonlinearPercent = nonlinear_percent();
 }  // namespace
 
-template <>
-struct SensorCode<Pandar64Tag> : SensorBase {
-  // EE FF, then 64 lasers and 6 blocks where the other EE FF headers name their protocol version.
-  static bool claims(ByteView p) noexcept {
-    return p[0] == pandar64::kMagic0 && p[1] == pandar64::kMagic1 && p[pandar64::kLaserNum] == 0x40 &&
-           p[pandar64::kBlockNum] == 0x06;
-  }
-  static Error identify(ByteView p, Model& model) noexcept;
-  static void design(Decoder& d) noexcept {
-    for (std::size_t i = 0; i < pandar64::kChannels; ++i)
-      set_channel(d, i, tables::pandar64_channel_angles[i].elevation_deg, tables::pandar64_channel_angles[i].azimuth_deg,
-                  tables::pandar64_firetime_us[i], tables::pandar64_firetime_us[i]);
-  }
-  static Error validate(Decoder& d, ByteView p, PacketInfo& info) noexcept;
-  static void walk(const Decoder& d, const std::uint8_t* p, const PacketInfo& info, DecodeOutput& out) noexcept;
-  static std::size_t sequence_at(ByteView p) noexcept {
-    return p.size == pandar64::kSequencePacketBytes ? pandar64::kSequence : 0;
-  }
-};
 using Pandar64Code = SensorCode<Pandar64Tag>;
 
-extern const SensorDescriptor kPandar64Sensor;
-const SensorDescriptor kPandar64Sensor = {
-    Pandar64Code::claims, Pandar64Code::identify, Pandar64Code::design, Pandar64Code::validate,
-    Pandar64Code::walk, Pandar64Code::sequence_at, nullptr, /*firing_loops=*/1, /*min_distance=*/1};
+// EE FF, then 64 lasers and 6 blocks where the other EE FF headers name their protocol version.
+template <>
+bool Pandar64Code::claims(ByteView p) noexcept {
+  return p[0] == pandar64::kMagic0 && p[1] == pandar64::kMagic1 && p[pandar64::kLaserNum] == 0x40 &&
+         p[pandar64::kBlockNum] == 0x06;
+}
 
+template <>
+void Pandar64Code::design(Decoder& d) noexcept {
+  for (std::size_t i = 0; i < pandar64::kChannels; ++i)
+    set_channel(d, i, tables::pandar64_channel_angles[i].elevation_deg, tables::pandar64_channel_angles[i].azimuth_deg,
+                tables::pandar64_firetime_us[i], tables::pandar64_firetime_us[i]);
+}
+
+template <>
+std::size_t Pandar64Code::sequence_at(ByteView p) noexcept {
+  return p.size == pandar64::kSequencePacketBytes ? pandar64::kSequence : 0;
+}
+
+template <>
 Error Pandar64Code::identify(ByteView p, Model& model) noexcept {
   if (p.size != pandar64::kPacketBytes && p.size != pandar64::kSequencePacketBytes) return Error::bad_length;
   model = Model::pandar64;
   return Error::ok;
 }
 
+template <>
 Error Pandar64Code::validate(Decoder&, ByteView p, PacketInfo& info) noexcept {
   using namespace pandar64;
   info.blocks = kBlocks;
@@ -88,6 +85,7 @@ Error Pandar64Code::validate(Decoder&, ByteView p, PacketInfo& info) noexcept {
   return detail::tail_time(detail::tail_date_time(detail::pandar_year(dt[0]), dt), 999999, info);
 }
 
+template <>
 void Pandar64Code::walk(const Decoder& d, const std::uint8_t* p, const PacketInfo& info, DecodeOutput& out) noexcept {
   using namespace pandar64;
   const std::size_t dual = info.returns == 2 ? 1 : 0;
@@ -105,5 +103,8 @@ Error Decoder::set_reflectivity(Reflectivity mapping) noexcept {
   reflectivity_ = mapping;
   return Error::ok;
 }
+
+extern const SensorDescriptor kPandar64Sensor;  // registry.cpp
+const SensorDescriptor kPandar64Sensor = Pandar64Code::descriptor(nullptr, /*firing_loops=*/1, /*min_distance=*/1);
 
 }  // namespace hesai

@@ -76,40 +76,36 @@ bool resting_units_zero(const std::uint8_t* units, const qt128::Layout& l, const
 
 }  // namespace
 
-template <>
-struct SensorCode<Qt128Tag> : SensorBase {
-  // EE FF, point cloud protocol 3.2.
-  static bool claims(ByteView p) noexcept {
-    using namespace qt128;
-    return p[0] == kMagic0 && p[1] == kMagic1 && p[kVersionMajor] == 0x03 && p[kVersionMinor] == 0x02;
-  }
-  static Error identify(ByteView p, Model& model) noexcept;
-  // Two firing sequences; the channels resting in each by the manual's bank rule.
-  static void design(Decoder& d) noexcept {
-    for (std::size_t i = 0; i < qt128::kChannels; ++i) {
-      set_channel(d, i, tables::qt128_channel_angles[i].elevation_deg, tables::qt128_channel_angles[i].azimuth_deg,
-                  tables::qt128_firetime_us_loop1[i], tables::qt128_firetime_us_loop2[i]);
-      set_resting(d, 0, i, !tables::qt128_fires_in_loop1[i]);
-      set_resting(d, 1, i, !tables::qt128_fires_in_loop2[i]);
-    }
-    d.find_resting_runs();
-  }
-  static Error validate(Decoder& d, ByteView p, PacketInfo& info) noexcept;
-  static void walk(const Decoder& d, const std::uint8_t* p, const PacketInfo& info, DecodeOutput& out) noexcept;
-  // With flags bit 0, at the end of the tail (CRC3 covers it).
-  static std::size_t sequence_at(ByteView p) noexcept {
-    using namespace qt128;
-    if (!(p[kFlags] & kFlagSequence)) return 0;
-    return Layout::from_header(p[kLaserNum], p[kFlags]).tail + kTailSequence;
-  }
-};
 using Qt128Code = SensorCode<Qt128Tag>;
 
-extern const SensorDescriptor kQt128Sensor;
-const SensorDescriptor kQt128Sensor = {
-    Qt128Code::claims, Qt128Code::identify, Qt128Code::design, Qt128Code::validate, Qt128Code::walk,
-    Qt128Code::sequence_at, qt128::seal, /*firing_loops=*/2, /*min_distance=*/2};  // distance 1 is a marker
+// EE FF, point cloud protocol 3.2.
+template <>
+bool Qt128Code::claims(ByteView p) noexcept {
+  using namespace qt128;
+  return p[0] == kMagic0 && p[1] == kMagic1 && p[kVersionMajor] == 0x03 && p[kVersionMinor] == 0x02;
+}
 
+// Two firing sequences; the channels resting in each by the manual's bank rule.
+template <>
+void Qt128Code::design(Decoder& d) noexcept {
+  for (std::size_t i = 0; i < qt128::kChannels; ++i) {
+    set_channel(d, i, tables::qt128_channel_angles[i].elevation_deg, tables::qt128_channel_angles[i].azimuth_deg,
+                tables::qt128_firetime_us_loop1[i], tables::qt128_firetime_us_loop2[i]);
+    set_resting(d, 0, i, !tables::qt128_fires_in_loop1[i]);
+    set_resting(d, 1, i, !tables::qt128_fires_in_loop2[i]);
+  }
+  d.find_resting_runs();
+}
+
+// With flags bit 0, at the end of the tail (CRC3 covers it).
+template <>
+std::size_t Qt128Code::sequence_at(ByteView p) noexcept {
+  using namespace qt128;
+  if (!(p[kFlags] & kFlagSequence)) return 0;
+  return Layout::from_header(p[kLaserNum], p[kFlags]).tail + kTailSequence;
+}
+
+template <>
 Error Qt128Code::identify(ByteView p, Model& model) noexcept {
   using namespace qt128;
   if (p.size < kHeaderEnd) return Error::bad_length;
@@ -148,6 +144,7 @@ Error Decoder::set_channel_config(const ChannelConfig& config) noexcept {
   return Error::ok;
 }
 
+template <>
 Error Qt128Code::validate(Decoder& d, ByteView p, PacketInfo& info) noexcept {
   using namespace qt128;
   // identify() has checked magic, version, laser and block numbers and the length they and the flags imply.
@@ -234,6 +231,7 @@ Error Qt128Code::validate(Decoder& d, ByteView p, PacketInfo& info) noexcept {
   return detail::tail_time(detail::calendar_or_unix(dt, 1900 + dt[0]), 1000000, info);
 }
 
+template <>
 void Qt128Code::walk(const Decoder& d, const std::uint8_t* p, const PacketInfo& info, DecodeOutput& out) noexcept {
   using namespace qt128;
   const Layout layout = Layout::from_header(p[kLaserNum], info.flags);
@@ -251,6 +249,10 @@ void Qt128Code::walk(const Decoder& d, const std::uint8_t* p, const PacketInfo& 
   else
     emit_blocks<kUnitBytes>(d, blocks, kBlocks, layout.lasers, info, out);
 }
+
+extern const SensorDescriptor kQt128Sensor;  // registry.cpp
+// Distance 1 is a marker, not a measurement: the smallest kept is 2.
+const SensorDescriptor kQt128Sensor = Qt128Code::descriptor(qt128::seal, /*firing_loops=*/2, /*min_distance=*/2);
 
 namespace qt128 {
 

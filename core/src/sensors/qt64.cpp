@@ -21,30 +21,26 @@ static_assert(kBlockNs[0][1] == 192380 && kBlockNs[0][3] == 525710 && kBlockNs[1
               kBlockNs[1][3] == 192380);
 }  // namespace
 
-template <>
-struct SensorCode<Qt64Tag> : SensorBase {
-  // EE FF, point cloud protocol 3.1.
-  static bool claims(ByteView p) noexcept {
-    return p[0] == 0xEE && p[1] == 0xFF && p[2] == 0x03 && p[3] == 0x01;
-  }
-  static Error identify(ByteView p, Model& model) noexcept;
-  static void design(Decoder& d) noexcept {
-    set_design_tables(d, tables::qt64_elevation_deg, tables::qt64_azimuth_deg.data(), tables::qt64_firetime_us);
-  }
-  static Error validate(Decoder& d, ByteView p, PacketInfo& info) noexcept;
-  static void walk(const Decoder& d, const std::uint8_t* p, const PacketInfo& info, DecodeOutput& out) noexcept;
-  // With flags bit 0, at the end of the tail (no CRC covers it).
-  static std::size_t sequence_at(ByteView p) noexcept {
-    return (p[qt64::kFlags] & qt64::kFlagSequence) ? qt64::kTail + qt64::kTailSequence : 0;
-  }
-};
 using Qt64Code = SensorCode<Qt64Tag>;
 
-extern const SensorDescriptor kQt64Sensor;
-const SensorDescriptor kQt64Sensor = {
-    Qt64Code::claims, Qt64Code::identify, Qt64Code::design, Qt64Code::validate, Qt64Code::walk,
-    Qt64Code::sequence_at, nullptr, /*firing_loops=*/1, /*min_distance=*/1};
+// EE FF, point cloud protocol 3.1.
+template <>
+bool Qt64Code::claims(ByteView p) noexcept {
+  return p[0] == 0xEE && p[1] == 0xFF && p[2] == 0x03 && p[3] == 0x01;
+}
 
+template <>
+void Qt64Code::design(Decoder& d) noexcept {
+  set_design_tables(d, tables::qt64_elevation_deg, tables::qt64_azimuth_deg.data(), tables::qt64_firetime_us);
+}
+
+// With flags bit 0, at the end of the tail (no CRC covers it).
+template <>
+std::size_t Qt64Code::sequence_at(ByteView p) noexcept {
+  return (p[qt64::kFlags] & qt64::kFlagSequence) ? qt64::kTail + qt64::kTailSequence : 0;
+}
+
+template <>
 Error Qt64Code::identify(ByteView p, Model& model) noexcept {
   using namespace qt64;
   // claims() has checked EE FF and version 3.1 (bytes 2, 3).
@@ -56,6 +52,7 @@ Error Qt64Code::identify(ByteView p, Model& model) noexcept {
   return Error::ok;
 }
 
+template <>
 Error Qt64Code::validate(Decoder&, ByteView p, PacketInfo& info) noexcept {
   using namespace qt64;
   info.blocks = kBlocks;
@@ -88,6 +85,7 @@ Error Qt64Code::validate(Decoder&, ByteView p, PacketInfo& info) noexcept {
   return detail::tail_time(detail::calendar_or_unix(dt, detail::pandar_year(dt[0])), 999999, info);
 }
 
+template <>
 void Qt64Code::walk(const Decoder& d, const std::uint8_t* p, const PacketInfo& info, DecodeOutput& out) noexcept {
   using namespace qt64;
   // One firing sequence (the vendor's firetime file has one column); in dual return the two
@@ -98,5 +96,8 @@ void Qt64Code::walk(const Decoder& d, const std::uint8_t* p, const PacketInfo& i
     blocks[b] = {p + kBody + b * kBlockBytes + kBlockPoints, nullptr, kBlockNs[dual][b], 0};
   emit_blocks<kUnitBytes>(d, blocks, kBlocks, kChannels, info, out);
 }
+
+extern const SensorDescriptor kQt64Sensor;  // registry.cpp
+const SensorDescriptor kQt64Sensor = Qt64Code::descriptor(nullptr, /*firing_loops=*/1, /*min_distance=*/1);
 
 }  // namespace hesai

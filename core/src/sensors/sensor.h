@@ -93,9 +93,24 @@ struct SensorBase {
                           std::size_t unit_count, const PacketInfo& info, DecodeOutput& out) noexcept;
 };
 
-/// A sensor's functions (validate, walk, design...): the static members of its specialisation,
-/// in its own file. The primary template is never defined.
+/// A sensor's functions, declared once here and defined in the sensor's file for its own tag
+/// (`template <> Error SensorCode<Qt128Tag>::validate(...)`), where descriptor() then makes its
+/// SensorDescriptor. Each has the contract of the descriptor's member of the same name.
 template <class Tag>
-struct SensorCode;
+struct SensorCode : SensorBase {
+  static bool claims(ByteView p) noexcept;
+  static Error identify(ByteView p, Model& model) noexcept;
+  static void design(Decoder& d) noexcept;
+  static Error validate(Decoder& d, ByteView p, PacketInfo& info) noexcept;
+  static void walk(const Decoder& d, const std::uint8_t* p, const PacketInfo& info, DecodeOutput& out) noexcept;
+  static std::size_t sequence_at(ByteView p) noexcept;
+
+  /// The descriptor of the functions above, with the sensor's seal (nullptr: none), firing
+  /// sequences and smallest distance.
+  static constexpr SensorDescriptor descriptor(Error (*seal)(std::uint8_t*, std::size_t) noexcept,
+                                               std::uint8_t firing_loops, std::uint16_t min_distance) {
+    return {claims, identify, design, validate, walk, sequence_at, seal, firing_loops, min_distance};
+  }
+};
 
 }  // namespace hesai

@@ -45,36 +45,32 @@ std::uint8_t xt_returns(std::uint8_t byte) {
 
 }  // namespace
 
-template <>
-struct SensorCode<XtFamily> : SensorBase {
-  // EE FF, point cloud protocol 6.1.
-  static bool claims(ByteView p) noexcept {
-    return p[0] == 0xEE && p[1] == 0xFF && p[2] == 0x06 && p[3] == 0x01;
-  }
-  static Error identify(ByteView p, Model& model) noexcept;
-  // Every design azimuth offset of the XT family is 0 (xt_tables.h).
-  static void design(Decoder& d) noexcept {
-    switch (d.model()) {
-      case Model::pandar_xt16: set_design_tables(d, tables::xt16_elevation_deg, nullptr, tables::xt16_firetime_us); break;
-      case Model::pandar_xt32: set_design_tables(d, tables::xt32_elevation_deg, nullptr, tables::xt32_firetime_us); break;
-      default: set_design_tables(d, tables::xt32m2x_elevation_deg, nullptr, tables::xt32m2x_firetime_us); break;
-    }
-  }
-  static Error validate(Decoder& d, ByteView p, PacketInfo& info) noexcept;
-  static void walk(const Decoder& d, const std::uint8_t* p, const PacketInfo& info, DecodeOutput& out) noexcept;
-  // With flags bit 0, at the end of the tail (protocol 6.1 has no CRC).
-  static std::size_t sequence_at(ByteView p) noexcept {
-    using namespace xt;
-    return (p[kFlags] & kFlagSequence) ? tail_offset(p[kLaserNum], p[kBlockNum]) + kTailSequence : 0;
-  }
-};
 using XtCode = SensorCode<XtFamily>;
 
-extern const SensorDescriptor kXtSensor;
-const SensorDescriptor kXtSensor = {
-    XtCode::claims, XtCode::identify, XtCode::design, XtCode::validate, XtCode::walk, XtCode::sequence_at,
-    nullptr, /*firing_loops=*/1, /*min_distance=*/1};
+// EE FF, point cloud protocol 6.1.
+template <>
+bool XtCode::claims(ByteView p) noexcept {
+  return p[0] == 0xEE && p[1] == 0xFF && p[2] == 0x06 && p[3] == 0x01;
+}
 
+// Every design azimuth offset of the XT family is 0 (xt_tables.h).
+template <>
+void XtCode::design(Decoder& d) noexcept {
+  switch (d.model()) {
+    case Model::pandar_xt16: set_design_tables(d, tables::xt16_elevation_deg, nullptr, tables::xt16_firetime_us); break;
+    case Model::pandar_xt32: set_design_tables(d, tables::xt32_elevation_deg, nullptr, tables::xt32_firetime_us); break;
+    default: set_design_tables(d, tables::xt32m2x_elevation_deg, nullptr, tables::xt32m2x_firetime_us); break;
+  }
+}
+
+// With flags bit 0, at the end of the tail (protocol 6.1 has no CRC).
+template <>
+std::size_t XtCode::sequence_at(ByteView p) noexcept {
+  using namespace xt;
+  return (p[kFlags] & kFlagSequence) ? tail_offset(p[kLaserNum], p[kBlockNum]) + kTailSequence : 0;
+}
+
+template <>
 Error XtCode::identify(ByteView p, Model& model) noexcept {
   using namespace xt;
   if (p.size < kHeaderEnd) return Error::bad_length;
@@ -95,6 +91,7 @@ Error XtCode::identify(ByteView p, Model& model) noexcept {
   return Error::ok;
 }
 
+template <>
 Error XtCode::validate(Decoder&, ByteView p, PacketInfo& info) noexcept {
   using namespace xt;
   // identify() has checked magic, version, laser and block numbers and the length.
@@ -123,6 +120,7 @@ Error XtCode::validate(Decoder&, ByteView p, PacketInfo& info) noexcept {
   return detail::tail_time(t, 999999, info);
 }
 
+template <>
 void XtCode::walk(const Decoder& d, const std::uint8_t* p, const PacketInfo& info, DecodeOutput& out) noexcept {
   using namespace xt;
   const std::size_t lasers = p[kLaserNum];
@@ -142,5 +140,8 @@ void XtCode::walk(const Decoder& d, const std::uint8_t* p, const PacketInfo& inf
   }
   emit_blocks<kUnitBytes>(d, refs, blocks, lasers, info, out);
 }
+
+extern const SensorDescriptor kXtSensor;  // registry.cpp
+const SensorDescriptor kXtSensor = XtCode::descriptor(nullptr, /*firing_loops=*/1, /*min_distance=*/1);
 
 }  // namespace hesai
