@@ -49,7 +49,7 @@ struct Layout {
   // "Invalid measurement: 0x0000 (no return detected)"); the QT128C2X reserves 1 as well
   // (QT128C2X manual, Chinese edition, Section 3.1.2 UDP data, the table of Distance values after
   // the body table: Distance = 0 no return, Distance = 1 a reserved marker). The decoder's
-  // smallest is the same (core/src/sensors/block_points.h, min_distance): no model has a
+  // smallest is the same (the sensor descriptors' min_distance, core/src/sensors/): no model has a
   // larger one, since the manuals' ranging specifications (Pandar64 manual Section 1.5, "Ranging
   // capability 0.3 to 200 m") state performance, not a rule of the packet.
   std::uint16_t min_distance;

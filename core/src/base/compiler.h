@@ -4,7 +4,7 @@
 // HESAI_NO_GNU_EXTENSIONS is defined. It enables: the empty-asm optimisation barriers of ct.cpp
 // and of crc/crc32.cpp's Thumb-2 slicing tables,
 // always_inline in sha256.cpp and sensors/decoder.cpp (with __builtin_bit_cast there), noinline
-// for size and a __builtin_memcpy word store in sensors/block_points.h, and the x86-64 SHA-NI
+// for size and a __builtin_memcpy word store in kernels/scalar_loops.h, and the x86-64 SHA-NI
 // and PCLMULQDQ paths (target attributes,
 // <cpuid.h>). Any other compiler takes the portable paths, which ISO C++17 alone defines; CI
 // compiles and tests them by defining HESAI_NO_GNU_EXTENSIONS (the hesai_portable_tests target).

@@ -35,7 +35,7 @@ inline std::uint8_t return_index(std::size_t returns, std::size_t block) noexcep
   return static_cast<std::uint8_t>(returns > 1 ? block % returns : 0);
 }
 
-// What every unit of one block shares, for the scalar loops (block_points.h).
+// What every unit of one block shares, for the scalar loops (scalar_loops.h).
 struct BlockConstants {
   float sin_a = 0, cos_a = 0;        // of the block azimuth
   float unit_m = 0;                  // distance step, metres

@@ -52,7 +52,7 @@ bool columns_vector(const PacketConstants& k, VectorIsa isa, const PointColumns 
       vst1_u8(out.channel + n, vtbl1_u8(channel, order));
       vst1_u8(out.return_index + n, ret);
       channel = vadd_u8(channel, eight);
-      // The floats four at a time: the scalar loop's operations in its order (block_points.h,
+      // The floats four at a time: the scalar loop's operations in its order (scalar_loops.h,
       // unit_xyz), no fused multiply-add.
       for (std::size_t h = 0; h < 2; ++h) {
         const std::size_t c = j + 4 * h;

@@ -75,7 +75,7 @@ bool points_vector(const PacketConstants& k, VectorIsa isa, Point* out, std::siz
       channel = vadd_u8(channel, eight);
       for (std::size_t h = 0; h < 2; ++h) {
         const std::size_t c = j + 4 * h;
-        // The scalar loop's operations in its order (block_points.h, write_points and unit_xyz),
+        // The scalar loop's operations in its order (scalar_loops.h, write_points and unit_xyz),
         // no fused multiply-add.
         const float32x4_t r = vmulq_f32(vcvtq_f32_u32(raw[h]), unit_m);
         const float32x4_t dc = vld1q_f32(dir_cos + c);

@@ -43,7 +43,7 @@ HESAI_AVX2_TARGET void points_avx2(const PacketConstants& k, Point* out, std::si
     __m128i channel = first_channels();
     for (std::size_t j = 0; j < units; j += 8) {
       const Eight e = eight_units.at(j);
-      // The scalar loop's operations in its order (block_points.h, write_points).
+      // The scalar loop's operations in its order (scalar_loops.h, write_points).
       const __m256 sum = _mm256_add_ps(block_deg, _mm256_loadu_ps(azimuth_deg + j));
       const __m256 az = _mm256_sub_ps(sum, _mm256_and_ps(_mm256_cmp_ps(sum, full_turn, _CMP_GE_OQ), full_turn));
       const __m256 el = _mm256_loadu_ps(elevation_deg + j);
@@ -131,7 +131,7 @@ HESAI_AVX512_TARGET void points_avx512(const PacketConstants& k, Point* out, std
     const auto step = [&](std::size_t j, auto full) HESAI_AVX512_TARGET {
       constexpr bool kFull = decltype(full)::value;
       const Sixteen s = sixteen_units.template at<kFull>(j);
-      // The scalar loop's operations in its order (block_points.h, write_points).
+      // The scalar loop's operations in its order (scalar_loops.h, write_points).
       const __m512 sum = _mm512_add_ps(block_deg, _mm512_maskz_loadu_ps(s.lanes, azimuth_deg + j));
       const __m512 az = _mm512_mask_sub_ps(sum, _mm512_cmp_ps_mask(sum, full_turn, _CMP_GE_OQ), sum, full_turn);
       const __m512 el = _mm512_maskz_loadu_ps(s.lanes, elevation_deg + j);

@@ -32,7 +32,7 @@ HESAI_AVX2_TARGET inline __m128i load16(const std::int8_t* p) noexcept {
 }
 
 // Eight units of a block, as both AVX2 loops read them: fields, position (the scalar loop's
-// operations in its order, block_points.h unit_xyz) and which are kept.
+// operations in its order, scalar_loops.h unit_xyz) and which are kept.
 struct Eight {
   __m256i raw;
   __m128i intensity, confidence;  // bytes 0..7
@@ -134,7 +134,7 @@ HESAI_AVX512_TARGET inline __m512i every_lane(const LaneShuffle& u) noexcept {
 
 // Sixteen units of a block, as both AVX-512 loops read them: the unit bytes (each unit's at the
 // start of dword i's 128-bit lane group), position (the scalar loop's operations in its order,
-// block_points.h unit_xyz), which lanes hold units and which are kept.
+// scalar_loops.h unit_xyz), which lanes hold units and which are kept.
 struct Sixteen {
   __m512i bytes, raw;
   __m512 r, x, y, z;
