@@ -137,7 +137,9 @@ def markdown(context, rows, reps):
                     cells.append('-')
                     continue
                 r = v / ns(b)
-                cells.append('%.2f %s' % (r, 'PASS' if r <= limit else 'MISS'))
+                # A miss that rounds to the target shows a third decimal: 1.504 MISS, not 1.50 MISS.
+                shown = '%.3f' % r if r > limit and '%.2f' % r == '%.2f' % limit else '%.2f' % r
+                cells.append('%s %s' % (shown, 'PASS' if r <= limit else 'MISS'))
             if any(c != '-' for c in cells):
                 out.append('| %s, %s (target ≤ %g) | %s |' % (label, kind, limit, ' | '.join(cells)))
 
