@@ -3,7 +3,12 @@
 each benchmark's ns/packet (CPU time per iteration), points/s, bytes/s and its ratio to its baseline, then checks the
 performance targets (PASS/MISS). Never fails on a MISS: exit status 1 only when the file cannot
 be read or holds no results. With repetitions, the median aggregate is used.
-Usage: python3 bench/report.py BENCH.json"""
+
+With --markdown it prints instead the tables of docs/PERFORMANCE.md ("Per-packet cost": CPU ns
+per packet per sensor, then each target's ratio as the median and as the worst case, the slowest
+repetition of the measured benchmark over the median of its baseline; then the primitives),
+exactly as the document shows them.
+Usage: python3 bench/report.py [--markdown] BENCH.json"""
 import json
 import re
 import sys
@@ -11,7 +16,9 @@ import sys
 UNIT_NS = {'ns': 1.0, 'us': 1e3, 'ms': 1e6, 's': 1e9}
 
 
-def load(path):
+def load(path, repetitions=None):
+    """The context and, per benchmark, its median (or its only run). When repetitions is a dict,
+    it receives each benchmark's list of repetitions (the runs, not the aggregates)."""
     with open(path) as f:
         doc = json.load(f)
     rows, medians = {}, {}
@@ -25,6 +32,8 @@ def load(path):
                 medians[name] = b
             continue
         rows.setdefault(name, b)  # first repetition when there is no median
+        if repetitions is not None:
+            repetitions.setdefault(name, []).append(b)
     rows.update(medians)
     return doc.get('context', {}), rows
 
@@ -59,18 +68,142 @@ def fmt_rate(v, unit):
     return '%.0f %s' % (v, unit)
 
 
+SENSORS = ('Pandar40', 'Pandar40P', 'Pandar64', 'QT128C2X', 'PandarQT64', 'PandarXT16', 'PandarXT32', 'PandarXT32M2X')
+
+
+def fmt_ns(v):
+    """Three significant digits, at most one decimal: 12.9, 341, 1 234."""
+    if v >= 1000:
+        return '{:,.0f}'.format(v).replace(',', ' ')
+    if v >= 100:
+        return '%.0f' % v
+    return '%.1f' % v
+
+
+def markdown(context, rows, reps):
+    """The tables of docs/PERFORMANCE.md, "Per-packet cost"; rows and cells with no data are '-'."""
+    out = []
+
+    def get(name):
+        return rows.get(name)
+
+    def worst(name):
+        runs = [r for r in reps.get(name, []) if r is not None]
+        return max(ns(r) for r in runs) if runs else None
+
+    caches = ', '.join('L%d%s %d KiB' % (c['level'], {'Data': 'd', 'Instruction': 'i'}.get(c['type'], ''),
+                                          c['size'] // 1024) for c in context.get('caches', []))
+    n = max((len(v) for v in reps.values()), default=0)
+    out.append('Run of %s: %s CPUs at %s MHz (%s); decode_simd=%s, crc32_hardware=%s, sha256_hardware=%s; '
+               'medians of %d repetitions, CPU time.' % (
+                   context.get('date', '?'), context.get('num_cpus', '?'), context.get('mhz_per_cpu', '?'), caches,
+                   context.get('decode_simd', '?'), context.get('crc32_hardware', '?'),
+                   context.get('sha256_hardware', '?'), n))
+    out.append('')
+    out.append('| ns per packet | ' + ' | '.join(SENSORS) + ' |')
+    out.append('|---|' + '---:|' * len(SENSORS))
+    best = context.get('decode_simd', 'best')
+    plain = (
+        ('validate (`BM_<Sensor>_validate`)', 'BM_%s_validate'),
+        ('`Point` decode, %s (`BM_<Sensor>_decode`)' % best, 'BM_%s_decode'),
+        ('`Point` decode, AVX2 (`..._decode_avx2`)', 'BM_%s_decode_avx2'),
+        ('`Point` decode, scalar (`..._decode_portable`)', 'BM_%s_decode_portable'),
+        ('columns decode, %s (`BM_<Sensor>_decode_columns`)' % best, 'BM_%s_decode_columns'),
+        ('columns decode, AVX2 (`..._decode_columns_avx2`)', 'BM_%s_decode_columns_avx2'),
+        ('columns decode, scalar (`..._decode_columns_portable`)', 'BM_%s_decode_columns_portable'),
+        ('worst case: `Point` decode with the rpm changed on every packet (`BM_<Sensor>_decode_rpm_changes`)',
+         'BM_%s_decode_rpm_changes'),
+        ('floor: writing the `Point`s (`BM_Baseline_write_points_*`)', 'BM_Baseline_write_points_%s'),
+        ('floor: writing x, y, z, t, 16 bytes a point (`BM_Baseline_write_xyzt_*`)', 'BM_Baseline_write_xyzt_%s'),
+        ('floor: writing the seven columns (`BM_Baseline_write_columns_*`)', 'BM_Baseline_write_columns_%s'),
+        ('copying the packet (`BM_Baseline_copy_*`)', 'BM_Baseline_copy_%s'),
+    )
+    for label, pattern in plain:
+        cells = [get(pattern % s) for s in SENSORS]
+        if any(cells):
+            out.append('| %s | %s |' % (label, ' | '.join(fmt_ns(ns(c)) if c else '-' for c in cells)))
+    ratios = (
+        ('`Point` decode / write_points', 'BM_%s_decode', 'BM_Baseline_write_points_%s', 1.5),
+        ('columns decode / write_xyzt', 'BM_%s_decode_columns', 'BM_Baseline_write_xyzt_%s', 2.0),
+        ('rpm change on every packet / steady decode', 'BM_%s_decode_rpm_changes', 'BM_%s_decode', 1.3),
+    )
+    for label, num, den, limit in ratios:
+        for kind in ('median', 'worst'):
+            cells = []
+            for s in SENSORS:
+                a, b = get(num % s), get(den % s)
+                v = (ns(a) if kind == 'median' else worst(num % s)) if a else None
+                if v is None or not b:
+                    cells.append('-')
+                    continue
+                r = v / ns(b)
+                # A miss that rounds to the target shows a third decimal: 1.504 MISS, not 1.50 MISS.
+                shown = '%.3f' % r if r > limit and '%.2f' % r == '%.2f' % limit else '%.2f' % r
+                cells.append('%s %s' % (shown, 'PASS' if r <= limit else 'MISS'))
+            if any(c != '-' for c in cells):
+                out.append('| %s, %s (target ≤ %g) | %s |' % (label, kind, limit, ' | '.join(cells)))
+
+    # The primitives: CRC-32/MPEG-2, SHA-256 and HMAC-SHA256 of the same run.
+    def gbs(name):
+        b = get(name)
+        return '%.2f' % (b['bytes_per_second'] / 1e9) if b and b.get('bytes_per_second') else '-'
+
+    def t(name):
+        b = get(name)
+        return fmt_ns(ns(b)) if b else '-'
+
+    prim = []
+    crc = ['bitwise', 'table', 'slicing', 'hardware_128', 'hardware']
+    if any(get('BM_CRC32_%s/65536' % c) for c in crc):
+        prim.append('| CRC-32/MPEG-2, 64 KiB: bitwise / table / slicing / hardware_128 (PCLMULQDQ) / hardware, GB/s '
+                    '(`BM_CRC32_<path>/65536`) | %s | bitwise = 1× |' % ' / '.join(gbs('BM_CRC32_%s/65536' % c)
+                                                                          for c in crc))
+    if any(get('BM_CRC32_%s/1028' % c) for c in crc):
+        prim.append('| CRC-32/MPEG-2, 1028 B (a QT128 body): slicing / hardware_128 / hardware, ns '
+                    '(`BM_CRC32_<path>/1028`) | %s | |' % ' / '.join(t('BM_CRC32_%s/1028' % c) for c in crc[2:]))
+
+    def versus(ours, ref):
+        a, b = get(ours), get(ref)
+        return ('%s ns (%.2f×)' % (fmt_ns(ns(b)), ns(a) / ns(b))) if a and b else (t(ref) + ' ns' if b else '-')
+
+    for label, name, ref in (
+            ('SHA-256, 1095 B, hardware', 'BM_SHA256_hardware/1095', 'BM_SHA256_openssl/1095'),
+            ('SHA-256, 1095 B, portable', 'BM_SHA256_portable/1095', 'BM_SHA256_openssl/1095'),
+            ('HMAC-SHA256, 1095 B, hardware, one-shot', 'BM_HMAC_SHA256_hardware/1095', 'BM_HMAC_SHA256_openssl/1095'),
+            ('HMAC-SHA256, 1095 B, hardware, key prepared', 'BM_HMAC_SHA256_prepared_hardware/1095',
+             'BM_HMAC_SHA256_openssl/1095'),
+            ('HMAC-SHA256, 1095 B, portable, key prepared', 'BM_HMAC_SHA256_prepared_portable/1095',
+             'BM_HMAC_SHA256_openssl/1095')):
+        if get(name):
+            prim.append('| %s (`%s`) | %s ns | OpenSSL %s |' % (label, name, t(name), versus(name, ref)))
+    if prim:
+        out.append('')
+        out.append('| primitive | ours | reference |')
+        out.append('|---|---|---|')
+        out.extend(prim)
+    return '\n'.join(out)
+
+
 def main():
-    if len(sys.argv) != 2:
+    args = sys.argv[1:]
+    as_markdown = bool(args) and args[0] == '--markdown'
+    if as_markdown:
+        args = args[1:]
+    if len(args) != 1:
         print(__doc__)
         return 2
+    reps = {}
     try:
-        context, rows = load(sys.argv[1])
+        context, rows = load(args[0], reps)
     except (OSError, ValueError, KeyError) as e:
-        print('report.py: cannot read %s: %s' % (sys.argv[1], e))
+        print('report.py: cannot read %s: %s' % (args[0], e))
         return 1
     if not rows:
-        print('report.py: no benchmark results in %s' % sys.argv[1])
+        print('report.py: no benchmark results in %s' % args[0])
         return 1
+    if as_markdown:
+        print(markdown(context, rows, reps))
+        return 0
     print('host: %s CPUs at %s MHz, crc32_hardware=%s, sha256_hardware=%s, decode_simd=%s' % (
         context.get('num_cpus', '?'), context.get('mhz_per_cpu', '?'),
         context.get('crc32_hardware', '?'), context.get('sha256_hardware', '?'), context.get('decode_simd', '?')))
@@ -106,7 +239,7 @@ def main():
     # The worst case: the motor speed changing on every packet, so every decode() rebuilds the
     # per-spin-rate cache first (issue #13: <= 1.3 x the steady decode). The rebuild alone is the
     # difference of the two.
-    sensors = ('Pandar40', 'Pandar40P', 'Pandar64', 'QT128C2X', 'PandarQT64', 'PandarXT16', 'PandarXT32', 'PandarXT32M2X')
+    sensors = SENSORS
     for sensor in sensors:
         steady, worst = get('BM_%s_decode' % sensor), get('BM_%s_decode_rpm_changes' % sensor)
         target('%s rpm change every packet <= 1.3 x decode' % sensor, steady and worst,
