@@ -20,15 +20,9 @@ constexpr auto kBlockNs = detail::block_ns(tables::pandar40_block_end_us_single,
 
 using Pandar40Code = SensorCode<Pandar40Family>;
 
-// No header: the first block's preamble, FF EE (GPS packets, 512 bytes, start so too).
-template <>
-bool Pandar40Code::claims(ByteView p) noexcept { return p[0] == pandar40::kPreamble0 && p[1] == pandar40::kPreamble1; }
-
 template <>
 void Pandar40Code::design(Decoder& d) noexcept {
-  for (std::size_t i = 0; i < pandar40::kChannels; ++i)
-    set_channel(d, i, tables::pandar40_channel_angles[i].elevation_deg, tables::pandar40_channel_angles[i].azimuth_deg,
-                tables::pandar40_firetime_us[i], tables::pandar40_firetime_us[i]);
+  set_design_tables(d, tables::pandar40_channel_angles, tables::pandar40_firetime_us, tables::pandar40_firetime_us);
 }
 
 // Pandar40P in its longer length only.
@@ -110,7 +104,11 @@ void Pandar40Code::walk(const Decoder& d, const std::uint8_t* p, const PacketInf
   emit_blocks<kPointBytes>(d, blocks, kBlocks, kChannels, info, out);
 }
 
+// No header: the first block's preamble, FF EE (GPS packets, 512 bytes, start so too; identify()
+// tells them apart first).
 extern const SensorDescriptor kPandar40Sensor;  // registry.cpp
-const SensorDescriptor kPandar40Sensor = Pandar40Code::descriptor(nullptr, /*firing_loops=*/1, /*min_distance=*/1);
+const SensorDescriptor kPandar40Sensor =
+    Pandar40Code::descriptor({pandar40::kPreamble0, pandar40::kPreamble1, 0, 0}, 2, nullptr,
+                             /*firing_loops=*/1, /*min_distance=*/1);
 
 }  // namespace hesai

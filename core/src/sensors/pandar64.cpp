@@ -33,18 +33,9 @@ constexpr std::array<std::uint8_t, 256> kNonlinearPercent = nonlinear_percent();
 
 using Pandar64Code = SensorCode<Pandar64Tag>;
 
-// EE FF, then 64 lasers and 6 blocks where the other EE FF headers name their protocol version.
-template <>
-bool Pandar64Code::claims(ByteView p) noexcept {
-  return p[0] == pandar64::kMagic0 && p[1] == pandar64::kMagic1 && p[pandar64::kLaserNum] == 0x40 &&
-         p[pandar64::kBlockNum] == 0x06;
-}
-
 template <>
 void Pandar64Code::design(Decoder& d) noexcept {
-  for (std::size_t i = 0; i < pandar64::kChannels; ++i)
-    set_channel(d, i, tables::pandar64_channel_angles[i].elevation_deg, tables::pandar64_channel_angles[i].azimuth_deg,
-                tables::pandar64_firetime_us[i], tables::pandar64_firetime_us[i]);
+  set_design_tables(d, tables::pandar64_channel_angles, tables::pandar64_firetime_us, tables::pandar64_firetime_us);
 }
 
 template <>
@@ -104,7 +95,11 @@ Error Decoder::set_reflectivity(Reflectivity mapping) noexcept {
   return Error::ok;
 }
 
+// EE FF, then 64 lasers and 6 blocks where the other EE FF headers name their protocol version.
+static_assert(pandar64::kLaserNum == 2 && pandar64::kBlockNum == 3);
 extern const SensorDescriptor kPandar64Sensor;  // registry.cpp
-const SensorDescriptor kPandar64Sensor = Pandar64Code::descriptor(nullptr, /*firing_loops=*/1, /*min_distance=*/1);
+const SensorDescriptor kPandar64Sensor =
+    Pandar64Code::descriptor({pandar64::kMagic0, pandar64::kMagic1, 0x40, 0x06}, 4, nullptr,
+                             /*firing_loops=*/1, /*min_distance=*/1);
 
 }  // namespace hesai

@@ -78,19 +78,11 @@ bool resting_units_zero(const std::uint8_t* units, const qt128::Layout& l, const
 
 using Qt128Code = SensorCode<Qt128Tag>;
 
-// EE FF, point cloud protocol 3.2.
-template <>
-bool Qt128Code::claims(ByteView p) noexcept {
-  using namespace qt128;
-  return p[0] == kMagic0 && p[1] == kMagic1 && p[kVersionMajor] == 0x03 && p[kVersionMinor] == 0x02;
-}
-
 // Two firing sequences; the channels resting in each by the manual's bank rule.
 template <>
 void Qt128Code::design(Decoder& d) noexcept {
+  set_design_tables(d, tables::qt128_channel_angles, tables::qt128_firetime_us_loop1, tables::qt128_firetime_us_loop2);
   for (std::size_t i = 0; i < qt128::kChannels; ++i) {
-    set_channel(d, i, tables::qt128_channel_angles[i].elevation_deg, tables::qt128_channel_angles[i].azimuth_deg,
-                tables::qt128_firetime_us_loop1[i], tables::qt128_firetime_us_loop2[i]);
     set_resting(d, 0, i, !tables::qt128_fires_in_loop1[i]);
     set_resting(d, 1, i, !tables::qt128_fires_in_loop2[i]);
   }
@@ -250,9 +242,13 @@ void Qt128Code::walk(const Decoder& d, const std::uint8_t* p, const PacketInfo& 
     emit_blocks<kUnitBytes>(d, blocks, kBlocks, layout.lasers, info, out);
 }
 
+// EE FF, point cloud protocol 3.2 (bytes 2 and 3). Distance 1 is a marker, not a measurement: the
+// smallest kept is 2.
+static_assert(qt128::kVersionMajor == 2 && qt128::kVersionMinor == 3);
 extern const SensorDescriptor kQt128Sensor;  // registry.cpp
-// Distance 1 is a marker, not a measurement: the smallest kept is 2.
-const SensorDescriptor kQt128Sensor = Qt128Code::descriptor(qt128::seal, /*firing_loops=*/2, /*min_distance=*/2);
+const SensorDescriptor kQt128Sensor =
+    Qt128Code::descriptor({qt128::kMagic0, qt128::kMagic1, 0x03, 0x02}, 4, qt128::seal,
+                          /*firing_loops=*/2, /*min_distance=*/2);
 
 namespace qt128 {
 

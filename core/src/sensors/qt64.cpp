@@ -23,12 +23,6 @@ static_assert(kBlockNs[0][1] == 192380 && kBlockNs[0][3] == 525710 && kBlockNs[1
 
 using Qt64Code = SensorCode<Qt64Tag>;
 
-// EE FF, point cloud protocol 3.1.
-template <>
-bool Qt64Code::claims(ByteView p) noexcept {
-  return p[0] == 0xEE && p[1] == 0xFF && p[2] == 0x03 && p[3] == 0x01;
-}
-
 template <>
 void Qt64Code::design(Decoder& d) noexcept {
   set_design_tables(d, tables::qt64_elevation_deg, tables::qt64_azimuth_deg.data(), tables::qt64_firetime_us);
@@ -43,7 +37,7 @@ std::size_t Qt64Code::sequence_at(ByteView p) noexcept {
 template <>
 Error Qt64Code::identify(ByteView p, Model& model) noexcept {
   using namespace qt64;
-  // claims() has checked EE FF and version 3.1 (bytes 2, 3).
+  // identify() has checked EE FF and version 3.1 (bytes 2, 3): the descriptor's header.
   if (p.size < kHeaderEnd) return Error::bad_length;
   if (p[kLaserNum] != kChannels || p[kBlockNum] != kBlocks) return Error::unsupported_model;
   // SDK GetPacketSize: header + 4 blocks + tail, the u32 UDP sequence only with flags bit 0.
@@ -97,7 +91,9 @@ void Qt64Code::walk(const Decoder& d, const std::uint8_t* p, const PacketInfo& i
   emit_blocks<kUnitBytes>(d, blocks, kBlocks, kChannels, info, out);
 }
 
+// EE FF, point cloud protocol 3.1 (bytes 2 and 3).
 extern const SensorDescriptor kQt64Sensor;  // registry.cpp
-const SensorDescriptor kQt64Sensor = Qt64Code::descriptor(nullptr, /*firing_loops=*/1, /*min_distance=*/1);
+const SensorDescriptor kQt64Sensor =
+    Qt64Code::descriptor({0xEE, 0xFF, 0x03, 0x01}, 4, nullptr, /*firing_loops=*/1, /*min_distance=*/1);
 
 }  // namespace hesai

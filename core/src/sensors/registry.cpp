@@ -57,8 +57,11 @@ const SensorDescriptor* sensor_of(Model model) noexcept {
 }
 
 const SensorDescriptor* sensor_claiming(ByteView p) noexcept {
-  for (const Entry& e : kSensors)
-    if (e.sensor->claims(p)) return e.sensor;
+  for (const Entry& e : kSensors) {
+    std::size_t i = 0;
+    while (i < e.sensor->header_bytes && p[i] == e.sensor->header[i]) ++i;
+    if (i == e.sensor->header_bytes) return e.sensor;
+  }
   return nullptr;
 }
 

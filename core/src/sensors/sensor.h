@@ -19,6 +19,7 @@
 
 #include "hesai/bytes.h"
 #include "hesai/decoder.h"
+#include "hesai/detail/tables/table_types.h"
 #include "hesai/error.h"
 #include "hesai/model.h"
 
@@ -32,9 +33,11 @@ struct BlockRef;  // one block of a packet for the per-point code (kernels/kerne
 
 /// One sensor's code, as the registry lists it.
 struct SensorDescriptor {
-  /// True when a payload of at least 4 bytes carries this sensor's magic and protocol bytes: its
-  /// identify() then decides, and no other sensor's (the families' headers do not overlap).
-  bool (*claims)(ByteView p) noexcept;
+  /// The first bytes of this sensor's packets (magic, then protocol or lasers and blocks), of
+  /// which the first `header_bytes` (2 or 4) are compared: a payload that starts so is this
+  /// sensor's to identify (the sensors' headers do not overlap).
+  std::uint8_t header[4];
+  std::uint8_t header_bytes;
   /// The model of a claimed payload, from its length and header fields; identify()'s errors.
   Error (*identify)(ByteView p, Model& model) noexcept;
   /// Loads the manual's design angles and firing times for d.model() (the Decoder constructor).
@@ -54,13 +57,18 @@ struct SensorDescriptor {
 };
 
 /// The registry (registry.cpp, which also names the models each file decodes): the descriptor of
-/// `model`'s file (nullptr for unknown), and the descriptor whose claims() holds for a payload
-/// (nullptr: no sensor's header).
+/// `model`'s file (nullptr for unknown), and the descriptor whose header a payload of at least 4 bytes starts
+/// with (nullptr: none's).
 const SensorDescriptor* sensor_of(Model model) noexcept;
 const SensorDescriptor* sensor_claiming(ByteView p) noexcept;
 
 /// What every sensor's code shares; a friend of Decoder.
 struct SensorBase {
+  /// An EE FF header of point cloud protocol major.minor (bytes 2 and 3), as the QT128C2X, the
+  /// PandarQT64 and the XT family send (the Pandar64 puts its laser and block counts there).
+  static bool ee_ff_protocol(ByteView p, std::uint8_t major, std::uint8_t minor) noexcept {
+    return p[0] == 0xEE && p[1] == 0xFF && p[2] == major && p[3] == minor;
+  }
   /// Design tables: channel i's elevation and azimuth offset (degrees) and its firing time in
   /// each of the two loops (us).
   static void set_channel(Decoder& d, std::size_t ch, double elevation_deg, double azimuth_deg, double loop1_us,
@@ -74,6 +82,14 @@ struct SensorBase {
     auto& mask = d.resting_[loop];
     const auto bit = static_cast<unsigned>(1u << (ch % 8));
     mask[ch / 8] = static_cast<std::uint8_t>(rests ? mask[ch / 8] | bit : mask[ch / 8] & ~bit);
+  }
+  /// The manuals' design tables: each channel's angles and its firing time in each of the two
+  /// loops (the same array twice for a sensor that fires one sequence).
+  template <std::size_t N>
+  static void set_design_tables(Decoder& d, const std::array<tables::ChannelAngle, N>& angles,
+                                const std::array<double, N>& loop1_us, const std::array<double, N>& loop2_us) noexcept {
+    for (std::size_t i = 0; i < N; ++i)
+      set_channel(d, i, angles[i].elevation_deg, angles[i].azimuth_deg, loop1_us[i], loop2_us[i]);
   }
   /// The float design tables of the models without a manual here (PandarQT64, PandarXT): one
   /// firing sequence; azimuth_deg nullptr when every azimuth offset is 0.
@@ -98,18 +114,19 @@ struct SensorBase {
 /// SensorDescriptor. Each has the contract of the descriptor's member of the same name.
 template <class Tag>
 struct SensorCode : SensorBase {
-  static bool claims(ByteView p) noexcept;
   static Error identify(ByteView p, Model& model) noexcept;
   static void design(Decoder& d) noexcept;
   static Error validate(Decoder& d, ByteView p, PacketInfo& info) noexcept;
   static void walk(const Decoder& d, const std::uint8_t* p, const PacketInfo& info, DecodeOutput& out) noexcept;
   static std::size_t sequence_at(ByteView p) noexcept;
 
-  /// The descriptor of the functions above, with the sensor's seal (nullptr: none), firing
-  /// sequences and smallest distance.
-  static constexpr SensorDescriptor descriptor(Error (*seal)(std::uint8_t*, std::size_t) noexcept,
+  /// The descriptor of the functions above, with the sensor's header, seal (nullptr: none),
+  /// firing sequences and smallest distance.
+  static constexpr SensorDescriptor descriptor(std::array<std::uint8_t, 4> header, std::uint8_t header_bytes,
+                                               Error (*seal)(std::uint8_t*, std::size_t) noexcept,
                                                std::uint8_t firing_loops, std::uint16_t min_distance) {
-    return {claims, identify, design, validate, walk, sequence_at, seal, firing_loops, min_distance};
+    return {{header[0], header[1], header[2], header[3]}, header_bytes, identify, design, validate, walk, sequence_at,
+            seal, firing_loops, min_distance};
   }
 };
 

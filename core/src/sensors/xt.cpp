@@ -47,12 +47,6 @@ std::uint8_t xt_returns(std::uint8_t byte) {
 
 using XtCode = SensorCode<XtFamily>;
 
-// EE FF, point cloud protocol 6.1.
-template <>
-bool XtCode::claims(ByteView p) noexcept {
-  return p[0] == 0xEE && p[1] == 0xFF && p[2] == 0x06 && p[3] == 0x01;
-}
-
 // Every design azimuth offset of the XT family is 0 (xt_tables.h).
 template <>
 void XtCode::design(Decoder& d) noexcept {
@@ -141,7 +135,9 @@ void XtCode::walk(const Decoder& d, const std::uint8_t* p, const PacketInfo& inf
   emit_blocks<kUnitBytes>(d, refs, blocks, lasers, info, out);
 }
 
+// EE FF, point cloud protocol 6.1 (bytes 2 and 3).
 extern const SensorDescriptor kXtSensor;  // registry.cpp
-const SensorDescriptor kXtSensor = XtCode::descriptor(nullptr, /*firing_loops=*/1, /*min_distance=*/1);
+const SensorDescriptor kXtSensor =
+    XtCode::descriptor({0xEE, 0xFF, 0x06, 0x01}, 4, nullptr, /*firing_loops=*/1, /*min_distance=*/1);
 
 }  // namespace hesai
