@@ -186,7 +186,7 @@ Error Decoder::validate(ByteView payload, PacketInfo& info) noexcept {
   PacketKind kind = PacketKind::point_cloud;
   // The decoder's own sensor first, where identify() would ask each in turn: the same answer.
   const SensorDescriptor* own = sensor_of(model_);
-  const bool own_header = own != nullptr && payload.size >= 4 && !is_gps(payload) && sensor_claiming(payload) == own;
+  const bool own_header = own != nullptr && payload.size >= 4 && !is_gps(payload) && has_header(*own, payload);
   const Error e = own_header ? own->identify(payload, m) : identify(payload, m, kind);
   if (e != Error::ok) return e;
   if (kind != PacketKind::point_cloud || m != model_) return Error::model_mismatch;

@@ -57,11 +57,8 @@ const SensorDescriptor* sensor_of(Model model) noexcept {
 }
 
 const SensorDescriptor* sensor_claiming(ByteView p) noexcept {
-  for (const Entry& e : kSensors) {
-    std::size_t i = 0;
-    while (i < e.sensor->header_bytes && p[i] == e.sensor->header[i]) ++i;
-    if (i == e.sensor->header_bytes) return e.sensor;
-  }
+  for (const Entry& e : kSensors)
+    if (has_header(*e.sensor, p)) return e.sensor;
   return nullptr;
 }
 
