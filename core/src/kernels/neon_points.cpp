@@ -1,5 +1,5 @@
 // Points (hesai::Point, 40 bytes each) by NEON on AArch64: a packet's blocks eight units a step,
-// as two vectors of four. Empty on other targets.
+// as two vectors of four (neon_units.h). Empty on other targets.
 #include "vector_kernels.h"
 
 #if defined(HESAI_KERNELS_NEON)
@@ -18,89 +18,61 @@ static_assert(offsetof(Point, y) == 4 && offsetof(Point, z) == 8 && offsetof(Poi
               offsetof(Point, return_index) == 34 && offsetof(Point, confidence) == 35 && offsetof(Point, block) == 36 &&
               sizeof(Point) == 40, "points_vector (NEON) writes this layout");
 
-// Points, eight units a step as columns_vector reads them; each point's 40 bytes in three stores
-// (x, y, z, distance; azimuth, elevation, time; the bytes) from the four lanes transposed. Every
-// unit's point is written at n, kept (n advanced) when its distance is valid, as the scalar loop.
+// Points, eight units a step as columns_vector reads them (EightUnits); each point's 40 bytes in
+// three stores (x, y, z, distance; azimuth, elevation, time; the bytes) from the four lanes
+// transposed. Every unit's point is written at n, kept (n advanced) when its distance is valid, as
+// the scalar loop.
 bool points_vector(const PacketConstants& k, VectorIsa isa, Point* out, std::size_t& count) noexcept {
-  if (isa != VectorIsa::neon || k.units % 8 != 0) return false;
-  const std::size_t wide = k.unit_bytes == 4 ? 1 : 0;
-  const std::size_t unit_bytes = k.unit_bytes, second = kSecond[wide];
+  if (!neon_fits(k, isa)) return false;
+  EightUnits eight_units(k);
   const std::size_t blocks = k.blocks, units = k.units;
-  const uint8x16_t lo_distance = load_shuffle(kShuffle[wide][0].distance);
-  const uint8x16_t hi_distance = load_shuffle(kShuffle[wide][1].distance);
-  const uint8x16_t lo_intensity = load_shuffle(kShuffle[wide][0].intensity);
-  const uint8x16_t hi_intensity = load_shuffle(kShuffle[wide][1].intensity);
-  const uint8x16_t lo_confidence = load_shuffle(kShuffle[wide][0].confidence);  // all -1 (zero) for 3-byte units
-  const uint8x16_t hi_confidence = load_shuffle(kShuffle[wide][1].confidence);
-  const float32x4_t unit_m = vdupq_n_f32(k.unit_m);
-  const uint32x4_t min_distance = vdupq_n_u32(k.min_distance);
   const float32x4_t full_turn = vdupq_n_f32(360.0f);
-  const std::uint8_t first_channels[8] = {1, 2, 3, 4, 5, 6, 7, 8};
   const uint8x8_t eight = vdup_n_u8(8);
-  const float* const sin_el = k.sin_el;  // in registers: k may be aliased by the stores
-  const float* const elevation_deg = k.elevation_deg;
+  const float* const elevation_deg = k.elevation_deg;  // in registers: k may be aliased by the stores
   std::uint8_t* const base = reinterpret_cast<std::uint8_t*>(out);
   const BlockSinCos sc = block_sin_cos(k);
   std::size_t n = count;
   for (std::size_t block = 0; block < blocks; ++block) {
     const BlockRef& kb = k.block[block];
-    const std::uint8_t* const block_units = kb.units;
-    const float32x4_t sin_a = vdupq_n_f32(sc.sin[block]), cos_a = vdupq_n_f32(sc.cos[block]);
+    eight_units.start(kb, sc.sin[block], sc.cos[block]);
     // The Points' own block values, as SensorBase::emit_blocks computes them for the scalar loop.
     const float32x4_t block_deg = vdupq_n_f32(static_cast<float>(k.block_azimuth[block]) * 0.01f);
     const int64x2_t block_time = vdupq_n_s64(k.time_ns + kb.offset_ns);
     const uint8x8_t ret = vdup_n_u8(return_index(k.returns, block));
     const uint32x4_t block_word = vdupq_n_u32(static_cast<std::uint32_t>(block));  // the block byte, then three zero bytes
-    const float* const dir_cos = k.dir_cos[kb.loop];
-    const float* const dir_sin = k.dir_sin[kb.loop];
     const float* const azimuth_deg = k.azimuth_deg[kb.loop];
     const std::int32_t* const fire_ns = k.fire_ns[kb.loop];
-    uint8x8_t channel = vld1_u8(first_channels);
+    uint8x8_t channel = first_channels();
     for (std::size_t j = 0; j < units; j += 8) {
-      const std::uint8_t* p = block_units + j * unit_bytes;
-      const uint8x16_t a = vld1q_u8(p);
-      const uint8x16_t b = vld1q_u8(p + second);
-      const uint32x4_t raw[2] = {vreinterpretq_u32_u8(vqtbl1q_u8(a, lo_distance)),
-                                 vreinterpretq_u32_u8(vqtbl1q_u8(b, hi_distance))};
-      const uint8x8_t intensity =
-          vorr_u8(vget_low_u8(vqtbl1q_u8(a, lo_intensity)), vget_low_u8(vqtbl1q_u8(b, hi_intensity)));
-      const uint8x8_t confidence =
-          vorr_u8(vget_low_u8(vqtbl1q_u8(a, lo_confidence)), vget_low_u8(vqtbl1q_u8(b, hi_confidence)));
+      const Eight e = eight_units.at(j);
       // The bytes of point i: 32-bit lane i % 4 of bytes_of[i / 4] (intensity, channel, return,
       // confidence), then the block word.
-      const uint8x16_t ic = vcombine_u8(vzip1_u8(intensity, channel), vzip2_u8(intensity, channel));
-      const uint8x16_t rc = vcombine_u8(vzip1_u8(ret, confidence), vzip2_u8(ret, confidence));
+      const uint8x16_t ic = vcombine_u8(vzip1_u8(e.intensity, channel), vzip2_u8(e.intensity, channel));
+      const uint8x16_t rc = vcombine_u8(vzip1_u8(ret, e.confidence), vzip2_u8(ret, e.confidence));
       const uint32x4_t bytes_of[2] = {vreinterpretq_u32_u16(vzip1q_u16(vreinterpretq_u16_u8(ic), vreinterpretq_u16_u8(rc))),
                                       vreinterpretq_u32_u16(vzip2q_u16(vreinterpretq_u16_u8(ic), vreinterpretq_u16_u8(rc)))};
       channel = vadd_u8(channel, eight);
       for (std::size_t h = 0; h < 2; ++h) {
         const std::size_t c = j + 4 * h;
-        // The scalar loop's operations in its order (scalar_loops.h, write_points and unit_xyz),
-        // no fused multiply-add.
-        const float32x4_t r = vmulq_f32(vcvtq_f32_u32(raw[h]), unit_m);
-        const float32x4_t dc = vld1q_f32(dir_cos + c);
-        const float32x4_t ds = vld1q_f32(dir_sin + c);
-        const float32x4_t x = vmulq_f32(r, vaddq_f32(vmulq_f32(sin_a, dc), vmulq_f32(cos_a, ds)));
-        const float32x4_t y = vmulq_f32(r, vsubq_f32(vmulq_f32(cos_a, dc), vmulq_f32(sin_a, ds)));
-        const float32x4_t z = vmulq_f32(r, vld1q_f32(sin_el + c));
+        // The scalar loop's operations in its order (scalar_loops.h, write_points).
+        const Four f = eight_units.half(e, j, h);
         const float32x4_t sum = vaddq_f32(block_deg, vld1q_f32(azimuth_deg + c));
         const float32x4_t az = vbslq_f32(vcgeq_f32(sum, full_turn), vsubq_f32(sum, full_turn), sum);
         const float32x4_t el = vld1q_f32(elevation_deg + c);
         const int32x4_t fire = vld1q_s32(fire_ns + c);
         const int64x2_t t[2] = {vaddq_s64(block_time, vmovl_s32(vget_low_s32(fire))),
                                 vaddq_s64(block_time, vmovl_high_s32(fire))};
-        const uint32x4_t units_keep = vcgeq_u32(raw[h], min_distance);
         // x, y, z, distance of point i: xyzr[i]; azimuth, elevation and time: aet[i].
-        const float64x2_t xy[2] = {vreinterpretq_f64_f32(vzip1q_f32(x, y)), vreinterpretq_f64_f32(vzip2q_f32(x, y))};
-        const float64x2_t zr[2] = {vreinterpretq_f64_f32(vzip1q_f32(z, r)), vreinterpretq_f64_f32(vzip2q_f32(z, r))};
+        const float64x2_t xy[2] = {vreinterpretq_f64_f32(vzip1q_f32(f.x, f.y)), vreinterpretq_f64_f32(vzip2q_f32(f.x, f.y))};
+        const float64x2_t zr[2] = {vreinterpretq_f64_f32(vzip1q_f32(f.z, f.r)), vreinterpretq_f64_f32(vzip2q_f32(f.z, f.r))};
         const float64x2_t xyzr[4] = {vzip1q_f64(xy[0], zr[0]), vzip2q_f64(xy[0], zr[0]), vzip1q_f64(xy[1], zr[1]),
                                      vzip2q_f64(xy[1], zr[1])};
         const int64x2_t ae[2] = {vreinterpretq_s64_f32(vzip1q_f32(az, el)), vreinterpretq_s64_f32(vzip2q_f32(az, el))};
         const int64x2_t aet[4] = {vzip1q_s64(ae[0], t[0]), vzip2q_s64(ae[0], t[0]), vzip1q_s64(ae[1], t[1]),
                                   vzip2q_s64(ae[1], t[1])};
         const uint32x4_t bytes[2] = {vzip1q_u32(bytes_of[h], block_word), vzip2q_u32(bytes_of[h], block_word)};
-        const std::uint32_t keep_bits[4] = {vgetq_lane_u32(units_keep, 0), vgetq_lane_u32(units_keep, 1),
-                                            vgetq_lane_u32(units_keep, 2), vgetq_lane_u32(units_keep, 3)};
+        const std::uint32_t keep_bits[4] = {vgetq_lane_u32(e.kept[h], 0), vgetq_lane_u32(e.kept[h], 1),
+                                            vgetq_lane_u32(e.kept[h], 2), vgetq_lane_u32(e.kept[h], 3)};
         for (unsigned i = 0; i < 4; ++i) {
           std::uint8_t* const o = base + n * sizeof(Point);
           vst1q_u8(o, vreinterpretq_u8_f64(xyzr[i]));
