@@ -3,10 +3,10 @@
 // HESAI_GNU is 1 with GNU C++ (GCC, Clang and compilers that emulate them) unless
 // HESAI_NO_GNU_EXTENSIONS is defined. It enables: the empty-asm optimisation barriers of ct.cpp
 // and of crc/crc32.cpp's Thumb-2 slicing tables,
-// always_inline in sha256.cpp and sensors/decoder.cpp (with __builtin_bit_cast there), noinline
-// for size and a __builtin_memcpy word store in kernels/scalar_loops.h, and the x86-64 SHA-NI
-// and PCLMULQDQ paths (target attributes,
-// <cpuid.h>). Any other compiler takes the portable paths, which ISO C++17 alone defines; CI
+// always_inline in sha256.cpp, the kernels (scalar_loops.h, neon_units.h) and
+// kernels/beam_cache.h (with __builtin_bit_cast there), noinline for size in
+// sensors/block_points.h, a __builtin_memcpy word store in kernels/scalar_loops.h, and the
+// x86-64 SHA-NI, PCLMULQDQ and vector-kernel paths (target attributes, <cpuid.h>). Any other compiler takes the portable paths, which ISO C++17 alone defines; CI
 // compiles and tests them by defining HESAI_NO_GNU_EXTENSIONS (the hesai_portable_tests target).
 #pragma once
 
