@@ -20,6 +20,10 @@ namespace hesai {
 
 // Where a block walk writes: Points (points != nullptr) or columns, and the points so far.
 struct DecodeOutput {
+  // A constructor of its own, so that each member is set by a store of its own: GCC zeroed the
+  // whole by a memset call (picolibc's, a byte at a time: 160 instructions a packet on the
+  // Cortex-M4F, 200 on the M0+).
+  DecodeOutput() noexcept {}
   Point* points = nullptr;
   PointColumns columns;
   DecodePath path = DecodePath::best;
