@@ -21,7 +21,7 @@ constexpr std::uint32_t table_update(std::uint32_t crc, const std::uint8_t* p, s
 // The lookups of one big-endian word w whose first byte is followed by `after` more bytes of the
 // step: byte j of the word uses slicing table after - j. Two pairs, combined as a tree.
 // A big-endian word, always inlined (load_be32 is a call at -Os): ldr + rev on ARMv7-M.
-HESAI_ALWAYS_INLINE constexpr std::uint32_t be32(const std::uint8_t* p) noexcept {
+[[maybe_unused]] HESAI_ALWAYS_INLINE constexpr std::uint32_t be32(const std::uint8_t* p) noexcept {
   return static_cast<std::uint32_t>(p[0]) << 24 | static_cast<std::uint32_t>(p[1]) << 16 |
          static_cast<std::uint32_t>(p[2]) << 8 | static_cast<std::uint32_t>(p[3]);
 }
