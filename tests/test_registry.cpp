@@ -1,5 +1,5 @@
-// What the registry of sensors tells a user (model.h: packets per rotation, PTC product number;
-// decoder.h: write_udp_sequence), checked against the bundled captures and the layouts' prose,
+// What the registry of sensors tells a user (model.h: packets per rotation; ptc.h: the PTC
+// product number, from model_list.h; decoder.h: write_udp_sequence), checked against the bundled captures and the layouts' prose,
 // never against the tables that define them.
 #include <gtest/gtest.h>
 
@@ -8,6 +8,7 @@
 
 #include "hesai/decoder.h"
 #include "hesai/model.h"
+#include "hesai/ptc.h"
 #include "test_support.h"
 
 namespace {
@@ -63,15 +64,15 @@ TEST(Registry, PacketsPerRotationAsTheCapturesShowThem) {
 // nebula hesai_hw_interface.cpp, nebula_model_to_hesai_model_no: 0 Pandar40P, 2 Pandar64,
 // 15 PandarQT, 25 PandarXT32, 26 PandarXT16, 32 QT128C2X, 38 PandarXT32M.
 TEST(Registry, PtcProductNumbers) {
-  EXPECT_EQ(hesai::ptc_product_number(Model::pandar40p), 0);
-  EXPECT_EQ(hesai::ptc_product_number(Model::pandar64), 2);
-  EXPECT_EQ(hesai::ptc_product_number(Model::pandar_qt64), 15);
-  EXPECT_EQ(hesai::ptc_product_number(Model::pandar_xt32), 25);
-  EXPECT_EQ(hesai::ptc_product_number(Model::pandar_xt16), 26);
-  EXPECT_EQ(hesai::ptc_product_number(Model::qt128c2x), 32);
-  EXPECT_EQ(hesai::ptc_product_number(Model::pandar_xt32m2x), 38);
-  EXPECT_EQ(hesai::ptc_product_number(Model::pandar40), 255);
-  EXPECT_EQ(hesai::ptc_product_number(Model::unknown), 255);
+  EXPECT_EQ(hesai::ptc::product_number(Model::pandar40p), 0);
+  EXPECT_EQ(hesai::ptc::product_number(Model::pandar64), 2);
+  EXPECT_EQ(hesai::ptc::product_number(Model::pandar_qt64), 15);
+  EXPECT_EQ(hesai::ptc::product_number(Model::pandar_xt32), 25);
+  EXPECT_EQ(hesai::ptc::product_number(Model::pandar_xt16), 26);
+  EXPECT_EQ(hesai::ptc::product_number(Model::qt128c2x), 32);
+  EXPECT_EQ(hesai::ptc::product_number(Model::pandar_xt32m2x), 38);
+  EXPECT_EQ(hesai::ptc::product_number(Model::pandar40), 255);
+  EXPECT_EQ(hesai::ptc::product_number(Model::unknown), 255);
 }
 
 // write_udp_sequence on the first packet of every capture. Where the packet carries a sequence

@@ -60,9 +60,6 @@ constexpr std::size_t packets_per_rotation(Model m, std::size_t returns) {
   return f.blocks == 0 ? 0 : (f.firings * returns + f.blocks - 1) / f.blocks;
 }
 
-/// The model byte a unit of this model reports in its PTC inventory (255: none, the Pandar40).
-constexpr std::uint8_t ptc_product_number(Model m) { return model_facts::of(m).ptc_product; }
-
 /// The most points one packet of the model can hold: blocks x channels (400, 384, 256; 0 for
 /// unknown). Storage for this many points suffices for any packet the model sends.
 constexpr std::size_t max_points(Model m) { return block_count(m) * channel_count(m); }

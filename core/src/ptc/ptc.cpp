@@ -90,11 +90,11 @@ Error check_response(ByteView header, Command expected, std::uint32_t max_length
 
 Model model_from_product_number(std::uint8_t number) noexcept {
   for (std::size_t i = 1; i < kModelCount && number != 255; ++i)
-    if (ptc_product_number(static_cast<Model>(i)) == number) return static_cast<Model>(i);
+    if (model_facts::of(static_cast<Model>(i)).ptc_product == number) return static_cast<Model>(i);
   return Model::unknown;
 }
 
-std::uint8_t product_number(Model model) noexcept { return ptc_product_number(model); }
+std::uint8_t product_number(Model model) noexcept { return model_facts::of(model).ptc_product; }
 
 Error parse_inventory(ByteView payload, Inventory& out) noexcept {
   if (payload.size < kInvCommonBytes) return Error::ptc_payload_length;

@@ -4,8 +4,6 @@
 // per-point arithmetic is in block_points.h.
 #include "hesai/decoder.h"
 
-#include <cstring>
-
 #include "hesai/detail/math.h"
 #include "../base/compiler.h"
 #include "../kernels/beam_cache.h"
@@ -18,9 +16,6 @@ namespace hesai {
 
 namespace {
 
-constexpr std::size_t kGpsBytes = 512;
-// Both GPS layouts start FF EE, as the Pandar40 family's first block does (p.size >= 4).
-bool is_gps(ByteView p) { return p[0] == 0xFF && p[1] == 0xEE && p.size == kGpsBytes; }
 /// Largest firing-time offset accepted, us: well beyond any block period of the manuals
 /// (55.56 us Pandar, 111.11 us QT128); keeps the ns value in range of an int32.
 constexpr double kMaxFiretimeUs = 1000.0;
@@ -31,7 +26,8 @@ Error identify(ByteView p, Model& model, PacketKind& kind) noexcept {
   model = Model::unknown;
   kind = PacketKind::point_cloud;
   if (p.size < 4) return Error::bad_length;
-  if (is_gps(p)) {
+  // Both GPS layouts start FF EE, as the Pandar40 family's first block does: 512 bytes tell them apart.
+  if (is_gps_packet(p)) {
     kind = PacketKind::gps;
     return Error::ok;
   }
@@ -187,10 +183,7 @@ Error Decoder::validate(ByteView payload, PacketInfo& info) noexcept {
   info = kNoPacket;
   Model m = Model::unknown;
   PacketKind kind = PacketKind::point_cloud;
-  // The decoder's own sensor first, where identify() would ask each in turn: the same answer.
-  const SensorDescriptor* own = sensor_of(model_);
-  const bool own_header = own != nullptr && payload.size >= 4 && !is_gps(payload) && has_header(*own, payload);
-  const Error e = own_header ? own->identify(payload, m) : identify(payload, m, kind);
+  const Error e = identify(payload, m, kind);
   if (e != Error::ok) return e;
   if (kind != PacketKind::point_cloud || m != model_) return Error::model_mismatch;
   info.model = m;

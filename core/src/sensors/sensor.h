@@ -56,13 +56,6 @@ struct SensorDescriptor {
   std::uint16_t min_distance;
 };
 
-/// Whether a payload of at least 4 bytes starts with the sensor's header.
-inline bool has_header(const SensorDescriptor& s, ByteView p) noexcept {
-  for (std::size_t i = 0; i < s.header_bytes; ++i)
-    if (p[i] != s.header[i]) return false;
-  return true;
-}
-
 /// The registry (registry.cpp, which also names the models each file decodes): the descriptor of
 /// `model`'s file (nullptr for unknown), and the descriptor whose header a payload of at least 4 bytes starts
 /// with (nullptr: none's).
