@@ -57,7 +57,8 @@ HESAI_NOINLINE_FOR_SIZE void SensorBase::emit_blocks(const Decoder& d, const ker
   const float unit_m = static_cast<float>(info.dis_unit_mm) * 0.001f;
   const std::uint16_t min_distance = sensor_of(d.model_)->min_distance;
 #if defined(HESAI_KERNELS_VECTOR)
-  if (out.path != DecodePath::portable && block_count <= kernels::kMaxBlocks) {
+  const kernels::VectorIsa isa = kernels::vector_isa(out.path);  // none for DecodePath::portable
+  if (isa != kernels::VectorIsa::none && block_count <= kernels::kMaxBlocks) {
     kernels::PacketConstants k;
     k.blocks = block_count;
     k.units = unit_count;
@@ -78,7 +79,6 @@ HESAI_NOINLINE_FOR_SIZE void SensorBase::emit_blocks(const Decoder& d, const ker
     k.returns = info.returns;
     bool mapped = false;
     for (std::size_t b = 0; b < block_count; ++b) mapped = mapped || blocks[b].channel_of != nullptr;
-    const kernels::VectorIsa isa = kernels::vector_isa(out.path);
     if (!mapped && (out.points != nullptr ? kernels::points_vector(k, isa, out.points, out.count)
                                           : kernels::columns_vector(k, isa, out.columns, out.count)))
       return;
