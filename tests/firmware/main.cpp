@@ -553,6 +553,94 @@ ByteView with_rpm(Model m, const std::uint8_t* p, std::size_t n, std::uint16_t r
   return {into, n};
 }
 
+// One real packet of each sensor (the Pandar40's: the Pandar40P packet with the Pandar40's tail).
+struct Subject {
+  const char* name;
+  Model model;
+  ByteView packet;
+};
+const Subject kSubjects[] = {{"Pandar40", Model::pandar40, {kPandar40P, 1256}},
+                             {"Pandar40P", Model::pandar40p, {kPandar40P, sizeof kPandar40P}},
+                             {"Pandar64", Model::pandar64, {kPandar64, sizeof kPandar64}},
+                             {"QT128C2X", Model::qt128c2x, {kQt128, sizeof kQt128}},
+                             {"PandarQT64", Model::pandar_qt64, {kQt64, sizeof kQt64}},
+                             {"PandarXT16", Model::pandar_xt16, {kXt16, sizeof kXt16}},
+                             {"PandarXT32", Model::pandar_xt32, {kXt32, sizeof kXt32}},
+                             {"PandarXT32M2X", Model::pandar_xt32m2x, {kXt32m2x, sizeof kXt32m2x}}};
+// decoders[1..3] are the Pandar40P, Pandar64 and QT128's own; every other model borrows decoders[0].
+hesai::Decoder& decoder_for(Model m) {
+  return m == Model::pandar40p ? decoders[1] : m == Model::pandar64 ? decoders[2] : m == Model::qt128c2x ? decoders[3] : guest(m);
+}
+
+// ---- Every decode path gives the same bits --------------------------------------------------------
+
+// The columns' every member, as digest() folds a Point's.
+std::uint32_t column_digest(std::size_t count) {
+  std::uint32_t crc = hesai::kCrc32Mpeg2Init;
+  auto add = [&crc](const void* data, std::size_t bytes) {
+    crc = hesai::crc32_mpeg2_update(hesai::CrcPath::table, crc, {static_cast<const std::uint8_t*>(data), bytes});
+  };
+  add(columns.x, count * 4), add(columns.y, count * 4), add(columns.z, count * 4), add(columns.time_ns, count * 4);
+  add(columns.intensity, count), add(columns.channel, count), add(columns.return_index, count);
+  return crc;
+}
+
+// decode() by `path` into the cleared storage: the digest of what it wrote and how many.
+struct PathResult {
+  std::uint32_t points_digest, columns_digest;
+  std::size_t points, columns;
+};
+PathResult decode_by(hesai::Decoder& decoder, ByteView bytes, hesai::DecodePath path) {
+  PathResult r{};
+  hesai::PacketInfo info;
+  std::memset(&storage, 0xA5, sizeof storage);
+  check(decoder.decode(bytes, info, points, path) == Error::ok, "decode by one path");
+  r.points = points.count;
+  r.points_digest = digest(points.points.data(), points.count);
+  std::memset(&storage, 0x5A, sizeof storage);
+  check(decoder.decode(bytes, info, columns, r.columns, path) == Error::ok, "columns by one path");
+  r.columns_digest = column_digest(r.columns);
+  return r;
+}
+
+void same_on_every_path(const char* name, hesai::Decoder& decoder, ByteView bytes) {
+  const PathResult best = decode_by(decoder, bytes, hesai::DecodePath::best);
+  const PathResult portable = decode_by(decoder, bytes, hesai::DecodePath::portable);
+  const bool same = best.points == portable.points && best.columns == portable.columns && best.points == best.columns &&
+                    best.points_digest == portable.points_digest && best.columns_digest == portable.columns_digest;
+  check(same, name);
+}
+
+// On the Cortex-M4F (and M7) DecodePath::best runs the assembly loops of kernels/armv7m_loops.h,
+// DecodePath::portable the C loops: every point of every packet, Points and columns, bit for bit
+// (on the M0+ both are the C loops). Also a QT128 packet with confidence bytes and distances at
+// and below its smallest kept distance (2), resealed, and each packet at another spin rate.
+void paths_agree() {
+  print("decode paths: ");
+  print(hesai::decode_simd_name());
+  print(" against portable, every sensor\n");
+  for (const Subject& s : kSubjects) {
+    hesai::Decoder& decoder = decoder_for(s.model);
+    same_on_every_path(s.name, decoder, s.packet);
+    hesai::PacketInfo info;
+    check(decoder.validate(s.packet, info) == Error::ok, s.name);
+    same_on_every_path(s.name, decoder,
+                       with_rpm(s.model, s.packet.data, s.packet.size, static_cast<std::uint16_t>(info.motor_rpm + 7), shifted));
+  }
+  using namespace hesai::qt128;
+  std::memcpy(shifted, kQt128, sizeof kQt128);
+  const Layout l = Layout::from_header(kQt128[kLaserNum], kQt128[kFlags]);
+  check(l.unit == 4 && l.lasers == 128, "QT128 packet with confidence bytes");
+  for (std::size_t u = 0; u < kBlocks * 128; ++u) {
+    std::uint8_t* q = shifted + kBody + (u / 128) * l.block + kBlockPoints + (u % 128) * l.unit;
+    if ((q[0] | q[1]) == 0) continue;  // a resting channel's unit stays all zero (validate() checks)
+    q[3] = static_cast<std::uint8_t>(u * 37 + 1);  // confidence
+    if (u % 5 == 0) q[0] = static_cast<std::uint8_t>(u % 3), q[1] = 0;  // distances 0, 1 and 2
+  }
+  check(hesai::qt128::seal(shifted, sizeof kQt128) == Error::ok, "QT128 resealed");
+  same_on_every_path("QT128C2X with confidence and short distances", decoders[3], {shifted, sizeof kQt128});
+}
+
 void instruction_counts() {
   const bool exact = span_of(one_nop) - span_of(nothing) == 1 && span_of(thousand_nops) - span_of(nothing) == 1000;
   if (!exact) {
@@ -560,26 +648,9 @@ void instruction_counts() {
     return;
   }
   print("instructions per packet (qemu -icount shift=7 and SysTick, checked on 1 and 1000 nops):\n");
-  struct Subject {
-    const char* name;
-    Model model;
-    ByteView packet;
-  };
-  const Subject subjects[] = {{"Pandar40", Model::pandar40, {kPandar40P, 1256}},
-                              {"Pandar40P", Model::pandar40p, {kPandar40P, sizeof kPandar40P}},
-                              {"Pandar64", Model::pandar64, {kPandar64, sizeof kPandar64}},
-                              {"QT128C2X", Model::qt128c2x, {kQt128, sizeof kQt128}},
-                              {"PandarQT64", Model::pandar_qt64, {kQt64, sizeof kQt64}},
-                              {"PandarXT16", Model::pandar_xt16, {kXt16, sizeof kXt16}},
-                              {"PandarXT32", Model::pandar_xt32, {kXt32, sizeof kXt32}},
-                              {"PandarXT32M2X", Model::pandar_xt32m2x, {kXt32m2x, sizeof kXt32m2x}}};
   static hesai::PacketInfo info;
-  for (const Subject& s : subjects) {
-    // decoders[1..3] are the Pandar40P, Pandar64 and QT128's own; every other model borrows decoders[0].
-    subject = s.model == Model::pandar40p ? &decoders[1]
-              : s.model == Model::pandar64 ? &decoders[2]
-              : s.model == Model::qt128c2x ? &decoders[3]
-                                           : &guest(s.model);
+  for (const Subject& s : kSubjects) {
+    subject = &decoder_for(s.model);
     packet = s.packet;
     check(subject->decode(packet, info, points) == Error::ok, s.name);  // the spin-rate cache warm
     count(s.name, "validate", [] { subject_error = subject->validate(packet, subject_info); });
@@ -624,6 +695,7 @@ int main() {
   known_answers();
   real_packets();
   c_path();
+  paths_agree();
   instruction_counts();
   stack_use();
   print("sizeof(Decoder): ");

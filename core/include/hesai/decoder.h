@@ -292,22 +292,28 @@ class Decoder {
 
  private:
   // Per-channel geometry from the tables or calibration files, one array per quantity.
+  // (sin_el, elevation_deg and fire_ns in this order: the ARMv7E-M loops reach each from one pointer,
+  // kernels/armv7m_loops.h.)
   struct Geometry {
-    std::array<float, kMaxChannels> cos_el_cos_az{};  // cos(elevation) cos(azimuth offset)
-    std::array<float, kMaxChannels> cos_el_sin_az{};  // cos(elevation) sin(azimuth offset)
     std::array<float, kMaxChannels> sin_el{};
     std::array<float, kMaxChannels> elevation_deg{};
-    std::array<float, kMaxChannels> azimuth_deg{};                   // azimuth offset
     std::array<std::array<std::int32_t, kMaxChannels>, 2> fire_ns{};  // firing time offset, ns, [loop][channel]
+    std::array<float, kMaxChannels> cos_el_cos_az{};  // cos(elevation) cos(azimuth offset)
+    std::array<float, kMaxChannels> cos_el_sin_az{};  // cos(elevation) sin(azimuth offset)
+    std::array<float, kMaxChannels> azimuth_deg{};                   // azimuth offset
   };
   // The part of each point that depends only on the channel, the firing loop and the spin rate,
   // computed once per rate: the beam direction b (azimuth offset + firing-time correction) as
-  // cos(e) cos(b), cos(e) sin(b) and b in degrees, [loop][channel].
+  // cos(e) cos(b), cos(e) sin(b) and b in degrees, loop[firing loop].<array>[channel] (a loop's
+  // arrays side by side: the ARMv7E-M loops reach dir_sin from the dir_cos pointer).
   struct SpinCache {
     static constexpr std::uint16_t kStale = 0xFFFF;  // above any accepted rpm
+    struct Beams {
+      std::array<float, kMaxChannels> dir_cos{}, dir_sin{}, azimuth_deg{};
+    };
     std::uint16_t rpm = kStale;  // the spin rate the arrays hold (0: no firing-time correction)
-    std::array<std::array<float, kMaxChannels>, 2> dir_cos{}, dir_sin{}, azimuth_deg{};
-    AzimuthSpread spread;        // of azimuth_deg, folded into (-180, 180]
+    std::array<Beams, 2> loop{};
+    AzimuthSpread spread;        // of every loop's azimuth_deg, folded into (-180, 180]
   };
 
   // The sensors' code (core/src/sensors/, one file each, listed in registry.cpp) reads and sets

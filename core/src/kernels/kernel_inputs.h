@@ -19,6 +19,12 @@
 #if defined(HESAI_KERNELS_X86) || defined(HESAI_KERNELS_NEON)
 #define HESAI_KERNELS_VECTOR 1
 #endif
+// The assembly unit loops of ARMv7E-M with a single-precision FPU (Cortex-M4F, Cortex-M7; GNU
+// assembler syntax, little-endian Thumb-2): armv7m_loops.h.
+#if defined(__ARM_ARCH_7EM__) && defined(__thumb2__) && defined(__ARM_FP) && (__ARM_FP & 4) && HESAI_GNU && \
+    !defined(__ARM_BIG_ENDIAN)
+#define HESAI_KERNELS_ARMV7M 1
+#endif
 
 namespace hesai::kernels {
 

@@ -12,6 +12,8 @@ VectorIsa vector_isa([[maybe_unused]] DecodePath path) noexcept {
   return VectorIsa::avx2;
 #elif defined(HESAI_KERNELS_NEON)
   return path == DecodePath::portable ? VectorIsa::none : VectorIsa::neon;
+#elif defined(HESAI_KERNELS_ARMV7M)
+  return path == DecodePath::portable ? VectorIsa::none : VectorIsa::armv7m;
 #else
   return VectorIsa::none;
 #endif
@@ -22,6 +24,7 @@ const char* vector_isa_name(VectorIsa isa) noexcept {
     case VectorIsa::avx512: return "avx512";
     case VectorIsa::avx2: return "avx2";
     case VectorIsa::neon: return "neon";
+    case VectorIsa::armv7m: return "armv7m";
     case VectorIsa::none: break;
   }
   return "none";

@@ -9,13 +9,14 @@
 
 namespace hesai::kernels {
 
-enum class VectorIsa : std::uint8_t { none, avx2, avx512, neon };
+// armv7m: not vector code but the assembly unit loops of ARMv7E-M (armv7m_loops.h), chosen the same way.
+enum class VectorIsa : std::uint8_t { none, avx2, avx512, neon, armv7m };
 
 /// What `path` runs here: none for DecodePath::portable or a target without vector kernels;
 /// x86-64: avx512 for `best` where the CPU has AVX-512 F, BW, DQ and VL, else avx2 where it has
-/// AVX2; AArch64: neon.
+/// AVX2; AArch64: neon; ARMv7E-M with an FPU: armv7m.
 VectorIsa vector_isa(DecodePath path) noexcept;
-/// "avx512", "avx2", "neon" or "none".
+/// "avx512", "avx2", "neon", "armv7m" or "none".
 const char* vector_isa_name(VectorIsa isa) noexcept;
 
 }  // namespace hesai::kernels

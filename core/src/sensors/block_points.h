@@ -9,6 +9,7 @@
 #include <cstdint>
 
 #include "../base/compiler.h"
+#include "../kernels/armv7m_loops.h"
 #include "../kernels/scalar_loops.h"
 #include "../kernels/vector_kernels.h"
 #include "hesai/bytes.h"
@@ -37,6 +38,13 @@ struct DecodeOutput {
     }
   }
 };
+
+// Whether a unit of any block needs a channel map (customised QT128 channels): the scalar loops then.
+inline bool has_channel_map(const kernels::BlockRef* blocks, std::size_t block_count) noexcept {
+  bool mapped = false;
+  for (std::size_t b = 0; b < block_count; ++b) mapped = mapped || blocks[b].channel_of != nullptr;
+  return mapped;
+}
 
 // Optimising for size (-Os, the firmware builds), every sensor calls one shared copy per unit
 // size: inlined into each sensor's block walk it took 0.8 KB more flash on the Cortex-M0+.
@@ -69,19 +77,23 @@ HESAI_NOINLINE_FOR_SIZE void SensorBase::emit_blocks(const Decoder& d, const ker
     k.sin_el = geo_.sin_el.data();
     k.elevation_deg = geo_.elevation_deg.data();
     for (std::size_t loop = 0; loop < 2; ++loop) {
-      k.dir_cos[loop] = spin_.dir_cos[loop].data();
-      k.dir_sin[loop] = spin_.dir_sin[loop].data();
-      k.azimuth_deg[loop] = spin_.azimuth_deg[loop].data();
+      k.dir_cos[loop] = spin_.loop[loop].dir_cos.data();
+      k.dir_sin[loop] = spin_.loop[loop].dir_sin.data();
+      k.azimuth_deg[loop] = spin_.loop[loop].azimuth_deg.data();
       k.fire_ns[loop] = geo_.fire_ns[loop].data();
     }
     k.block_azimuth = info.block_azimuth.data();
     k.block = blocks;
     k.returns = info.returns;
-    bool mapped = false;
-    for (std::size_t b = 0; b < block_count; ++b) mapped = mapped || blocks[b].channel_of != nullptr;
-    if (!mapped && (out.points != nullptr ? kernels::points_vector(k, isa, out.points, out.count)
+    if (!has_channel_map(blocks, block_count) && (out.points != nullptr ? kernels::points_vector(k, isa, out.points, out.count)
                                           : kernels::columns_vector(k, isa, out.columns, out.count)))
       return;
+  }
+#endif
+#if defined(HESAI_KERNELS_ARMV7M)
+  if (kernels::vector_isa(out.path) == kernels::VectorIsa::armv7m && !has_channel_map(blocks, block_count)) {
+    emit_blocks_armv7m<kUnitBytes>(d, blocks, block_count, unit_count, info, out);
+    return;
   }
 #endif
   for (std::size_t b = 0; b < block_count; ++b) {
@@ -95,8 +107,8 @@ HESAI_NOINLINE_FOR_SIZE void SensorBase::emit_blocks(const Decoder& d, const ker
     k.min_distance = min_distance;
     k.return_index = kernels::return_index(info.returns, b);
     k.offset_ns = r.offset_ns;
-    k.dir_cos = spin_.dir_cos[r.loop].data();
-    k.dir_sin = spin_.dir_sin[r.loop].data();
+    k.dir_cos = spin_.loop[r.loop].dir_cos.data();
+    k.dir_sin = spin_.loop[r.loop].dir_sin.data();
     k.sin_el = geo_.sin_el.data();
     k.fire_ns = geo_.fire_ns[r.loop].data();
     if (out.points == nullptr) {
@@ -107,10 +119,71 @@ HESAI_NOINLINE_FOR_SIZE void SensorBase::emit_blocks(const Decoder& d, const ker
     k.block_deg = static_cast<float>(block_azimuth) * 0.01f;
     k.block_time_ns = info.time_ns + r.offset_ns;
     k.block = static_cast<std::uint8_t>(b);
-    k.azimuth_deg = spin_.azimuth_deg[r.loop].data();
+    k.azimuth_deg = spin_.loop[r.loop].azimuth_deg.data();
     k.elevation_deg = geo_.elevation_deg.data();
     out.count = kernels::write_points<kUnitBytes>(k, r.units, unit_count, r.channel_of, out.points, out.count);
   }
 }
+
+#if defined(HESAI_KERNELS_ARMV7M)
+// The same by the ARMv7E-M assembly loops (kernels/armv7m_loops.h), one call a block; the block
+// record is filled once and only its per-block fields changed, and a block at the azimuth of the
+// one before it (the returns of one firing) reuses its sine and cosine.
+template <std::size_t kUnitBytes>
+void SensorBase::emit_blocks_armv7m(const Decoder& d, const kernels::BlockRef* blocks, std::size_t block_count,
+                                    std::size_t unit_count, const PacketInfo& info, DecodeOutput& out) noexcept {
+  using Geometry = Decoder::Geometry;
+  using Beams = Decoder::SpinCache::Beams;
+  static_assert(offsetof(Geometry, elevation_deg) == offsetof(Geometry, sin_el) + kernels::kArmTableBytes &&
+                    offsetof(Geometry, fire_ns) == offsetof(Geometry, sin_el) + 2 * kernels::kArmTableBytes &&
+                    sizeof(Geometry::fire_ns[0]) == kernels::kArmTableBytes &&
+                    offsetof(Beams, dir_sin) == offsetof(Beams, dir_cos) + kernels::kArmTableBytes &&
+                    offsetof(Beams, azimuth_deg) == offsetof(Beams, dir_cos) + 2 * kernels::kArmTableBytes,
+                "the offsets at which armv7m_loops.cpp reaches the tables");
+  static_assert(kUnitBytes == 3 || kUnitBytes == 4, "3- or 4-byte units");
+  const Geometry& geo = d.geo_;
+  const Decoder::SpinCache& spin = d.spin_;
+  const std::uint16_t min_distance = sensor_of(d.model_)->min_distance;
+  HESAI_ASSERT(min_distance >= 1);
+  const std::uint32_t keep_bias = (0x10000u - min_distance) << 16;
+  const float unit_m = static_cast<float>(info.dis_unit_mm) * 0.001f;
+  HESAI_ASSERT(unit_count >= 1 && unit_count <= 256);
+  const auto units_left = static_cast<std::uint32_t>(unit_count - 1) << 8;
+  SinCosF ab{};
+  std::uint32_t last_azimuth = 0x10000;  // none yet: above any block azimuth
+  if (out.points == nullptr) {
+    const PointColumns& c = out.columns;
+    kernels::ArmColumnsBlock k{nullptr, 0, out.count, c.x, c.y, c.z, c.time_ns, c.intensity, nullptr,
+                               geo.sin_el.data(), keep_bias, 1 | units_left, 0, 0, unit_m, 0, c.channel, c.return_index};
+    for (std::size_t b = 0; b < block_count; ++b) {
+      const kernels::BlockRef& r = blocks[b];
+      if (info.block_azimuth[b] != last_azimuth) ab = sin_cos_centideg(info.block_azimuth[b]);
+      last_azimuth = info.block_azimuth[b];
+      k.units = r.units, k.dir_cos = spin.loop[r.loop].dir_cos.data(), k.return_index = kernels::return_index(info.returns, b);
+      k.sin_a = ab.sin, k.cos_a = ab.cos, k.offset_ns = r.offset_ns;
+      k.n = kUnitBytes == 3 ? (r.loop == 0 ? hesai_armv7m_columns_u3_l0(&k) : hesai_armv7m_columns_u3_l1(&k))
+                            : (r.loop == 0 ? hesai_armv7m_columns_u4_l0(&k) : hesai_armv7m_columns_u4_l1(&k));
+    }
+    out.count = k.n;
+    return;
+  }
+  kernels::ArmPointsBlock k{nullptr, out.points + out.count, nullptr, geo.sin_el.data(), 0, keep_bias, 0,
+                            0, 0, unit_m, 0, 360.0f, 0, 0};
+  for (std::size_t b = 0; b < block_count; ++b) {
+    const kernels::BlockRef& r = blocks[b];
+    if (info.block_azimuth[b] != last_azimuth) ab = sin_cos_centideg(info.block_azimuth[b]);
+    last_azimuth = info.block_azimuth[b];
+    const auto block_time = static_cast<std::uint64_t>(info.time_ns + r.offset_ns);
+    k.units = r.units, k.dir_cos = spin.loop[r.loop].dir_cos.data();
+    k.tag = 1u << 8 | std::uint32_t{kernels::return_index(info.returns, b)} << 16;
+    k.block_and_count = static_cast<std::uint32_t>(b) | units_left;
+    k.sin_a = ab.sin, k.cos_a = ab.cos, k.block_deg = static_cast<float>(info.block_azimuth[b]) * 0.01f;
+    k.block_time_lo = static_cast<std::uint32_t>(block_time), k.block_time_hi = static_cast<std::uint32_t>(block_time >> 32);
+    k.out = kUnitBytes == 3 ? (r.loop == 0 ? hesai_armv7m_points_u3_l0(&k) : hesai_armv7m_points_u3_l1(&k))
+                            : (r.loop == 0 ? hesai_armv7m_points_u4_l0(&k) : hesai_armv7m_points_u4_l1(&k));
+  }
+  out.count = static_cast<std::size_t>(k.out - out.points);
+}
+#endif
 
 }  // namespace hesai

@@ -109,8 +109,8 @@ void Decoder::update_spin(std::uint16_t rpm, DecodePath path) noexcept {
   std::int32_t lo = kernels::order_key(180.0f), hi = kernels::order_key(-180.0f);
   for (std::size_t loop = 0; loop < loops; ++loop) {
     const kernels::BeamLoop l{geo_.fire_ns[loop].data(),     geo_.cos_el_cos_az.data(),     geo_.cos_el_sin_az.data(),
-                              geo_.azimuth_deg.data(),       spin_.dir_cos[loop].data(),    spin_.dir_sin[loop].data(),
-                              spin_.azimuth_deg[loop].data()};
+                              geo_.azimuth_deg.data(),       spin_.loop[loop].dir_cos.data(),    spin_.loop[loop].dir_sin.data(),
+                              spin_.loop[loop].azimuth_deg.data()};
     kernels::rebuild_beams(l, channels, omega, isa, lo, hi);
   }
   spin_.spread = channels != 0 ? AzimuthSpread{kernels::from_order_key(lo), kernels::from_order_key(hi)} : AzimuthSpread{};

@@ -22,6 +22,7 @@
 #include "hesai/detail/tables/table_types.h"
 #include "hesai/error.h"
 #include "hesai/model.h"
+#include "../kernels/kernel_inputs.h"  // HESAI_KERNELS_ARMV7M
 
 namespace hesai {
 
@@ -107,6 +108,12 @@ struct SensorBase {
   template <std::size_t kUnitBytes>
   static void emit_blocks(const Decoder& d, const kernels::BlockRef* blocks, std::size_t block_count,
                           std::size_t unit_count, const PacketInfo& info, DecodeOutput& out) noexcept;
+#if defined(HESAI_KERNELS_ARMV7M)
+  /// The same by the ARMv7E-M assembly loops (block_points.h).
+  template <std::size_t kUnitBytes>
+  static void emit_blocks_armv7m(const Decoder& d, const kernels::BlockRef* blocks, std::size_t block_count,
+                                 std::size_t unit_count, const PacketInfo& info, DecodeOutput& out) noexcept;
+#endif
 };
 
 /// A sensor's functions, declared once here and defined in the sensor's file for its own tag

@@ -1,0 +1,156 @@
+// The ARMv7E-M unit loops (see armv7m_loops.h for what they compute and why they are assembly).
+// Empty on every other target. Each function takes one ArmPointsBlock or ArmColumnsBlock, keeps
+// all of it in registers (r0-r12 and lr, s0-s16), and walks the block's units once.
+//
+// Per unit, as scalar_loops.h writes it (r = raw x unit_m; dc, ds, se: the channel's dir_cos,
+// dir_sin, sin_el):
+//   x = r (sin_a dc + cos_a ds)   VMUL, VMLA, VMUL
+//   y = r (cos_a dc - sin_a ds)   VMUL, VMLS, VMUL
+//   z = r se                      VMUL
+// and the point is kept (the output advanced) iff raw >= min_distance: the carry out of
+// raw << 16 + keep_bias.
+#include "armv7m_loops.h"
+
+#if defined(HESAI_KERNELS_ARMV7M)
+
+#define HESAI_STRING(x) #x
+#define HESAI_STRING_OF(x) HESAI_STRING(x)
+
+// Every table is read from the walked pointer of dir_cos or sin_el, which the post-increment has
+// already moved to the next channel: the channel's entry of the table k tables on is at
+// k * TABLE - 4. HESAI_POINTS and HESAI_COLUMNS take the unit size and the firing loop (which
+// fire_ns table, 2 + loop tables after sin_el). The loop counts down in the high bits of a register
+// whose low byte is stored with each point (the block index, the channel), so that one SUBS both
+// steps it and ends the loop (on the sign), with no end pointer and no compare.
+// Points registers: r0 units, r1 out, r2 dir_cos, r3 sin_el, r4 tag, r5 keep_bias, r6 block and
+// count, r7 raw, r8 fire_ns, r9-r10 temporaries; s0-s5 the Point's six floats (one VSTM), s6-s9
+// the channel's dir_cos, dir_sin, sin_el, azimuth, s10-s16 the block's constants.
+asm(".equ HESAI_ARMV7M_TABLE, " HESAI_STRING_OF(HESAI_ARMV7M_TABLE) R"(
+    .syntax unified
+    .thumb
+    .macro HESAI_POINTS name, unit, loop
+    .pushsection .text.\name, "ax", %progbits
+    .global \name
+    .type \name, %function
+    .thumb_func
+    .p2align 2
+\name:
+    push     {r4-r10, lr}
+    vpush    {s16}
+    add      r12, r0, #28
+    vldmia   r12, {s10-s16}
+    ldmia    r0, {r0-r6}
+1:
+    ldrh     r7, [r0], #\unit         @ raw distance
+    vmov     s3, r7
+    vcvt.f32.u32 s3, s3
+    vmul.f32 s3, s3, s12              @ r, the Point's distance_m
+    vldmia   r2!, {s6}                @ dir_cos
+    vldr     s7, [r2, #(HESAI_ARMV7M_TABLE - 4)]      @ dir_sin
+    vldr     s9, [r2, #(2 * HESAI_ARMV7M_TABLE - 4)]  @ beam azimuth
+    vldmia   r3!, {s8}                @ sin_el
+    vldr     s5, [r3, #(HESAI_ARMV7M_TABLE - 4)]      @ elevation_deg, stored as is
+    vmul.f32 s0, s10, s6
+    vmla.f32 s0, s11, s7
+    vmul.f32 s0, s0, s3               @ x
+    vmul.f32 s1, s11, s6
+    vmls.f32 s1, s10, s7
+    vmul.f32 s1, s1, s3               @ y
+    vmul.f32 s2, s3, s8               @ z
+    vadd.f32 s4, s13, s9              @ azimuth: block + beam, both in [0, 360)
+    vcmp.f32 s4, s14
+    vmrs     APSR_nzcv, fpscr
+    it       ge
+    vsubge.f32 s4, s4, s14
+    vstmia   r1, {s0-s5}
+    ldr      r8, [r3, #((2 + \loop) * HESAI_ARMV7M_TABLE - 4)]  @ fire_ns
+    vmov     r9, r10, s15, s16
+    adds     r9, r9, r8
+    adc      r10, r10, r8, asr #31    @ block time + fire_ns, 64 bits
+    strd     r9, r10, [r1, #24]
+    ldrb     r9, [r0, #(2 - \unit)]   @ intensity
+    .if \unit == 4
+    ldrb     r10, [r0, #-1]           @ confidence
+    orr      r9, r9, r10, lsl #24
+    .endif
+    orr      r9, r9, r4
+    str      r9, [r1, #32]            @ intensity, channel, return index, confidence
+    add      r4, r4, #256             @ the next channel
+    strb     r6, [r1, #36]            @ block
+    adds     r7, r5, r7, lsl #16
+    it       cs
+    addcs    r1, r1, #40              @ kept: the next Point
+    subs     r6, r6, #256             @ units left - 1, in bits 8-31
+    bpl      1b
+    mov      r0, r1
+    vpop     {s16}
+    pop      {r4-r10, pc}
+    .size \name, . - \name
+    .popsection
+    .endm
+
+    @ Columns registers: r0 units, r1 return index, r2 n, r3-r7 the columns x, y, z, time_ns,
+    @ intensity, r8 dir_cos, r9 sin_el, r10 keep_bias, r11 channel and count, r12 lr temporaries;
+    @ s0 r, s1-s3 the channel's dir_cos, dir_sin, sin_el, s4-s6 x, y, z, s7-s12 the block's
+    @ constants and the last two columns.
+    .macro HESAI_COLUMNS name, unit, loop
+    .pushsection .text.\name, "ax", %progbits
+    .global \name
+    .type \name, %function
+    .thumb_func
+    .p2align 2
+\name:
+    push     {r4-r11, lr}
+    add      r12, r0, #48
+    vldmia   r12, {s7-s12}
+    ldmia    r0, {r0-r11}
+1:
+    ldrh     r12, [r0], #\unit        @ raw distance
+    vmov     s0, r12
+    adds     r12, r10, r12, lsl #16   @ carry: kept (nothing below sets the flags until the ADC)
+    vcvt.f32.u32 s0, s0
+    vmul.f32 s0, s0, s9               @ r
+    vldmia   r8!, {s1}                @ dir_cos
+    vldr     s2, [r8, #(HESAI_ARMV7M_TABLE - 4)]  @ dir_sin
+    vldmia   r9!, {s3}                @ sin_el
+    vmul.f32 s4, s7, s1
+    vmla.f32 s4, s8, s2
+    vmul.f32 s4, s4, s0               @ x
+    vmul.f32 s5, s8, s1
+    vmls.f32 s5, s7, s2
+    vmul.f32 s5, s5, s0               @ y
+    vmul.f32 s6, s0, s3               @ z
+    vmov     r12, lr, s4, s5
+    str      r12, [r3, r2, lsl #2]
+    str      lr, [r4, r2, lsl #2]
+    vmov     r12, s6
+    str      r12, [r5, r2, lsl #2]
+    ldr      r12, [r9, #((2 + \loop) * HESAI_ARMV7M_TABLE - 4)]  @ fire_ns
+    vmov     lr, s10
+    add      r12, r12, lr             @ + the block's offset
+    str      r12, [r6, r2, lsl #2]
+    ldrb     r12, [r0, #(2 - \unit)]  @ intensity
+    strb     r12, [r7, r2]
+    vmov     r12, lr, s11, s12        @ the channel and return index columns
+    strb     r11, [r12, r2]
+    strb     r1, [lr, r2]
+    adc      r2, r2, #0               @ kept: the next index
+    subs     r11, r11, #255           @ the next channel (+1), units left - 1 (bits 8-31)
+    bpl      1b
+    mov      r0, r2
+    pop      {r4-r11, pc}
+    .size \name, . - \name
+    .popsection
+    .endm
+
+    HESAI_POINTS  hesai_armv7m_points_u3_l0, 3, 0
+    HESAI_POINTS  hesai_armv7m_points_u3_l1, 3, 1
+    HESAI_POINTS  hesai_armv7m_points_u4_l0, 4, 0
+    HESAI_POINTS  hesai_armv7m_points_u4_l1, 4, 1
+    HESAI_COLUMNS hesai_armv7m_columns_u3_l0, 3, 0
+    HESAI_COLUMNS hesai_armv7m_columns_u3_l1, 3, 1
+    HESAI_COLUMNS hesai_armv7m_columns_u4_l0, 4, 0
+    HESAI_COLUMNS hesai_armv7m_columns_u4_l1, 4, 1
+)");
+
+#endif  // HESAI_KERNELS_ARMV7M
