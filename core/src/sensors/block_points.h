@@ -40,7 +40,7 @@ struct DecodeOutput {
 };
 
 // Whether a unit of any block needs a channel map (customised QT128 channels): the scalar loops then.
-inline bool has_channel_map(const kernels::BlockRef* blocks, std::size_t block_count) noexcept {
+HESAI_ALWAYS_INLINE inline bool has_channel_map(const kernels::BlockRef* blocks, std::size_t block_count) noexcept {
   bool mapped = false;
   for (std::size_t b = 0; b < block_count; ++b) mapped = mapped || blocks[b].channel_of != nullptr;
   return mapped;
@@ -151,10 +151,14 @@ void SensorBase::emit_blocks_armv7m(const Decoder& d, const kernels::BlockRef* b
   const auto units_left = static_cast<std::uint32_t>(unit_count - 1) << 8;
   SinCosF ab{};
   std::uint32_t last_azimuth = 0x10000;  // none yet: above any block azimuth
+  // The records assigned field by field: a braced initialiser made GCC zero them first by a memset
+  // call (picolibc's, a byte at a time: 261 instructions a packet).
   if (out.points == nullptr) {
     const PointColumns& c = out.columns;
-    kernels::ArmColumnsBlock k{nullptr, 0, out.count, c.x, c.y, c.z, c.time_ns, c.intensity, nullptr,
-                               geo.sin_el.data(), keep_bias, 1 | units_left, 0, 0, unit_m, 0, c.channel, c.return_index};
+    kernels::ArmColumnsBlock k;
+    k.n = out.count, k.x = c.x, k.y = c.y, k.z = c.z, k.time_ns = c.time_ns, k.intensity = c.intensity;
+    k.channel_column = c.channel, k.return_column = c.return_index;
+    k.sin_el = geo.sin_el.data(), k.keep_bias = keep_bias, k.channel_and_count = 1 | units_left, k.unit_m = unit_m;
     for (std::size_t b = 0; b < block_count; ++b) {
       const kernels::BlockRef& r = blocks[b];
       if (info.block_azimuth[b] != last_azimuth) ab = sin_cos_centideg(info.block_azimuth[b]);
@@ -167,8 +171,9 @@ void SensorBase::emit_blocks_armv7m(const Decoder& d, const kernels::BlockRef* b
     out.count = k.n;
     return;
   }
-  kernels::ArmPointsBlock k{nullptr, out.points + out.count, nullptr, geo.sin_el.data(), 0, keep_bias, 0,
-                            0, 0, unit_m, 0, 360.0f, 0, 0};
+  kernels::ArmPointsBlock k;
+  k.out = out.points + out.count, k.sin_el = geo.sin_el.data(), k.keep_bias = keep_bias, k.unit_m = unit_m;
+  k.full_turn = 360.0f;
   for (std::size_t b = 0; b < block_count; ++b) {
     const kernels::BlockRef& r = blocks[b];
     if (info.block_azimuth[b] != last_azimuth) ab = sin_cos_centideg(info.block_azimuth[b]);
