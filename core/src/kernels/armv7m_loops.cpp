@@ -18,29 +18,19 @@
 
 // Every table is read from the walked pointer of dir_cos or sin_el, which the post-increment has
 // already moved to the next channel: the channel's entry of the table k tables on is at
-// k * TABLE - 4. HESAI_POINTS and HESAI_COLUMNS take the unit size and the firing loop (which
-// fire_ns table, 2 + loop tables after sin_el). The loop counts down in the high bits of a register
-// whose low byte is stored with each point (the block index, the channel), so that one SUBS both
-// steps it and ends the loop (on the sign), with no end pointer and no compare.
-// Points registers: r0 units, r1 out, r2 dir_cos, r3 sin_el, r4 tag, r5 keep_bias, r6 block and
-// count, r7 raw, r8 fire_ns, r9-r10 temporaries; s0-s5 the Point's six floats (one VSTM), s6-s9
-// the channel's dir_cos, dir_sin, sin_el, azimuth, s10-s16 the block's constants.
+// k * TABLE - 4. The loops take two units a step (every sensor's blocks have an even number of
+// units: 16 to 128) and count the steps down in the high bits of a register whose low byte is
+// stored with each point (the block index, the channel), so that one SUBS both steps the count
+// and ends the loop (on the sign): no end pointer and no compare.
 asm(".equ HESAI_ARMV7M_TABLE, " HESAI_STRING_OF(HESAI_ARMV7M_TABLE) R"(
     .syntax unified
     .thumb
-    .macro HESAI_POINTS name, unit, loop
-    .pushsection .text.\name, "ax", %progbits
-    .global \name
-    .type \name, %function
-    .thumb_func
-    .p2align 2
-\name:
-    push     {r4-r10, lr}
-    vpush    {s16}
-    add      r12, r0, #28
-    vldmia   r12, {s10-s16}
-    ldmia    r0, {r0-r6}
-1:
+
+    @ One unit to a Point. unit: 3 or 4 bytes; loop: the firing loop (its fire_ns table is 2 + loop
+    @ tables after sin_el). Registers: r0 units, r1 out, r2 dir_cos, r3 sin_el, r4 tag, r5 keep_bias,
+    @ r6 block and steps, r7 raw, r8 fire_ns, r9 r10 temporaries; s0-s5 the Point's six floats (one
+    @ VSTM), s6-s9 the channel's dir_cos, dir_sin, sin_el, azimuth, s10-s16 the block's constants.
+    .macro HESAI_POINT unit, loop
     ldrh     r7, [r0], #\unit         @ raw distance
     vmov     s3, r7
     vcvt.f32.u32 s3, s3
@@ -80,7 +70,24 @@ asm(".equ HESAI_ARMV7M_TABLE, " HESAI_STRING_OF(HESAI_ARMV7M_TABLE) R"(
     adds     r7, r5, r7, lsl #16
     it       cs
     addcs    r1, r1, #40              @ kept: the next Point
-    subs     r6, r6, #256             @ units left - 1, in bits 8-31
+    .endm
+
+    .macro HESAI_POINTS name, unit, loop
+    .pushsection .text.\name, "ax", %progbits
+    .global \name
+    .type \name, %function
+    .thumb_func
+    .p2align 2
+\name:
+    push     {r4-r10, lr}
+    vpush    {s16}
+    add      r12, r0, #28
+    vldmia   r12, {s10-s16}
+    ldmia    r0, {r0-r6}
+1:
+    HESAI_POINT \unit, \loop
+    HESAI_POINT \unit, \loop
+    subs     r6, r6, #256             @ steps left - 1, in bits 8-31
     bpl      1b
     mov      r0, r1
     vpop     {s16}
@@ -89,25 +96,15 @@ asm(".equ HESAI_ARMV7M_TABLE, " HESAI_STRING_OF(HESAI_ARMV7M_TABLE) R"(
     .popsection
     .endm
 
-    @ Columns registers: r0 units, r1 return index, r2 n, r3-r7 the columns x, y, z, time_ns,
-    @ intensity, r8 dir_cos, r9 sin_el, r10 keep_bias, r11 channel and count, r12 lr temporaries;
-    @ s0 r, s1-s3 the channel's dir_cos, dir_sin, sin_el, s4-s6 x, y, z, s7-s12 the block's
-    @ constants and the last two columns.
-    .macro HESAI_COLUMNS name, unit, loop
-    .pushsection .text.\name, "ax", %progbits
-    .global \name
-    .type \name, %function
-    .thumb_func
-    .p2align 2
-\name:
-    push     {r4-r11, lr}
-    add      r12, r0, #48
-    vldmia   r12, {s7-s12}
-    ldmia    r0, {r0-r11}
-1:
+    @ One unit to the columns. Registers: r0 units, r1 return index, r2 n, r3-r7 the columns x, y,
+    @ z, time_ns, intensity, r8 dir_cos, r9 sin_el, r10 keep_bias, r11 channel and steps, r12 lr
+    @ temporaries; s0 r, s1-s3 the channel's dir_cos, dir_sin, sin_el, s4-s6 x, y, z, s7-s12 the
+    @ block's constants and the last two columns. The carry of the ADDS (kept) lasts to the ADC:
+    @ nothing between sets the flags.
+    .macro HESAI_COLUMN unit, loop
     ldrh     r12, [r0], #\unit        @ raw distance
     vmov     s0, r12
-    adds     r12, r10, r12, lsl #16   @ carry: kept (nothing below sets the flags until the ADC)
+    adds     r12, r10, r12, lsl #16   @ carry: kept
     vcvt.f32.u32 s0, s0
     vmul.f32 s0, s0, s9               @ r
     vldmia   r8!, {s1}                @ dir_cos
@@ -135,7 +132,24 @@ asm(".equ HESAI_ARMV7M_TABLE, " HESAI_STRING_OF(HESAI_ARMV7M_TABLE) R"(
     strb     r11, [r12, r2]
     strb     r1, [lr, r2]
     adc      r2, r2, #0               @ kept: the next index
-    subs     r11, r11, #255           @ the next channel (+1), units left - 1 (bits 8-31)
+    .endm
+
+    .macro HESAI_COLUMNS name, unit, loop
+    .pushsection .text.\name, "ax", %progbits
+    .global \name
+    .type \name, %function
+    .thumb_func
+    .p2align 2
+\name:
+    push     {r4-r11, lr}
+    add      r12, r0, #48
+    vldmia   r12, {s7-s12}
+    ldmia    r0, {r0-r11}
+1:
+    HESAI_COLUMN \unit, \loop
+    add      r11, r11, #1             @ the next channel
+    HESAI_COLUMN \unit, \loop
+    subs     r11, r11, #255           @ the next channel (+1), steps left - 1 (bits 8-31)
     bpl      1b
     mov      r0, r2
     pop      {r4-r11, pc}

@@ -33,7 +33,7 @@ inline constexpr std::size_t kArmTableBytes = HESAI_ARMV7M_TABLE;
 static_assert(kArmTableBytes == kMaxChannels * 4, "a table is kMaxChannels floats or int32s");
 
 // One block for the Points loop. The field order is the loop's register order (one LDM, one VLDM):
-// do not reorder. A block has 1 to 256 units.
+// do not reorder. A block has an even number of units, 2 to 256.
 struct ArmPointsBlock {
   const std::uint8_t* units;      // r0: the block's first unit
   Point* out;                     // r1: where the next point goes
@@ -41,7 +41,7 @@ struct ArmPointsBlock {
   const float* sin_el;            // r3: Geometry::sin_el (elevation_deg, fire_ns follow)
   std::uint32_t tag;              // r4: channel 1 << 8 | return index << 16 (a Point's bytes 32-35)
   std::uint32_t keep_bias;        // r5: (0x10000 - min_distance) << 16: raw << 16 + it carries iff raw >= min
-  std::uint32_t block_and_count;  // r6: the block index | (units - 1) << 8
+  std::uint32_t block_and_steps;  // r6: the block index | (units / 2 - 1) << 8
   float sin_a, cos_a;             // s10, s11: of the block azimuth
   float unit_m;                   // s12
   float block_deg;                // s13
@@ -63,7 +63,7 @@ struct ArmColumnsBlock {
   const float* dir_cos;             // r8
   const float* sin_el;              // r9
   std::uint32_t keep_bias;          // r10
-  std::uint32_t channel_and_count;  // r11: 1 (the first unit's channel) | (units - 1) << 8
+  std::uint32_t channel_and_steps;  // r11: 1 (the first unit's channel) | (units / 2 - 1) << 8
   float sin_a, cos_a;               // s7, s8
   float unit_m;                     // s9
   std::int32_t offset_ns;           // s10: the block time from the packet time

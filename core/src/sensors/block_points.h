@@ -91,7 +91,8 @@ HESAI_NOINLINE_FOR_SIZE void SensorBase::emit_blocks(const Decoder& d, const ker
   }
 #endif
 #if defined(HESAI_KERNELS_ARMV7M)
-  if (kernels::vector_isa(out.path) == kernels::VectorIsa::armv7m && !has_channel_map(blocks, block_count)) {
+  if (kernels::vector_isa(out.path) == kernels::VectorIsa::armv7m && unit_count % 2 == 0 && unit_count >= 2 &&
+      unit_count <= 256 && !has_channel_map(blocks, block_count)) {
     emit_blocks_armv7m<kUnitBytes>(d, blocks, block_count, unit_count, info, out);
     return;
   }
@@ -147,8 +148,7 @@ void SensorBase::emit_blocks_armv7m(const Decoder& d, const kernels::BlockRef* b
   HESAI_ASSERT(min_distance >= 1);
   const std::uint32_t keep_bias = (0x10000u - min_distance) << 16;
   const float unit_m = static_cast<float>(info.dis_unit_mm) * 0.001f;
-  HESAI_ASSERT(unit_count >= 1 && unit_count <= 256);
-  const auto units_left = static_cast<std::uint32_t>(unit_count - 1) << 8;
+  const auto steps_left = static_cast<std::uint32_t>(unit_count / 2 - 1) << 8;  // two units a step
   SinCosF ab{};
   std::uint32_t last_azimuth = 0x10000;  // none yet: above any block azimuth
   // The records assigned field by field: a braced initialiser made GCC zero them first by a memset
@@ -158,7 +158,7 @@ void SensorBase::emit_blocks_armv7m(const Decoder& d, const kernels::BlockRef* b
     kernels::ArmColumnsBlock k;
     k.n = out.count, k.x = c.x, k.y = c.y, k.z = c.z, k.time_ns = c.time_ns, k.intensity = c.intensity;
     k.channel_column = c.channel, k.return_column = c.return_index;
-    k.sin_el = geo.sin_el.data(), k.keep_bias = keep_bias, k.channel_and_count = 1 | units_left, k.unit_m = unit_m;
+    k.sin_el = geo.sin_el.data(), k.keep_bias = keep_bias, k.channel_and_steps = 1 | steps_left, k.unit_m = unit_m;
     for (std::size_t b = 0; b < block_count; ++b) {
       const kernels::BlockRef& r = blocks[b];
       if (info.block_azimuth[b] != last_azimuth) ab = sin_cos_centideg(info.block_azimuth[b]);
@@ -181,7 +181,7 @@ void SensorBase::emit_blocks_armv7m(const Decoder& d, const kernels::BlockRef* b
     const auto block_time = static_cast<std::uint64_t>(info.time_ns + r.offset_ns);
     k.units = r.units, k.dir_cos = spin.loop[r.loop].dir_cos.data();
     k.tag = 1u << 8 | std::uint32_t{kernels::return_index(info.returns, b)} << 16;
-    k.block_and_count = static_cast<std::uint32_t>(b) | units_left;
+    k.block_and_steps = static_cast<std::uint32_t>(b) | steps_left;
     k.sin_a = ab.sin, k.cos_a = ab.cos, k.block_deg = static_cast<float>(info.block_azimuth[b]) * 0.01f;
     k.block_time_lo = static_cast<std::uint32_t>(block_time), k.block_time_hi = static_cast<std::uint32_t>(block_time >> 32);
     k.out = kUnitBytes == 3 ? (r.loop == 0 ? hesai_armv7m_points_u3_l0(&k) : hesai_armv7m_points_u3_l1(&k))
