@@ -36,14 +36,14 @@ STACK_BUDGET = 1024
 # Cortex-M4F, 63% of its decode).
 INSTRUCTION_BUDGETS = {
     'cortex-m4': {
-        'Pandar40': {'validate': 1000, 'decode': 29000, 'decode_columns': 24000, 'decode_rpm_change': 33000},
-        'Pandar40P': {'validate': 2000, 'decode': 29000, 'decode_columns': 24000, 'decode_rpm_change': 33000},
-        'Pandar64': {'validate': 1000, 'decode': 27000, 'decode_columns': 23000, 'decode_rpm_change': 34000},
-        'QT128C2X': {'validate': 9000, 'decode': 26000, 'decode_columns': 23000, 'decode_rpm_change': 53000, 'signature': 97000},
-        'PandarQT64': {'validate': 1000, 'decode': 19000, 'decode_columns': 16000, 'decode_rpm_change': 26000},
-        'PandarXT16': {'validate': 2000, 'decode': 12000, 'decode_columns': 10000, 'decode_rpm_change': 13000},
-        'PandarXT32': {'validate': 2000, 'decode': 20000, 'decode_columns': 16000, 'decode_rpm_change': 23000},
-        'PandarXT32M2X': {'validate': 1000, 'decode': 15000, 'decode_columns': 13000, 'decode_rpm_change': 19000},
+        'Pandar40': {'validate': 1000, 'decode': 21000, 'decode_columns': 18000, 'decode_rpm_change': 25000},
+        'Pandar40P': {'validate': 2000, 'decode': 21000, 'decode_columns': 19000, 'decode_rpm_change': 25000},
+        'Pandar64': {'validate': 1000, 'decode': 20000, 'decode_columns': 17000, 'decode_rpm_change': 27000},
+        'QT128C2X': {'validate': 9000, 'decode': 22000, 'decode_columns': 19000, 'decode_rpm_change': 48000, 'signature': 97000},
+        'PandarQT64': {'validate': 1000, 'decode': 14000, 'decode_columns': 12000, 'decode_rpm_change': 21000},
+        'PandarXT16': {'validate': 2000, 'decode': 9000, 'decode_columns': 8000, 'decode_rpm_change': 11000},
+        'PandarXT32': {'validate': 2000, 'decode': 15000, 'decode_columns': 13000, 'decode_rpm_change': 19000},
+        'PandarXT32M2X': {'validate': 2000, 'decode': 12000, 'decode_columns': 10000, 'decode_rpm_change': 15000},
     },
     'cortex-m0plus': {
         'Pandar40': {'validate': 2000, 'decode': 723000, 'decode_columns': 619000, 'decode_rpm_change': 829000},
@@ -56,6 +56,11 @@ INSTRUCTION_BUDGETS = {
         'PandarXT32M2X': {'validate': 3000, 'decode': 312000, 'decode_columns': 278000, 'decode_rpm_change': 390000},
     },
 }
+# Issue #25's targets on the Cortex-M4F, every sensor: instructions per unit less validate (the
+# ARMv7E-M assembly loops, kernels/armv7m_loops.h), and validate + columns decode at the sensor's
+# dual-return packet rate within a 168 MHz core at one instruction a cycle.
+PER_UNIT_TARGETS = {'cortex-m4': {'decode': 48, 'decode_columns': 40}}
+COLUMNS_CLOCK_TARGET = {'cortex-m4': 168e6}
 # Packets per second at 600 rpm in dual return, the bundled captures' mode (packets per rotation
 # counted between azimuth wraps in data/*.pcap, and the pcap timestamps agree): Pandar40/40P 10
 # blocks = 5 azimuths of 0.2 degrees per packet, 360 per rotation; Pandar64 6 blocks = 3 azimuths,
@@ -335,6 +340,12 @@ def instruction_counts(emulator, image, over, json_path=None):
         for what in ('validate', 'decode', 'decode_columns', 'decode_rpm_change'):
             if what not in budget or c.get(what, 0) > budget[what]:
                 over.append('instructions %s %s %d > budget %s' % (sensor, what, c.get(what, 0), budget.get(what)))
+        for what, target in PER_UNIT_TARGETS.get(core, {}).items():
+            if per_unit(what) > target:
+                over.append('instructions %s %s %.1f a unit > target %d' % (sensor, what, per_unit(what), target))
+        if core in COLUMNS_CLOCK_TARGET and c.get('decode_columns', 0) * rate > COLUMNS_CLOCK_TARGET[core]:
+            over.append('instructions %s columns at %d packets/s: %.0f M/s > %.0f M/s' % (
+                sensor, rate, c.get('decode_columns', 0) * rate / 1e6, COLUMNS_CLOCK_TARGET[core] / 1e6))
     qt = counts.get('QT128C2X', {})
     if 'validate_signed' in qt:
         signature = qt['validate_signed'] - qt['validate']
