@@ -70,8 +70,9 @@ struct PacketColumns {
 };
 
 /// Which per-point code decode() runs: the best the CPU has (x86-64, chosen at run time from
-/// CPUID: AVX-512 where present, else AVX2; AArch64: NEON), the portable scalar code
-/// every target has (the only one on Cortex-M), or `avx2`: the AVX2 code even where AVX-512 is
+/// CPUID: AVX-512 where present, else AVX2; AArch64: NEON; Cortex-M4F and M7: the ARMv7E-M
+/// assembly loops), the portable scalar code every target has (the only one on other Cortex-M
+/// cores), or `avx2`: the AVX2 code even where AVX-512 is
 /// present, for tests and benchmarks (elsewhere the same as `best`). Every path gives the same
 /// points: the same float operations in the same order (tests/test_columns.cpp).
 enum class DecodePath : std::uint8_t { best, portable, avx2 };
