@@ -6,11 +6,12 @@
 //
 // Why assembly: GCC 12 at -Os keeps about 18 values live in the C loop against 13 registers and
 // reloads the rest from the stack on every unit (42 instructions a unit as columns, 51 as Points).
-// Here each block's constants sit in registers (the FPU's spare ones among them) and every table
-// of a channel is reached from one walking pointer with a fixed offset, so a unit takes 34
-// instructions as columns and 37 as Points (39 with 4-byte units). SensorBase::emit_blocks
-// (sensors/block_points.h) calls them one block at a time, for blocks without a channel map, unless
-// the caller asked for DecodePath::portable.
+// Here each block's constants sit in registers (the FPU's spare ones among them), every table of a
+// channel is reached from one walked pointer with a fixed offset, and two units make a step, so a
+// unit takes 31.5 instructions as columns and 36 as Points (38 with 4-byte units).
+// SensorBase::emit_blocks (sensors/block_points.h) calls them one block at a time for packets whose
+// blocks have an even number of units and no channel map, unless the caller asked for
+// DecodePath::portable.
 #pragma once
 
 #include <cstddef>
