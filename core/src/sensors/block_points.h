@@ -131,8 +131,9 @@ HESAI_NOINLINE_FOR_SIZE void SensorBase::emit_blocks(const Decoder& d, const ker
 // record is filled once and only its per-block fields changed, and a block at the azimuth of the
 // one before it (the returns of one firing) reuses its sine and cosine.
 template <std::size_t kUnitBytes>
-HESAI_ALWAYS_INLINE inline void SensorBase::emit_blocks_armv7m(const Decoder& d, const kernels::BlockRef* blocks, std::size_t block_count,
-                                    std::size_t unit_count, const PacketInfo& info, DecodeOutput& out) noexcept {
+HESAI_ALWAYS_INLINE inline void SensorBase::emit_blocks_armv7m(const Decoder& d, const kernels::BlockRef* blocks,
+                                                               std::size_t block_count, std::size_t unit_count,
+                                                               const PacketInfo& info, DecodeOutput& out) noexcept {
   using Geometry = Decoder::Geometry;
   using Beams = Decoder::SpinCache::Beams;
   static_assert(offsetof(Geometry, elevation_deg) == offsetof(Geometry, sin_el) + kernels::kArmTableBytes &&
