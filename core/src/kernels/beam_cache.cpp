@@ -71,6 +71,8 @@ HESAI_AVX2_TARGET inline __m256 wrap_avx2(__m256 az0, __m256i& key) noexcept {
   return az;
 }
 
+// kArrays false: the spread alone (the azimuths of the loops a packet does not use).
+template <bool kArrays>
 HESAI_AVX2_TARGET void spin_loop_avx2(const BeamLoop& l, std::size_t channels, float omega, std::int32_t& lo_key,
                                       std::int32_t& hi_key) noexcept {
   const __m256 w = _mm256_set1_ps(omega), one = _mm256_set1_ps(1.0f), half = _mm256_set1_ps(0.5f);
@@ -84,26 +86,30 @@ HESAI_AVX2_TARGET void spin_loop_avx2(const BeamLoop& l, std::size_t channels, f
   for (; channels - ch >= 8; ch += 8) {
     const __m256 d =
         _mm256_mul_ps(_mm256_cvtepi32_ps(_mm256_loadu_si256(reinterpret_cast<const __m256i*>(fire_ns + ch))), w);
-    const __m256 dd = _mm256_mul_ps(d, d);
-    const __m256 cos_d = _mm256_sub_ps(one, _mm256_mul_ps(_mm256_mul_ps(half, d), d));
-    const __m256 sin_d = _mm256_sub_ps(d, _mm256_mul_ps(_mm256_mul_ps(dd, d), sixth));
-    const __m256 cc = _mm256_loadu_ps(cos_el_cos_az + ch), cs = _mm256_loadu_ps(cos_el_sin_az + ch);
-    _mm256_storeu_ps(dir_cos + ch, _mm256_sub_ps(_mm256_mul_ps(cc, cos_d), _mm256_mul_ps(cs, sin_d)));
-    _mm256_storeu_ps(dir_sin + ch, _mm256_add_ps(_mm256_mul_ps(cs, cos_d), _mm256_mul_ps(cc, sin_d)));
+    if constexpr (kArrays) {
+      const __m256 dd = _mm256_mul_ps(d, d);
+      const __m256 cos_d = _mm256_sub_ps(one, _mm256_mul_ps(_mm256_mul_ps(half, d), d));
+      const __m256 sin_d = _mm256_sub_ps(d, _mm256_mul_ps(_mm256_mul_ps(dd, d), sixth));
+      const __m256 cc = _mm256_loadu_ps(cos_el_cos_az + ch), cs = _mm256_loadu_ps(cos_el_sin_az + ch);
+      _mm256_storeu_ps(dir_cos + ch, _mm256_sub_ps(_mm256_mul_ps(cc, cos_d), _mm256_mul_ps(cs, sin_d)));
+      _mm256_storeu_ps(dir_sin + ch, _mm256_add_ps(_mm256_mul_ps(cs, cos_d), _mm256_mul_ps(cc, sin_d)));
+    }
     __m256i key;
-    _mm256_storeu_ps(azimuth_deg + ch,
-                     wrap_avx2(_mm256_add_ps(_mm256_loadu_ps(offset_deg + ch), _mm256_mul_ps(d, rad_to_deg)), key));
+    const __m256 az = wrap_avx2(_mm256_add_ps(_mm256_loadu_ps(offset_deg + ch), _mm256_mul_ps(d, rad_to_deg)), key);
+    if constexpr (kArrays) _mm256_storeu_ps(azimuth_deg + ch, az);
     lo = _mm256_min_epi32(lo, key);
     hi = _mm256_max_epi32(hi, key);
   }
-  alignas(32) std::int32_t los[8], his[8];
-  _mm256_store_si256(reinterpret_cast<__m256i*>(los), lo);
-  _mm256_store_si256(reinterpret_cast<__m256i*>(his), hi);
-  for (std::size_t i = 0; i < 8; ++i) {
-    lo_key = los[i] < lo_key ? los[i] : lo_key;
-    hi_key = his[i] > hi_key ? his[i] : hi_key;
-  }
-  if (ch < channels)  // no sensor's channel count leaves a remainder; the scalar loop if one did
+  // Across the lanes (each started from lo_key and hi_key): halves, then pairs, then neighbours.
+  lo = _mm256_min_epi32(lo, _mm256_permute2x128_si256(lo, lo, 1));
+  hi = _mm256_max_epi32(hi, _mm256_permute2x128_si256(hi, hi, 1));
+  lo = _mm256_min_epi32(lo, _mm256_shuffle_epi32(lo, 0x4E));
+  hi = _mm256_max_epi32(hi, _mm256_shuffle_epi32(hi, 0x4E));
+  lo = _mm256_min_epi32(lo, _mm256_shuffle_epi32(lo, 0xB1));
+  hi = _mm256_max_epi32(hi, _mm256_shuffle_epi32(hi, 0xB1));
+  lo_key = _mm256_cvtsi256_si32(lo);
+  hi_key = _mm256_cvtsi256_si32(hi);
+  if (ch < channels && kArrays)  // no sensor's channel count leaves a remainder; the scalar loop if one did
     spin_loop(fire_ns + ch, cos_el_cos_az + ch, cos_el_sin_az + ch, offset_deg + ch, dir_cos + ch,
               dir_sin + ch, azimuth_deg + ch, channels - ch, omega, lo_key, hi_key);
 }
@@ -113,23 +119,26 @@ struct Avx512Spin {
   __m512 w, one, half, sixth, rad_to_deg, zero, full, half_turn;
   __m512i magnitude, lo, hi;
 
-  // Channels [ch, ch + 16) of the lanes in m.
+  // Channels [ch, ch + 16) of the lanes in m; kArrays false: the spread alone.
+  template <bool kArrays>
   HESAI_AVX512_TARGET HESAI_ALWAYS_INLINE inline void step(const std::int32_t* fire_ns, const float* cos_el_cos_az,
                                                            const float* cos_el_sin_az, const float* offset_deg,
                                                            float* dir_cos, float* dir_sin, float* azimuth_deg,
                                                            __mmask16 m) noexcept {
     const __m512 d = _mm512_mul_ps(_mm512_cvtepi32_ps(_mm512_maskz_loadu_epi32(m, fire_ns)), w);
-    const __m512 dd = _mm512_mul_ps(d, d);
-    const __m512 cos_d = _mm512_sub_ps(one, _mm512_mul_ps(_mm512_mul_ps(half, d), d));
-    const __m512 sin_d = _mm512_sub_ps(d, _mm512_mul_ps(_mm512_mul_ps(dd, d), sixth));
-    const __m512 cc = _mm512_maskz_loadu_ps(m, cos_el_cos_az), cs = _mm512_maskz_loadu_ps(m, cos_el_sin_az);
-    _mm512_mask_storeu_ps(dir_cos, m, _mm512_sub_ps(_mm512_mul_ps(cc, cos_d), _mm512_mul_ps(cs, sin_d)));
-    _mm512_mask_storeu_ps(dir_sin, m, _mm512_add_ps(_mm512_mul_ps(cs, cos_d), _mm512_mul_ps(cc, sin_d)));
+    if constexpr (kArrays) {
+      const __m512 dd = _mm512_mul_ps(d, d);
+      const __m512 cos_d = _mm512_sub_ps(one, _mm512_mul_ps(_mm512_mul_ps(half, d), d));
+      const __m512 sin_d = _mm512_sub_ps(d, _mm512_mul_ps(_mm512_mul_ps(dd, d), sixth));
+      const __m512 cc = _mm512_maskz_loadu_ps(m, cos_el_cos_az), cs = _mm512_maskz_loadu_ps(m, cos_el_sin_az);
+      _mm512_mask_storeu_ps(dir_cos, m, _mm512_sub_ps(_mm512_mul_ps(cc, cos_d), _mm512_mul_ps(cs, sin_d)));
+      _mm512_mask_storeu_ps(dir_sin, m, _mm512_add_ps(_mm512_mul_ps(cs, cos_d), _mm512_mul_ps(cc, sin_d)));
+    }
     const __m512 az0 = _mm512_add_ps(_mm512_maskz_loadu_ps(m, offset_deg), _mm512_mul_ps(d, rad_to_deg));
     const __m512 az1 = _mm512_mask_add_ps(az0, _mm512_cmp_ps_mask(az0, zero, _CMP_LT_OQ), az0, full);
     const __m512 az2 = _mm512_mask_add_ps(az1, _mm512_cmp_ps_mask(az1, zero, _CMP_LT_OQ), az1, full);
     const __m512 az = _mm512_mask_sub_ps(az2, _mm512_cmp_ps_mask(az2, full, _CMP_GE_OQ), az2, full);
-    _mm512_mask_storeu_ps(azimuth_deg, m, az);
+    if constexpr (kArrays) _mm512_mask_storeu_ps(azimuth_deg, m, az);
     const __m512i b =
         _mm512_castps_si512(_mm512_mask_sub_ps(az, _mm512_cmp_ps_mask(az, half_turn, _CMP_GT_OQ), az, full));
     const __m512i key = _mm512_ternarylogic_epi32(b, _mm512_srai_epi32(b, 31), magnitude, 0x78);  // b ^ (sign & magnitude)
@@ -138,6 +147,7 @@ struct Avx512Spin {
   }
 };
 
+template <bool kArrays>
 HESAI_AVX512_TARGET void spin_loop_avx512(const BeamLoop& l, std::size_t channels, float omega, std::int32_t& lo_key,
                                           std::int32_t& hi_key) noexcept {
   Avx512Spin s{_mm512_set1_ps(omega),
@@ -157,9 +167,9 @@ HESAI_AVX512_TARGET void spin_loop_avx512(const BeamLoop& l, std::size_t channel
   float *dir_cos = l.dir_cos, *dir_sin = l.dir_sin, *az = l.azimuth_deg;
   std::size_t ch = 0;
   for (; channels - ch >= 16; ch += 16)
-    s.step(fire_ns + ch, cc + ch, cs + ch, offset + ch, dir_cos + ch, dir_sin + ch, az + ch, 0xFFFF);
+    s.step<kArrays>(fire_ns + ch, cc + ch, cs + ch, offset + ch, dir_cos + ch, dir_sin + ch, az + ch, 0xFFFF);
   if (ch < channels)
-    s.step(fire_ns + ch, cc + ch, cs + ch, offset + ch, dir_cos + ch, dir_sin + ch, az + ch,
+    s.step<kArrays>(fire_ns + ch, cc + ch, cs + ch, offset + ch, dir_cos + ch, dir_sin + ch, az + ch,
            static_cast<__mmask16>((1u << (channels - ch)) - 1));
   const __m512i lo = s.lo, hi = s.hi;
   lo_key = _mm512_reduce_min_epi32(lo);
@@ -173,16 +183,32 @@ void rebuild_beams(const BeamLoop& l, std::size_t channels, float omega, [[maybe
                    std::int32_t& lo_key, std::int32_t& hi_key) noexcept {
 #if defined(HESAI_KERNELS_X86)
   if (isa == VectorIsa::avx512) {
-    spin_loop_avx512(l, channels, omega, lo_key, hi_key);
+    spin_loop_avx512<true>(l, channels, omega, lo_key, hi_key);
     return;
   }
   if (isa == VectorIsa::avx2) {
-    spin_loop_avx2(l, channels, omega, lo_key, hi_key);
+    spin_loop_avx2<true>(l, channels, omega, lo_key, hi_key);
     return;
   }
 #endif
   spin_loop(l.fire_ns, l.cos_el_cos_az, l.cos_el_sin_az, l.offset_deg, l.dir_cos, l.dir_sin, l.azimuth_deg, channels,
             omega, lo_key, hi_key);
+}
+
+bool spread_of_beams([[maybe_unused]] const BeamLoop& l, [[maybe_unused]] std::size_t channels,
+                     [[maybe_unused]] float omega, [[maybe_unused]] VectorIsa isa,
+                     [[maybe_unused]] std::int32_t& lo_key, [[maybe_unused]] std::int32_t& hi_key) noexcept {
+#if defined(HESAI_KERNELS_X86)
+  if (isa == VectorIsa::avx512) {
+    spin_loop_avx512<false>(l, channels, omega, lo_key, hi_key);
+    return true;
+  }
+  if (isa == VectorIsa::avx2 && channels % 8 == 0) {
+    spin_loop_avx2<false>(l, channels, omega, lo_key, hi_key);
+    return true;
+  }
+#endif
+  return false;
 }
 
 }  // namespace hesai::kernels
