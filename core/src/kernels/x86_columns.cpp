@@ -53,7 +53,7 @@ HESAI_AVX512_TARGET void columns_avx512(const PacketConstants& k, const PointCol
   const __m512i intensity = every_lane(kIntensity[kUnitBytes == 4]);
   const __m512i lane_index = lane_indices();
   const __m512i next_channels = _mm512_set1_epi32(16 << 8);
-  const BlockSinCos sc = block_sin_cos(k);
+  const BlockSinCos sc = block_sin_cos_avx512(k);
   std::size_t n = count;
   std::size_t return_of_block = 0;  // return_index(k.returns, b), counted: b % returns took a 64-bit division a block
   for (std::size_t b = 0; b < blocks; ++b) {

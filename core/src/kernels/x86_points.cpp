@@ -113,7 +113,7 @@ HESAI_AVX512_TARGET void points_avx512(const PacketConstants& k, Point* out, std
   const __m512i quad_hi = _mm512_setr_epi64(4, 12, 5, 13, 6, 14, 7, 15);
   const __m512i rows_lo = _mm512_setr_epi64(0, 1, 8, 9, 2, 3, 10, 11);
   const __m512i rows_hi = _mm512_setr_epi64(4, 5, 12, 13, 6, 7, 14, 15);
-  const BlockSinCos sc = block_sin_cos(k);
+  const BlockSinCos sc = block_sin_cos_avx512(k);
   std::uint8_t* const base = reinterpret_cast<std::uint8_t*>(out);
   std::size_t n = count;
   std::size_t return_of_block = 0;  // return_index(k.returns, b), counted: b % returns took a 64-bit division a block
