@@ -368,3 +368,56 @@ TEST(Columns, SpinRebuildSameBitsOnEveryPath) {
     }
   }
 }
+
+// A firing loop's cache arrays are rebuilt when a packet first uses them at a rate (a dual-return
+// QT128 packet uses one of the two; the others' spread alone is computed at the change): a
+// decoder that switches path on every packet (best, AVX2, portable in turn), with the rate
+// changed every third packet (598, 600, 602 rpm) and on every packet, equals a decoder on the
+// scalar path in every field of every point and in the beam spread, and in Points and columns alike.
+TEST(Columns, SpinRebuildLazyLoopsSameBits) {
+  if (const std::string why = points_scalar_reason(DecodePath::best); !why.empty()) GTEST_SKIP() << why;
+  const auto speed_at = [](Model m, const std::vector<std::uint8_t>& p) -> std::size_t {
+    switch (m) {
+      case Model::pandar40:
+      case Model::pandar40p: return pandar40::kMotorSpeed;
+      case Model::pandar64: return pandar64::kMotorSpeed;
+      case Model::qt128c2x: return qt128::Layout::from_header(p[qt128::kLaserNum], p[qt128::kFlags]).tail + qt128::kTailMotorSpeed;
+      case Model::pandar_qt64: return qt64::kTail + qt64::kTailMotorSpeed;
+      default: return p.size() - xt::kTailBytes + xt::kTailMotorSpeed;
+    }
+  };
+  static PacketPoints a, b;
+  static Columns ca, cb;
+  const DecodePath paths[] = {DecodePath::best, DecodePath::avx2, DecodePath::portable};
+  for (const Capture& cap : kCaptures) {
+    for (const std::size_t every : {std::size_t{3}, std::size_t{1}}) {
+      auto packets = pcap_payloads(cap.file);
+      for (std::size_t i = 0; i < packets.size(); ++i) {
+        store_le16(&packets[i][speed_at(cap.model, packets[i])], static_cast<std::uint16_t>(598 + 2 * (i / every % 3)));
+        if (cap.model == Model::qt128c2x) qt128_seal(packets[i]);
+      }
+      Decoder scalar(cap.model), mixed(cap.model), scalar_columns(cap.model), mixed_columns(cap.model);
+      for (std::size_t i = 0; i < packets.size(); ++i) {
+        const DecodePath path = paths[i % 3];
+        PacketInfo info;
+        ASSERT_EQ(scalar.decode(view(packets[i]), info, a, DecodePath::portable), Error::ok);
+        ASSERT_EQ(mixed.decode(view(packets[i]), info, b, path), Error::ok);
+        expect_same_point_fields(a, b, std::string(cap.file) + " packet " + std::to_string(i));
+        ASSERT_EQ(scalar_columns.decode(view(packets[i]), info, ca.c, DecodePath::portable), Error::ok);
+        ASSERT_EQ(mixed_columns.decode(view(packets[i]), info, cb.c, path), Error::ok);
+        ASSERT_EQ(ca.c.count, a.count);
+        ASSERT_EQ(cb.c.count, a.count);
+        for (std::size_t j = 0; j < a.count; ++j) {
+          ASSERT_TRUE(ca.c.x[j] == cb.c.x[j] && ca.c.y[j] == cb.c.y[j] && ca.c.z[j] == cb.c.z[j] &&
+                      ca.c.time_ns[j] == cb.c.time_ns[j])
+              << cap.file << " packet " << i << " column " << j;
+        }
+        for (const Decoder* d : {&mixed, &scalar_columns, &mixed_columns}) {
+          ASSERT_TRUE(d->beam_spread().min_deg == scalar.beam_spread().min_deg &&
+                      d->beam_spread().max_deg == scalar.beam_spread().max_deg)
+              << cap.file << " packet " << i;
+        }
+      }
+    }
+  }
+}

@@ -305,13 +305,16 @@ class Decoder {
   // The part of each point that depends only on the channel, the firing loop and the spin rate,
   // computed once per rate: the beam direction b (azimuth offset + firing-time correction) as
   // cos(e) cos(b), cos(e) sin(b) and b in degrees, loop[firing loop].<array>[channel] (a loop's
-  // arrays side by side: the ARMv7E-M loops reach dir_sin from the dir_cos pointer).
+  // arrays side by side: the ARMv7E-M loops reach dir_sin from the dir_cos pointer). A firing
+  // loop's arrays are rebuilt when a packet first uses them at the rate (a dual-return QT128 packet
+  // uses one loop).
   struct SpinCache {
     static constexpr std::uint16_t kStale = 0xFFFF;  // above any accepted rpm
     struct Beams {
       std::array<float, kMaxChannels> dir_cos{}, dir_sin{}, azimuth_deg{};
     };
-    std::uint16_t rpm = kStale;  // the spin rate the arrays hold (0: no firing-time correction)
+    std::uint16_t rpm = kStale;  // the spin rate the spread holds (0: no firing-time correction)
+    std::uint8_t stale_loops = 0;  // bit l: loop l's arrays are not yet at rpm (its spread is)
     std::array<Beams, 2> loop{};
     AzimuthSpread spread;        // of every loop's azimuth_deg, folded into (-180, 180]
   };
@@ -327,8 +330,11 @@ class Decoder {
   void set_channel_firetime(std::size_t ch, double loop1_us, double loop2_us) noexcept;
   // Sets resting_first_ and resting_count_ from resting_.
   void find_resting_runs() noexcept;
-  // Rebuilds spin_ for `rpm` by the loop of `path` (every path gives the same bits).
-  void update_spin(std::uint16_t rpm, DecodePath path) noexcept;
+  // Brings spin_ to `rpm` for the firing loops in `loops` (bit l: loop l) by the code of `path`
+  // (every path gives the same bits): at a new rate the spread of every loop, the arrays of those
+  // in `loops` (the others' arrays when a later packet uses them). Const: SensorBase::emit_blocks
+  // calls it, which sees the decoder const; spin_ is a cache of the geometry.
+  void update_spin(std::uint16_t rpm, unsigned loops, DecodePath path) const noexcept;
   // Every decode() form: the capacity check, validate(), the sensor's walk into `points` (when not
   // null) or `columns`; count 0 on error.
   [[nodiscard]] Error decode_into(ByteView payload, PacketInfo& info, Point* points, const PointColumns* columns,
@@ -344,7 +350,7 @@ class Decoder {
   std::uint8_t custom_lasers_ = 0;  // QT128 channel configuration: units per block (0: none set)
   DateTime gps_time_;            // Pandar40: last GPS date-time
   Geometry geo_;
-  SpinCache spin_;
+  mutable SpinCache spin_;  // filled on demand by update_spin()
   // QT128 channel configuration: the 0-based channel of each unit, [loop][unit] (256 bytes).
   std::array<std::array<std::uint8_t, kMaxChannels>, 2> custom_channel_{};
   // QT128: the channels that rest in each firing sequence, bit (ch % 8) of byte ch / 8 for the

@@ -72,5 +72,9 @@ struct BeamLoop {
 /// hi_key take the order keys of the smallest and largest b folded into (-180, 180].
 void rebuild_beams(const BeamLoop& loop, std::size_t channels, float omega, VectorIsa isa, std::int32_t& lo_key,
                    std::int32_t& hi_key) noexcept;
+/// Only the spread of rebuild_beams (the same lo_key and hi_key; the cache arrays untouched), by the
+/// code `isa` names; false, and nothing done, where it has none (the scalar path rebuilds whole).
+bool spread_of_beams(const BeamLoop& loop, std::size_t channels, float omega, VectorIsa isa, std::int32_t& lo_key,
+                     std::int32_t& hi_key) noexcept;
 
 }  // namespace hesai::kernels

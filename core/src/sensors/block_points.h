@@ -62,6 +62,13 @@ HESAI_NOINLINE_FOR_SIZE void SensorBase::emit_blocks(const Decoder& d, const ker
                                                      const PacketInfo& info, DecodeOutput& out) noexcept {
   const Decoder::Geometry& geo_ = d.geo_;
   const Decoder::SpinCache& spin_ = d.spin_;
+  // The beam cache at the packet's spin rate, for the firing loops its blocks use.
+  const std::uint16_t rpm = d.firetime_correction_ ? info.motor_rpm : 0;
+  if (rpm != spin_.rpm || spin_.stale_loops != 0) {
+    unsigned loops = 0;
+    for (std::size_t b = 0; b < block_count; ++b) loops |= 1u << blocks[b].loop;
+    d.update_spin(rpm, loops, out.path);
+  }
   const float unit_m = static_cast<float>(info.dis_unit_mm) * 0.001f;
   const std::uint16_t min_distance = sensor_of(d.model_)->min_distance;
 #if defined(HESAI_KERNELS_VECTOR)

@@ -95,7 +95,7 @@ void Decoder::set_rotation(Rotation rotation) noexcept {
 }
 
 
-void Decoder::update_spin(std::uint16_t rpm, DecodePath path) noexcept {
+void Decoder::update_spin(std::uint16_t rpm, unsigned loops, DecodePath path) const noexcept {
   // Spin rate in radians per nanosecond: rpm x 2 pi / 60e9, negative for a counter-clockwise
   // unit: azimuths grow clockwise whichever way it spins (Pandar40 manual Section 4.2, item 6), so a
   // channel fired later lies further clockwise on a clockwise unit and further back on the other.
@@ -103,18 +103,40 @@ void Decoder::update_spin(std::uint16_t rpm, DecodePath path) noexcept {
   const float omega = turn * static_cast<float>(rpm) * static_cast<float>(2 * kPi / 60e9);
   // The Pandars fire one sequence (both loops hold the same times); the QT128 alternates two.
   const SensorDescriptor* sensor = sensor_of(model_);
-  const std::size_t loops = sensor != nullptr ? sensor->firing_loops : 1;
+  const std::size_t firing_loops = sensor != nullptr ? sensor->firing_loops : 1;
   const std::size_t channels = channel_count(model_);
   const kernels::VectorIsa isa = kernels::vector_isa(path);
+  const auto beams = [&](std::size_t loop) {
+    return kernels::BeamLoop{geo_.fire_ns[loop].data(),         geo_.cos_el_cos_az.data(),
+                             geo_.cos_el_sin_az.data(),         geo_.azimuth_deg.data(),
+                             spin_.loop[loop].dir_cos.data(),   spin_.loop[loop].dir_sin.data(),
+                             spin_.loop[loop].azimuth_deg.data()};
+  };
+  if (rpm == spin_.rpm) {  // the rate's spread is known: the arrays of the stale loops this packet uses
+    for (std::size_t loop = 0; loop < firing_loops; ++loop) {
+      const unsigned bit = 1u << loop;
+      if ((spin_.stale_loops & loops & bit) == 0) continue;
+      std::int32_t lo = 0, hi = 0;
+      kernels::rebuild_beams(beams(loop), channels, omega, isa, lo, hi);
+      spin_.stale_loops = static_cast<std::uint8_t>(spin_.stale_loops & ~bit);
+    }
+    return;
+  }
+  // A new rate: the spread of every loop, by the whole rebuild for the loops this packet uses and
+  // by the azimuths alone for the others where the CPU path has that loop (the QT128 with a
+  // rate change on every packet: 1.5 loops' work instead of 2).
   std::int32_t lo = kernels::order_key(180.0f), hi = kernels::order_key(-180.0f);
-  for (std::size_t loop = 0; loop < loops; ++loop) {
-    const kernels::BeamLoop l{geo_.fire_ns[loop].data(),     geo_.cos_el_cos_az.data(),     geo_.cos_el_sin_az.data(),
-                              geo_.azimuth_deg.data(),       spin_.loop[loop].dir_cos.data(),    spin_.loop[loop].dir_sin.data(),
-                              spin_.loop[loop].azimuth_deg.data()};
-    kernels::rebuild_beams(l, channels, omega, isa, lo, hi);
+  unsigned stale = 0;
+  for (std::size_t loop = 0; loop < firing_loops; ++loop) {
+    const unsigned bit = 1u << loop;
+    if ((loops & bit) == 0 && kernels::spread_of_beams(beams(loop), channels, omega, isa, lo, hi))
+      stale |= bit;
+    else
+      kernels::rebuild_beams(beams(loop), channels, omega, isa, lo, hi);
   }
   spin_.spread = channels != 0 ? AzimuthSpread{kernels::from_order_key(lo), kernels::from_order_key(hi)} : AzimuthSpread{};
   spin_.rpm = rpm;
+  spin_.stale_loops = static_cast<std::uint8_t>(stale);
 }
 
 Error Decoder::set_angles(const AngleCorrection& angles) noexcept {
@@ -218,8 +240,6 @@ Error Decoder::decode_into(ByteView payload, PacketInfo& info, Point* points, co
   if (capacity < max_points(model_)) return Error::buffer_too_small;
   const Error e = validate(payload, info);
   if (e != Error::ok) return e;
-  const std::uint16_t rpm = firetime_correction_ ? info.motor_rpm : 0;
-  if (rpm != spin_.rpm) update_spin(rpm, path);
   DecodeOutput out;
   out.points = points;
   if (columns != nullptr) out.columns = *columns;
