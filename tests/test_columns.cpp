@@ -307,6 +307,22 @@ TEST(Columns, ErrorGivesNoPoints) {
 
 }  // namespace
 
+namespace {
+
+// Where the motor speed field of each layout lies (the manuals' tail tables; the SDK's for QT64 and XT).
+std::size_t speed_at(Model m, const std::vector<std::uint8_t>& p) {
+  switch (m) {
+    case Model::pandar40:
+    case Model::pandar40p: return pandar40::kMotorSpeed;
+    case Model::pandar64: return pandar64::kMotorSpeed;
+    case Model::qt128c2x: return qt128::Layout::from_header(p[qt128::kLaserNum], p[qt128::kFlags]).tail + qt128::kTailMotorSpeed;
+    case Model::pandar_qt64: return qt64::kTail + qt64::kTailMotorSpeed;
+    default: return p.size() - xt::kTailBytes + xt::kTailMotorSpeed;
+  }
+}
+
+}  // namespace
+
 // The beam-direction cache rebuilt at a new spin rate (Decoder::update_spin) by each path's loop
 // (AVX-512, AVX2, scalar on x86-64; the scalar loop on every path on AArch64, where the Points of
 // DecodePath::best are then written by NEON) gives the same bits: three decoders, one per path, each
@@ -316,17 +332,6 @@ TEST(Columns, ErrorGivesNoPoints) {
 // of every point and the beam spread equal.
 TEST(Columns, SpinRebuildSameBitsOnEveryPath) {
   if (const std::string why = points_scalar_reason(DecodePath::best); !why.empty()) GTEST_SKIP() << why;
-  // The motor speed field of each layout (the manuals' tail tables; the SDK's for QT64 and XT).
-  const auto speed_at = [](Model m, const std::vector<std::uint8_t>& p) -> std::size_t {
-    switch (m) {
-      case Model::pandar40:
-      case Model::pandar40p: return pandar40::kMotorSpeed;
-      case Model::pandar64: return pandar64::kMotorSpeed;
-      case Model::qt128c2x: return qt128::Layout::from_header(p[qt128::kLaserNum], p[qt128::kFlags]).tail + qt128::kTailMotorSpeed;
-      case Model::pandar_qt64: return qt64::kTail + qt64::kTailMotorSpeed;
-      default: return p.size() - xt::kTailBytes + xt::kTailMotorSpeed;
-    }
-  };
   static PacketPoints a, b, c;
   std::uint32_t seed = 12345;
   const auto random = [&seed] {
@@ -376,16 +381,6 @@ TEST(Columns, SpinRebuildSameBitsOnEveryPath) {
 // scalar path in every field of every point and in the beam spread, and in Points and columns alike.
 TEST(Columns, SpinRebuildLazyLoopsSameBits) {
   if (const std::string why = points_scalar_reason(DecodePath::best); !why.empty()) GTEST_SKIP() << why;
-  const auto speed_at = [](Model m, const std::vector<std::uint8_t>& p) -> std::size_t {
-    switch (m) {
-      case Model::pandar40:
-      case Model::pandar40p: return pandar40::kMotorSpeed;
-      case Model::pandar64: return pandar64::kMotorSpeed;
-      case Model::qt128c2x: return qt128::Layout::from_header(p[qt128::kLaserNum], p[qt128::kFlags]).tail + qt128::kTailMotorSpeed;
-      case Model::pandar_qt64: return qt64::kTail + qt64::kTailMotorSpeed;
-      default: return p.size() - xt::kTailBytes + xt::kTailMotorSpeed;
-    }
-  };
   static PacketPoints a, b;
   static Columns ca, cb;
   const DecodePath paths[] = {DecodePath::best, DecodePath::avx2, DecodePath::portable};

@@ -1,14 +1,8 @@
 // The ARMv7E-M unit loops (see armv7m_loops.h for what they compute and why they are assembly).
 // Empty on every other target. Each function takes one ArmPointsBlock or ArmColumnsBlock, keeps
-// all of it in registers (r0-r12 and lr, s0-s16), and walks the block's units once.
-//
-// Per unit, as scalar_loops.h writes it (r = raw x unit_m; dc, ds, se: the channel's dir_cos,
-// dir_sin, sin_el):
-//   x = r (sin_a dc + cos_a ds)   VMUL, VMLA, VMUL
-//   y = r (cos_a dc - sin_a ds)   VMUL, VMLS, VMUL
-//   z = r se                      VMUL
-// and the point is kept (the output advanced) iff raw >= min_distance: the carry out of
-// raw << 16 + keep_bias.
+// all of it in registers (r0-r12 and lr, s0-s16), and walks the block's units once: a unit's
+// position as scalar_loops.h computes it (HESAI_XYZ below), kept (the output advanced) iff
+// raw >= min_distance, the carry out of raw << 16 + keep_bias.
 #include "armv7m_loops.h"
 
 #if defined(HESAI_KERNELS_ARMV7M)
@@ -26,6 +20,28 @@ asm(".equ HESAI_ARMV7M_TABLE, " HESAI_STRING_OF(HESAI_ARMV7M_TABLE) R"(
     .syntax unified
     .thumb
 
+    @ The start of a function of its own section (for --gc-sections).
+    .macro HESAI_FUNCTION name
+    .pushsection .text.\name, "ax", %progbits
+    .global \name
+    .type \name, %function
+    .thumb_func
+    .p2align 2
+\name:
+    .endm
+
+    @ A unit's position (scalar_loops.h's unit_xyz): x = r (sin_a dc + cos_a ds),
+    @ y = r (cos_a dc - sin_a ds), z = r se; dc, ds, se: the channel's dir_cos, dir_sin, sin_el.
+    .macro HESAI_XYZ x, y, z, r, dc, ds, se, sin_a, cos_a
+    vmul.f32 \x, \sin_a, \dc
+    vmla.f32 \x, \cos_a, \ds
+    vmul.f32 \x, \x, \r
+    vmul.f32 \y, \cos_a, \dc
+    vmls.f32 \y, \sin_a, \ds
+    vmul.f32 \y, \y, \r
+    vmul.f32 \z, \r, \se
+    .endm
+
     @ One unit to a Point. unit: 3 or 4 bytes; loop: the firing loop (its fire_ns table is 2 + loop
     @ tables after sin_el). Registers: r0 units, r1 out, r2 dir_cos, r3 sin_el, r4 tag, r5 keep_bias,
     @ r6 block and steps, r7 raw, r8 fire_ns, r9 r10 temporaries; s0-s5 the Point's six floats (one
@@ -40,13 +56,7 @@ asm(".equ HESAI_ARMV7M_TABLE, " HESAI_STRING_OF(HESAI_ARMV7M_TABLE) R"(
     vldr     s9, [r2, #(2 * HESAI_ARMV7M_TABLE - 4)]  @ beam azimuth
     vldmia   r3!, {s8}                @ sin_el
     vldr     s5, [r3, #(HESAI_ARMV7M_TABLE - 4)]      @ elevation_deg, stored as is
-    vmul.f32 s0, s10, s6
-    vmla.f32 s0, s11, s7
-    vmul.f32 s0, s0, s3               @ x
-    vmul.f32 s1, s11, s6
-    vmls.f32 s1, s10, s7
-    vmul.f32 s1, s1, s3               @ y
-    vmul.f32 s2, s3, s8               @ z
+    HESAI_XYZ s0, s1, s2, s3, s6, s7, s8, s10, s11
     vadd.f32 s4, s13, s9              @ azimuth: block + beam, both in [0, 360)
     vcmp.f32 s4, s14
     vmrs     APSR_nzcv, fpscr
@@ -73,12 +83,7 @@ asm(".equ HESAI_ARMV7M_TABLE, " HESAI_STRING_OF(HESAI_ARMV7M_TABLE) R"(
     .endm
 
     .macro HESAI_POINTS name, unit, loop
-    .pushsection .text.\name, "ax", %progbits
-    .global \name
-    .type \name, %function
-    .thumb_func
-    .p2align 2
-\name:
+    HESAI_FUNCTION \name
     push     {r4-r10, lr}
     vpush    {s16}
     add      r12, r0, #28
@@ -110,13 +115,7 @@ asm(".equ HESAI_ARMV7M_TABLE, " HESAI_STRING_OF(HESAI_ARMV7M_TABLE) R"(
     vldmia   r8!, {s1}                @ dir_cos
     vldr     s2, [r8, #(HESAI_ARMV7M_TABLE - 4)]  @ dir_sin
     vldmia   r9!, {s3}                @ sin_el
-    vmul.f32 s4, s7, s1
-    vmla.f32 s4, s8, s2
-    vmul.f32 s4, s4, s0               @ x
-    vmul.f32 s5, s8, s1
-    vmls.f32 s5, s7, s2
-    vmul.f32 s5, s5, s0               @ y
-    vmul.f32 s6, s0, s3               @ z
+    HESAI_XYZ s4, s5, s6, s0, s1, s2, s3, s7, s8
     vmov     r12, lr, s4, s5
     str      r12, [r3, r2, lsl #2]
     str      lr, [r4, r2, lsl #2]
@@ -135,12 +134,7 @@ asm(".equ HESAI_ARMV7M_TABLE, " HESAI_STRING_OF(HESAI_ARMV7M_TABLE) R"(
     .endm
 
     .macro HESAI_COLUMNS name, unit, loop
-    .pushsection .text.\name, "ax", %progbits
-    .global \name
-    .type \name, %function
-    .thumb_func
-    .p2align 2
-\name:
+    HESAI_FUNCTION \name
     push     {r4-r11, lr}
     add      r12, r0, #48
     vldmia   r12, {s7-s12}
