@@ -47,7 +47,7 @@ int check(const Check& c) {
 
 int main() {
   const Check checks[] = {
-      {"HESAI_EXPECT_SIMD", hesai::decode_simd_name(), {"avx512", "avx2", "neon", "none", nullptr}},
+      {"HESAI_EXPECT_SIMD", hesai::decode_simd_name(), {"avx512", "avx2", "neon", "armv7m", "none", nullptr}},
       {"HESAI_EXPECT_CRC32", hesai::crc32_path_name(), {"vpclmulqdq", "pclmulqdq", "pmull", "slicing", "table", nullptr}},
       {"HESAI_EXPECT_SHA256", hesai::sha256_path_name(), {"sha-ni", "armv8-sha2", "portable", nullptr}},
   };

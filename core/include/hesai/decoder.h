@@ -196,8 +196,9 @@ enum class Reflectivity : std::uint8_t {
 /// DecodePath (which per-point code decode() runs) is in point.h.
 /// Whether DecodePath::best runs vector code on this CPU.
 bool decode_simd_available() noexcept;
-/// The vector code DecodePath::best runs on this CPU, for columns and Points: "avx512", "avx2",
-/// "neon" or "none".
+/// The code DecodePath::best runs on this CPU, for columns and Points: the vector code "avx512",
+/// "avx2" or "neon", "armv7m" (the ARMv7E-M assembly loops of the Cortex-M4F and M7, scalar code)
+/// or "none" (the portable loops).
 const char* decode_simd_name() noexcept;
 
 /// Decoder state for one sensor: per-channel geometry from the built-in tables or a

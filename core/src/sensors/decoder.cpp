@@ -231,7 +231,10 @@ Error Decoder::decode(ByteView payload, PacketInfo& info, const PointColumns& co
   return decode_into(payload, info, nullptr, &columns, columns.capacity, count, path);
 }
 
-bool decode_simd_available() noexcept { return kernels::vector_isa(DecodePath::best) != kernels::VectorIsa::none; }
+bool decode_simd_available() noexcept {
+  const kernels::VectorIsa isa = kernels::vector_isa(DecodePath::best);
+  return isa != kernels::VectorIsa::none && isa != kernels::VectorIsa::armv7m;  // the ARMv7E-M loops are scalar
+}
 const char* decode_simd_name() noexcept { return kernels::vector_isa_name(kernels::vector_isa(DecodePath::best)); }
 
 Error Decoder::decode_into(ByteView payload, PacketInfo& info, Point* points, const PointColumns* columns,
