@@ -90,7 +90,7 @@ Error check_response(ByteView header, Command expected, std::uint32_t max_length
 
 Model model_from_product_number(std::uint8_t number) noexcept {
   for (std::size_t i = 1; i < kModelCount && number != 255; ++i)
-    if (model_facts::of(static_cast<Model>(i)).ptc_product == number) return static_cast<Model>(i);
+    if (product_number(static_cast<Model>(i)) == number) return static_cast<Model>(i);
   return Model::unknown;
 }
 
