@@ -15,14 +15,13 @@ HESAI_AVX2_TARGET void columns_avx2(const PacketConstants& k, const PointColumns
   const BlockSinCos sc = block_sin_cos(k);
   const std::size_t blocks = k.blocks, units = k.units;
   std::size_t n = count;
-  std::size_t return_of_block = 0;  // return_index(k.returns, b), counted: b % returns took a 64-bit division a block
-  for (std::size_t b = 0; b < blocks; ++b) {
+  std::size_t return_of_block = 0;  // return_index(k.returns, b)
+  for (std::size_t b = 0; b < blocks; ++b, return_of_block = next_return_index(return_of_block, k.returns)) {
     const BlockRef& kb = k.block[b];
     eight_units.start(kb, sc.sin[b], sc.cos[b]);
     const __m256i offset = _mm256_set1_epi32(kb.offset_ns);
     const std::int32_t* const fire_ns = k.fire_ns[kb.loop];
     const __m128i ret = _mm_set1_epi8(static_cast<char>(return_of_block));
-    return_of_block = return_of_block + 1 < k.returns ? return_of_block + 1 : 0;
     __m128i channel = first_channels();
     for (std::size_t j = 0; j < units; j += 8) {
       const Eight e = eight_units.at(j);
@@ -55,13 +54,12 @@ HESAI_AVX512_TARGET void columns_avx512(const PacketConstants& k, const PointCol
   const __m512i next_channels = _mm512_set1_epi32(16 << 8);
   const BlockSinCos sc = block_sin_cos_avx512(k);
   std::size_t n = count;
-  std::size_t return_of_block = 0;  // return_index(k.returns, b), counted: b % returns took a 64-bit division a block
-  for (std::size_t b = 0; b < blocks; ++b) {
+  std::size_t return_of_block = 0;  // return_index(k.returns, b)
+  for (std::size_t b = 0; b < blocks; ++b, return_of_block = next_return_index(return_of_block, k.returns)) {
     const BlockRef& kb = k.block[b];
     sixteen_units.start(kb, sc.sin[b], sc.cos[b]);
     const __m512i offset = _mm512_set1_epi32(kb.offset_ns);
     const __m128i ret = _mm_set1_epi8(static_cast<char>(return_of_block));
-    return_of_block = return_of_block + 1 < k.returns ? return_of_block + 1 : 0;
     const std::int32_t* const fire_ns = k.fire_ns[kb.loop];
     // Channel j + 1 in byte 1 of lane j, beside the intensity in byte 0.
     __m512i channel = _mm512_slli_epi32(_mm512_add_epi32(lane_index, _mm512_set1_epi32(1)), 8);

@@ -31,14 +31,13 @@ HESAI_AVX2_TARGET void points_avx2(const PacketConstants& k, Point* out, std::si
   const float* const elevation_deg = k.elevation_deg;
   std::uint8_t* const base = reinterpret_cast<std::uint8_t*>(out);
   std::size_t n = count;
-  std::size_t return_of_block = 0;  // return_index(k.returns, b), counted: b % returns took a 64-bit division a block
-  for (std::size_t b = 0; b < blocks; ++b) {
+  std::size_t return_of_block = 0;  // return_index(k.returns, b)
+  for (std::size_t b = 0; b < blocks; ++b, return_of_block = next_return_index(return_of_block, k.returns)) {
     const BlockRef& kb = k.block[b];
     eight_units.start(kb, sc.sin[b], sc.cos[b]);
     const __m256 block_deg = _mm256_set1_ps(static_cast<float>(k.block_azimuth[b]) * 0.01f);
     const __m256i block_time = _mm256_set1_epi64x(static_cast<long long>(k.time_ns + kb.offset_ns));
     const __m128i ret = _mm_set1_epi8(static_cast<char>(return_of_block));
-    return_of_block = return_of_block + 1 < k.returns ? return_of_block + 1 : 0;
     const __m128i block = _mm_set1_epi32(static_cast<int>(b));  // the block byte, then three zero bytes
     const float* const azimuth_deg = k.azimuth_deg[kb.loop];
     const std::int32_t* const fire_ns = k.fire_ns[kb.loop];
@@ -116,8 +115,8 @@ HESAI_AVX512_TARGET void points_avx512(const PacketConstants& k, Point* out, std
   const BlockSinCos sc = block_sin_cos_avx512(k);
   std::uint8_t* const base = reinterpret_cast<std::uint8_t*>(out);
   std::size_t n = count;
-  std::size_t return_of_block = 0;  // return_index(k.returns, b), counted: b % returns took a 64-bit division a block
-  for (std::size_t b = 0; b < blocks; ++b) {
+  std::size_t return_of_block = 0;  // return_index(k.returns, b)
+  for (std::size_t b = 0; b < blocks; ++b, return_of_block = next_return_index(return_of_block, k.returns)) {
     const BlockRef& kb = k.block[b];
     sixteen_units.start(kb, sc.sin[b], sc.cos[b]);
     const __m512 block_deg = _mm512_set1_ps(static_cast<float>(k.block_azimuth[b]) * 0.01f);
@@ -127,7 +126,6 @@ HESAI_AVX512_TARGET void points_avx512(const PacketConstants& k, Point* out, std
     __m512i channel_return =
         _mm512_or_si512(_mm512_slli_epi32(_mm512_add_epi32(lane_indices(), _mm512_set1_epi32(1)), 8),
                         _mm512_set1_epi32(static_cast<int>(return_of_block) << 16));
-    return_of_block = return_of_block + 1 < k.returns ? return_of_block + 1 : 0;
     const __m512i block = _mm512_set1_epi64(static_cast<long long>(b) << 32);
     const float* const azimuth_deg = k.azimuth_deg[kb.loop];
     const std::int32_t* const fire_ns = k.fire_ns[kb.loop];
