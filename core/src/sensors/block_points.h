@@ -100,7 +100,7 @@ HESAI_NOINLINE_FOR_SIZE void SensorBase::emit_blocks(const Decoder& d, const ker
 #if defined(HESAI_KERNELS_ARMV7M)
   if (kernels::vector_isa(out.path) == kernels::VectorIsa::armv7m && unit_count % 2 == 0 && unit_count >= 2 &&
       unit_count <= 256 && !has_channel_map(blocks, block_count)) {
-    emit_blocks_armv7m<kUnitBytes>(d, blocks, block_count, unit_count, info, out);
+    emit_blocks_armv7m<kUnitBytes>(d, blocks, block_count, unit_count, unit_m, min_distance, info, out);
     return;
   }
 #endif
@@ -134,12 +134,14 @@ HESAI_NOINLINE_FOR_SIZE void SensorBase::emit_blocks(const Decoder& d, const ker
 }
 
 #if defined(HESAI_KERNELS_ARMV7M)
-// The same by the ARMv7E-M assembly loops (kernels/armv7m_loops.h), one call a block; the block
+// The same by the ARMv7E-M assembly loops (kernels/armv7m_loops.h), with emit_blocks' distance unit
+// and smallest distance, one call a block; the block
 // record is filled once and only its per-block fields changed, and a block at the azimuth of the
 // one before it (the returns of one firing) reuses its sine and cosine.
 template <std::size_t kUnitBytes>
 HESAI_ALWAYS_INLINE inline void SensorBase::emit_blocks_armv7m(const Decoder& d, const kernels::BlockRef* blocks,
                                                                std::size_t block_count, std::size_t unit_count,
+                                                               float unit_m, std::uint16_t min_distance,
                                                                const PacketInfo& info, DecodeOutput& out) noexcept {
   using Geometry = Decoder::Geometry;
   using Beams = Decoder::SpinCache::Beams;
@@ -152,10 +154,8 @@ HESAI_ALWAYS_INLINE inline void SensorBase::emit_blocks_armv7m(const Decoder& d,
   static_assert(kUnitBytes == 3 || kUnitBytes == 4, "3- or 4-byte units");
   const Geometry& geo = d.geo_;
   const Decoder::SpinCache& spin = d.spin_;
-  const std::uint16_t min_distance = sensor_of(d.model_)->min_distance;
   HESAI_ASSERT(min_distance >= 1);
   const std::uint32_t keep_bias = (0x10000u - min_distance) << 16;
-  const float unit_m = static_cast<float>(info.dis_unit_mm) * 0.001f;
   const auto steps_left = static_cast<std::uint32_t>(unit_count / 2 - 1) << 8;  // two units a step
   SinCosF ab{};
   std::uint32_t last_azimuth = 0x10000;  // none yet: above any block azimuth

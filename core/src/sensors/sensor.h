@@ -112,7 +112,8 @@ struct SensorBase {
   /// The same by the ARMv7E-M assembly loops (block_points.h).
   template <std::size_t kUnitBytes>
   static void emit_blocks_armv7m(const Decoder& d, const kernels::BlockRef* blocks, std::size_t block_count,
-                                 std::size_t unit_count, const PacketInfo& info, DecodeOutput& out) noexcept;
+                                 std::size_t unit_count, float unit_m, std::uint16_t min_distance,
+                                 const PacketInfo& info, DecodeOutput& out) noexcept;
 #endif
 };
 
