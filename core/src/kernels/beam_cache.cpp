@@ -55,7 +55,7 @@ HESAI_ALWAYS_INLINE inline void spin_loop(const std::int32_t* fire_ns, const flo
 // bits, and add 360 under the comparison's mask: 2 instructions a wrap with AVX-512 (a compare
 // into a mask register and a masked addition) and 3 with AVX2 (compare, add, blend), where GCC
 // 12's vectorisation of spin_loop took 5 and 4 (a sign flip, an integer compare and the
-// selection's two xors). Per 16 channels the AVX-512 step is 31 instructions against GCC's 44.
+// selection's two xors). Per 16 channels the AVX-512 step is about 40 instructions against GCC's 44.
 // Quiet comparisons (_OQ): no exception flag for any input.
 
 // One step's azimuth wraps and spread key, as spin_loop computes them.

@@ -210,7 +210,8 @@ HESAI_AVX512_TARGET inline __m128i lane_of(__m512i v, unsigned lane) noexcept {
 
 // block_sin_cos (vector_kernels.h) for every block at once, sixteen lanes, by the operations of
 // sin_cos_centideg in its order (the same bits): the whole degrees and hundredths by multiplying
-// (exact below 36000, which validate() guarantees of every block azimuth), the table entries by gathers, the quadrant's swap and signs
+// (exact below 36000, which validate() guarantees of every block azimuth), the table entries by
+// two-register permutations (gathers measured slower), the quadrant's swap and signs
 // by blends and sign flips. The scalar form took about 40 instructions a block, as many as an
 // XT16 block's sixteen units take in the columns loop.
 constexpr bool divisions_by_multiplication_exact() {
