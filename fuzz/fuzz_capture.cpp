@@ -4,7 +4,7 @@
 #include <cstring>
 
 #include "fuzz_common.h"
-#include "hesai_port/capture.h"
+#include "hesai_port/capture/capture.h"
 
 namespace {
 

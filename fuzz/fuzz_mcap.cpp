@@ -4,7 +4,7 @@
 #include <cstring>
 
 #include "fuzz_common.h"
-#include "hesai_port/mcap_parser.h"
+#include "hesai_port/capture/mcap_parser.h"
 
 namespace {
 

@@ -1,5 +1,5 @@
 // A structural MCAP checker for the tests, written from the MCAP specification
-// (https://mcap.dev/spec), independent of port/src/mcap.cpp: it walks the records, follows the
+// (https://mcap.dev/spec), independent of port/src/formats/mcap.cpp: it walks the records, follows the
 // footer, summary offsets, chunk indexes and message indexes, and checks every CRC (with
 // crc32_ieee, whose check values test_mcap.cpp proves). Failures are gtest EXPECTs.
 #pragma once
@@ -14,7 +14,7 @@
 #include <utility>
 #include <vector>
 
-#include "hesai_port/mcap.h"
+#include "hesai_port/formats/mcap.h"
 
 namespace hesai_test {
 

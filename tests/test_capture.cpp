@@ -23,7 +23,7 @@
 #include <string>
 #include <vector>
 
-#include "hesai_port/capture.h"
+#include "hesai_port/capture/capture.h"
 
 namespace {
 

@@ -30,7 +30,7 @@
 
 #include "hesai/decoder.h"
 #include "hesai/hkdf.h"
-#include "hesai_port/udp.h"
+#include "hesai_port/net/udp.h"
 #include "packet_builder.h"
 #include "pandar64_manual.h"
 #include "safety_stream.h"

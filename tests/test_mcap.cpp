@@ -12,8 +12,8 @@
 #include <string>
 #include <vector>
 
-#include "hesai_port/mcap.h"
-#include "hesai_port/pointcloud2.h"
+#include "hesai_port/formats/mcap.h"
+#include "hesai_port/formats/pointcloud2.h"
 #include "mcap_check.h"
 #include "test_support.h"
 

@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "hesai_port/pointcloud2.h"
+#include "hesai_port/formats/pointcloud2.h"
 #include "mcap_check.h"
 #include "test_support.h"
 #include "udp_support.h"

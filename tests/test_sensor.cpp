@@ -3,7 +3,7 @@
 // that misbehaves in each of the six ways a sensor can (another magic, another command's echo, a
 // length past the bound, silence, an answer cut short, an error code).
 //
-// Expectations: the stand-in's answers as its header documents them (hesai_port/ptc_server.h), the
+// Expectations: the stand-in's answers as its header documents them (hesai_port/net/ptc_server.h), the
 // bundled files byte for byte, and 'hesai decode' of the same capture with the same files.
 #include <arpa/inet.h>
 #include <netinet/in.h>

@@ -8,7 +8,8 @@
 #include <string>
 #include <vector>
 
-#include "hesai_port/udp.h"
+#include "hesai_port/base/clock.h"
+#include "hesai_port/net/udp.h"
 #include "udp_support.h"
 
 using hesai::port::Datagram;

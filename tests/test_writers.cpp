@@ -16,8 +16,8 @@
 #include <string>
 #include <vector>
 
-#include "hesai_port/png.h"
-#include "hesai_port/writers.h"
+#include "hesai_port/formats/png.h"
+#include "hesai_port/formats/writers.h"
 
 namespace {
 

@@ -10,9 +10,9 @@
 #include <vector>
 
 #include "alloc_counter.h"
-#include "hesai_port/capture.h"
-#include "hesai_port/crc32_ieee.h"
-#include "hesai_port/mcap_parser.h"
+#include "hesai_port/base/crc32_ieee.h"
+#include "hesai_port/capture/capture.h"
+#include "hesai_port/capture/mcap_parser.h"
 
 TEST(ZeroAllocation, CaptureParser) {
   std::ifstream in(HESAI_DATA_DIR "/pandar64_dual.pcap", std::ios::binary);
@@ -51,7 +51,7 @@ TEST(ZeroAllocation, CaptureFileNext) {
 namespace {
 
 // A small MCAP file of one PandarScan message with `packets` copies of a 1198-byte packet, in an
-// uncompressed chunk with its CRC (layout: the MCAP spec; CDR: see hesai_port/mcap_parser.h).
+// uncompressed chunk with its CRC (layout: the MCAP spec; CDR: see hesai_port/capture/mcap_parser.h).
 std::vector<std::uint8_t> pandar_scan_mcap(std::size_t packets) {
   std::vector<std::uint8_t> f = {0x89, 'M', 'C', 'A', 'P', '0', '\r', '\n'};
   auto le = [](std::vector<std::uint8_t>& v, std::uint64_t x, int n) {

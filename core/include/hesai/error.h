@@ -1,5 +1,5 @@
 // Error codes of the core: one code per distinct cause. (The port has its own: capture files are
-// read by port/, see hesai_port/capture.h CaptureError.)
+// read by port/, see hesai_port/capture/capture.h CaptureError.)
 #pragma once
 
 #include <cstddef>

@@ -4,7 +4,7 @@
 #include <atomic>
 #include <string>
 
-#include "hesai_port/capture.h"
+#include "hesai_port/capture/capture.h"
 #include "options.h"
 
 namespace hesai::cli {

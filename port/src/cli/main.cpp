@@ -16,8 +16,9 @@
 
 #include "hesai/ct.h"
 #include "hesai/ptc.h"
-#include "hesai_port/capture.h"
-#include "hesai_port/udp.h"
+#include "hesai_port/base/clock.h"
+#include "hesai_port/capture/capture.h"
+#include "hesai_port/net/udp.h"
 #include "commands.h"
 #include "options.h"
 #include "pipeline.h"

@@ -17,7 +17,7 @@
 #include "hesai/safety.h"
 #include "hesai/sequence.h"
 #include "hesai/stats.h"
-#include "hesai_port/capture.h"
+#include "hesai_port/capture/capture.h"
 
 namespace hesai::cli {
 

@@ -1,5 +1,5 @@
 // hesai replay: sends a capture's UDP payloads, paced as recorded; with --serve-ptc it also stands
-// in for the sensor's PTC service (port/include/hesai_port/ptc_server.h) and, once a signature
+// in for the sensor's PTC service (port/include/hesai_port/net/ptc_server.h) and, once a signature
 // session starts, signs each QT128 packet with the session's key, as the sensor would.
 #include <csignal>
 #include <cstdio>
@@ -8,9 +8,10 @@
 
 #include "hesai/ct.h"
 #include "hesai/decoder.h"
-#include "hesai_port/capture.h"
-#include "hesai_port/ptc_server.h"
-#include "hesai_port/udp.h"
+#include "hesai_port/base/clock.h"
+#include "hesai_port/capture/capture.h"
+#include "hesai_port/net/ptc_server.h"
+#include "hesai_port/net/udp.h"
 #include "commands.h"
 #include "pipeline.h"  // read_text_file
 

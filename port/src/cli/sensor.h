@@ -8,7 +8,7 @@
 #include <string>
 
 #include "hesai/model.h"
-#include "hesai_port/ptc_client.h"
+#include "hesai_port/net/ptc_client.h"
 #include "options.h"
 #include "pipeline.h"
 

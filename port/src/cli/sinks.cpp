@@ -7,7 +7,7 @@
 #include <algorithm>
 #include <utility>
 
-#include "hesai_port/pointcloud2.h"
+#include "hesai_port/formats/pointcloud2.h"
 
 namespace hesai::cli {
 

@@ -9,8 +9,8 @@
 #include <string>
 #include <vector>
 
-#include "hesai_port/mcap.h"
-#include "hesai_port/writers.h"
+#include "hesai_port/formats/mcap.h"
+#include "hesai_port/formats/writers.h"
 #include "options.h"
 #include "pipeline.h"
 

@@ -1,6 +1,6 @@
 // Link layer, IPv4/IPv6 and UDP: a captured frame down to its UDP datagram (parse_frame).
 // Pure: no allocation, no I/O, reads only inside the frame (fuzzed through fuzz_capture).
-#include "hesai_port/capture_parser.h"
+#include "hesai_port/capture/capture_parser.h"
 
 #include <cstring>
 

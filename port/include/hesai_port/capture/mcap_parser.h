@@ -3,7 +3,7 @@
 // McapParser reads a whole MCAP file held in memory (a ByteView) and hands out each PandarPacket
 // of each PandarScan message as a UdpDatagram, as CaptureParser does for pcap. It never
 // allocates, never reads outside the view, and reports a damaged file as a CaptureError code with
-// the byte offset of the damaged record. CaptureFile (hesai_port/capture.h) picks it by the magic.
+// the byte offset of the damaged record. CaptureFile (hesai_port/capture/capture.h) picks it by the magic.
 //
 // What is read (https://mcap.dev/spec, major version 0): the magic, a Header record first, then
 // the data section up to the Data End record (or the Footer, or the end of the file at a record
@@ -32,7 +32,7 @@
 #include <cstdint>
 
 #include "hesai/bytes.h"
-#include "hesai_port/capture_parser.h"
+#include "hesai_port/capture/capture_parser.h"
 
 namespace hesai::port {
 

@@ -2,7 +2,7 @@
 // Pure: no allocation, no I/O, reads only inside the view (fuzzed through fuzz_capture, proved
 // allocation-free by tests/alloc/capture_alloc.cpp). Frames are unpacked by parse_frame
 // (capture_frame.cpp); the file mapping is CaptureFile (capture_file.cpp).
-#include "hesai_port/capture_parser.h"
+#include "hesai_port/capture/capture_parser.h"
 
 #include <cstring>
 

@@ -1,5 +1,5 @@
 // PNG encoder: filters (PNG spec section 9), zlib stream (RFC 1950), deflate (RFC 1951).
-#include "hesai_port/png.h"
+#include "hesai_port/formats/png.h"
 
 #include <array>
 #include <cstdlib>

@@ -1,5 +1,5 @@
 // CRC-32 as zlib, PNG and MCAP compute it (IEEE 802.3, reflected).
-#include "hesai_port/crc32_ieee.h"
+#include "hesai_port/base/crc32_ieee.h"
 
 #include <array>
 

@@ -1,4 +1,4 @@
-#include "hesai_port/pointcloud2.h"
+#include "hesai_port/formats/pointcloud2.h"
 
 #include <cstring>
 #include <limits>

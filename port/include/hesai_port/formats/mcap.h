@@ -26,8 +26,8 @@
 #include <string>
 #include <vector>
 
-#include "hesai_port/crc32_ieee.h"
-#include "hesai_port/writers.h"
+#include "hesai_port/base/crc32_ieee.h"
+#include "hesai_port/formats/writers.h"
 
 namespace hesai {
 namespace port {

@@ -4,14 +4,14 @@
 // resident memory stays bounded whatever the file's size.
 //
 // The parser itself (CaptureParser, parse_frame, the error codes and the datagram type, with the
-// formats and link types it reads) is in hesai_port/capture_parser.h, included here: it allocates
+// formats and link types it reads) is in hesai_port/capture/capture_parser.h, included here: it allocates
 // nothing and does no I/O, so a fuzzer, a test or firmware can use it without this file.
 #pragma once
 
 #include <string>
 
-#include "hesai_port/capture_parser.h"
-#include "hesai_port/mcap_parser.h"
+#include "hesai_port/capture/capture_parser.h"
+#include "hesai_port/capture/mcap_parser.h"
 
 namespace hesai::port {
 

@@ -1,10 +1,10 @@
 // MCAP input: PandarScan messages of a rosbag2 MCAP file to datagrams (McapParser).
 // Pure: no allocation, no I/O, reads only inside the view (fuzzed through fuzz_mcap).
-#include "hesai_port/mcap_parser.h"
+#include "hesai_port/capture/mcap_parser.h"
 
 #include <cstring>
 
-#include "hesai_port/crc32_ieee.h"
+#include "hesai_port/base/crc32_ieee.h"
 
 namespace hesai::port {
 namespace {

@@ -1,5 +1,5 @@
-// CSV, PCD and PLY writers. Layouts and column contracts: hesai_port/writers.h.
-#include "hesai_port/writers.h"
+// CSV, PCD and PLY writers. Layouts and column contracts: hesai_port/formats/writers.h.
+#include "hesai_port/formats/writers.h"
 
 #include <cerrno>
 #include <charconv>

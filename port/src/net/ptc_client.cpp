@@ -1,4 +1,4 @@
-#include "hesai_port/ptc_client.h"
+#include "hesai_port/net/ptc_client.h"
 
 #include <arpa/inet.h>
 #include <cerrno>
@@ -12,7 +12,7 @@
 #include <sys/socket.h>
 #include <unistd.h>
 
-#include "hesai_port/udp.h"  // monotonic_ns
+#include "hesai_port/base/clock.h"
 
 namespace hesai::port {
 namespace {

@@ -1,6 +1,6 @@
 // Capture files on disk: CaptureFile maps a file read-only, feeds a CaptureParser and hands
 // the pages it has read back to the kernel (madvise MADV_DONTNEED) as it goes.
-#include "hesai_port/capture.h"
+#include "hesai_port/capture/capture.h"
 
 #include <fcntl.h>
 #include <sys/mman.h>

@@ -1,4 +1,4 @@
-#include "hesai_port/ptc_server.h"
+#include "hesai_port/net/ptc_server.h"
 
 #include <arpa/inet.h>
 #include <cerrno>
@@ -13,8 +13,8 @@
 #include "hesai/ct.h"
 #include "hesai/hkdf.h"
 #include "hesai/ptc.h"
-#include "hesai_port/ptc_client.h"  // random_bytes
-#include "hesai_port/udp.h"  // monotonic_ns
+#include "hesai_port/base/clock.h"
+#include "hesai_port/net/ptc_client.h"  // random_bytes
 
 namespace hesai::port {
 namespace {

@@ -7,7 +7,7 @@
 #include <cstring>
 #include <limits>
 
-#include "hesai_port/writers.h"
+#include "hesai_port/formats/writers.h"
 
 namespace hesai {
 namespace port {

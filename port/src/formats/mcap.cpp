@@ -1,4 +1,4 @@
-#include "hesai_port/mcap.h"
+#include "hesai_port/formats/mcap.h"
 
 #include <array>
 #include <cerrno>

@@ -4,7 +4,7 @@
 // mapped file, a test buffer or fuzzer input. It never allocates, never reads outside the view,
 // and reports a damaged file as an error code with the byte offset of the damaged record.
 // parse_frame unpacks one captured frame (link layer, IP, UDP) on its own, for live captures.
-// Reading a file from disk is CaptureFile, in hesai_port/capture.h (which includes this header).
+// Reading a file from disk is CaptureFile, in hesai_port/capture/capture.h (which includes this header).
 //
 // Formats (see the pcap and pcapng specifications, draft-ietf-opsawg-pcap / -pcapng):
 //   - classic pcap, magic 0xA1B2C3D4 (microsecond) and 0xA1B23C4D (nanosecond), either byte order;
@@ -33,7 +33,7 @@ enum class [[nodiscard]] CaptureError : std::uint8_t {
   unsupported_link,  ///< "capture_unsupported_link": a link type this reader does not unpack (classic pcap)
   io,                ///< "capture_io": the file cannot be opened, read or mapped (see CaptureFile::os_error())
   not_open,          ///< "capture_not_open": CaptureParser::next() before a successful open()
-  // MCAP files (McapParser, hesai_port/mcap_parser.h).
+  // MCAP files (McapParser, hesai_port/capture/mcap_parser.h).
   mcap_compressed_chunk,  ///< "mcap_compressed_chunk": a chunk compressed (zstd, lz4): only uncompressed chunks are read
   mcap_chunk_crc,         ///< "mcap_chunk_crc_mismatch": a chunk's records do not match its uncompressed_crc
   mcap_unknown_schema,    ///< "mcap_unknown_schema": a channel names a schema id that no Schema record defined

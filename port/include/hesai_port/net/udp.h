@@ -1,4 +1,4 @@
-// Live UDP: a receiver, a sender, and clocks.
+// Live UDP: a receiver and a sender (the clocks they stamp and pace by: hesai_port/base/clock.h).
 //
 // The receiver has two paths, chosen at configure time (port/CMakeLists.txt): on Linux, recvmmsg
 // batches with kernel receive timestamps (SO_TIMESTAMPNS) and the kernel's drop counter
@@ -12,13 +12,6 @@
 #include <vector>
 
 namespace hesai::port {
-
-/// Wall-clock time, ns since the Unix epoch (CLOCK_REALTIME).
-std::int64_t realtime_ns();
-/// Monotonic time, ns (CLOCK_MONOTONIC), for pacing and timeouts.
-std::int64_t monotonic_ns();
-/// Sleeps until the monotonic clock reaches `deadline_ns`.
-void sleep_until_ns(std::int64_t deadline_ns);
 
 /// One received datagram; `data` points into the receiver's buffers until the next receive().
 struct Datagram {

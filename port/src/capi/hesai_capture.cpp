@@ -17,7 +17,7 @@
 #include "../cli/options.h"
 #include "../cli/pipeline.h"
 #include "hesai/ct.h"
-#include "hesai_port/capture.h"
+#include "hesai_port/capture/capture.h"
 
 // The layout python/hesai/_lib.py (ROW_DTYPE) reads.
 static_assert(sizeof(hesai_capture_row) == 56 && offsetof(hesai_capture_row, frame) == 0 &&

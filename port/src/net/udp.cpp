@@ -1,4 +1,4 @@
-#include "hesai_port/udp.h"
+#include "hesai_port/net/udp.h"
 
 #include <arpa/inet.h>
 #include <cerrno>
@@ -12,32 +12,14 @@
 #include <sys/socket.h>
 #include <unistd.h>
 
+#include "hesai_port/base/clock.h"
+
 // Set by port/CMakeLists.txt: 1 for the Linux path (recvmmsg, SO_TIMESTAMPNS, SO_RXQ_OVFL).
 #if !defined(HESAI_UDP_RECVMMSG)
 #define HESAI_UDP_RECVMMSG 0
 #endif
 
 namespace hesai::port {
-
-std::int64_t realtime_ns() {
-  timespec ts{};
-  clock_gettime(CLOCK_REALTIME, &ts);
-  return static_cast<std::int64_t>(ts.tv_sec) * 1000000000 + ts.tv_nsec;
-}
-
-std::int64_t monotonic_ns() {
-  timespec ts{};
-  clock_gettime(CLOCK_MONOTONIC, &ts);
-  return static_cast<std::int64_t>(ts.tv_sec) * 1000000000 + ts.tv_nsec;
-}
-
-void sleep_until_ns(std::int64_t deadline_ns) {
-  timespec ts{};
-  ts.tv_sec = static_cast<time_t>(deadline_ns / 1000000000);
-  ts.tv_nsec = static_cast<long>(deadline_ns % 1000000000);
-  while (clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME, &ts, nullptr) == EINTR) {
-  }
-}
 
 namespace {
 // Each datagram's buffer holds one byte more than kMaxDatagram: a datagram that fills it is

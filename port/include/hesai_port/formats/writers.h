@@ -34,7 +34,7 @@
 #include <vector>
 
 #include "hesai/point.h"
-#include "hesai_port/png.h"
+#include "hesai_port/formats/png.h"
 
 namespace hesai {
 namespace port {
