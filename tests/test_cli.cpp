@@ -291,7 +291,8 @@ TEST_P(CliCapture, StatsJsonOnRealCapture) {
   ASSERT_EQ(r.status, 0) << r.out;
   auto j = json_numbers(r.out);
   for (const char* key : {"packets", "points", "frames", "crc_errors", "signature_valid", "signature_invalid",
-                          "signature_missing", "signature_unverified", "malformed", "unsupported", "lost",
+                          "signature_missing", "unsigned_accepted", "unsigned_rejected", "signature_unverified",
+                          "malformed", "unsupported", "lost",
                           "duplicates", "reordered", "sequence_resyncs", "gps_packets", "first_time_ns",
                           "last_time_ns", "high_temperature", "gps_unlocked", "gps_position_invalid", "fs_packets",
                           "fs_current_fault", "fs_past_fault", "fs_reserved_fault_type", "fs_last_fault_code",
@@ -938,6 +939,8 @@ TEST(Cli, StatsCountsSignatures) {
   EXPECT_EQ(j["signature_valid"], 6);
   EXPECT_EQ(j["signature_invalid"], 2);
   EXPECT_EQ(j["signature_missing"], 3);
+  EXPECT_EQ(j["unsigned_rejected"], 3);  // the 3 unsigned packets the test built, refused
+  EXPECT_EQ(j["unsigned_accepted"], 0);
   EXPECT_EQ(j["signature_unverified"], 0);
   const long long points_checked = j["points"];
 
@@ -945,6 +948,8 @@ TEST(Cli, StatsCountsSignatures) {
   EXPECT_EQ(j["signature_valid"], 6);
   EXPECT_EQ(j["signature_invalid"], 2);
   EXPECT_EQ(j["signature_missing"], 3);  // accepted, and still counted as unsigned
+  EXPECT_EQ(j["unsigned_accepted"], 3);
+  EXPECT_EQ(j["unsigned_rejected"], 0);
   EXPECT_GT(j["points"], points_checked);  // the 3 unsigned packets now contribute points
 
   j = json_numbers(run("stats " + c.path + " --json").out);  // no key

@@ -46,6 +46,8 @@ TEST(Stats, NamedErrors) {
   hesai::count_error(s, Error::signature_missing);
   hesai::count_error(s, Error::signature_missing);
   EXPECT_EQ(s.signature_missing, 2u);
+  EXPECT_EQ(s.unsigned_rejected, 2u);  // a rejection: none of them accepted
+  EXPECT_EQ(s.unsigned_accepted, 0u);
   hesai::count_error(s, Error::unsupported_version);
   hesai::count_error(s, Error::unsupported_model);
   hesai::count_error(s, Error::unsupported_section);

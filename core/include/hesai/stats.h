@@ -20,7 +20,11 @@ struct Stats {
   std::uint64_t crc_errors = 0;            ///< QT128 CRC1, CRC2 or CRC3 mismatch
   std::uint64_t signature_valid = 0;       ///< HMAC-SHA256 verified
   std::uint64_t signature_invalid = 0;     ///< HMAC-SHA256 mismatch
-  std::uint64_t signature_missing = 0;     ///< a key is configured, the packet is unsigned
+  std::uint64_t signature_missing = 0;     ///< a key is configured, the packet is unsigned:
+                                           ///< unsigned_accepted + unsigned_rejected
+  std::uint64_t unsigned_accepted = 0;     ///< of those, accepted (allowed unsigned: --allow-unsigned,
+                                           ///< or received before a live session's key was agreed)
+  std::uint64_t unsigned_rejected = 0;     ///< of those, rejected (Error::signature_missing)
   std::uint64_t signature_unverified = 0;  ///< signed, but no key configured
   std::uint64_t malformed = 0;             ///< every other rejection (length, magic, fields...)
   std::uint64_t unsupported = 0;           ///< a version, model or section we do not implement, or
@@ -44,7 +48,8 @@ struct Stats {
 };
 
 /// Adds one to the counter of a rejection: crc_body, crc_functional_safety, crc_tail ->
-/// crc_errors; signature_invalid -> signature_invalid; signature_missing -> signature_missing;
+/// crc_errors; signature_invalid -> signature_invalid; signature_missing -> signature_missing and
+/// unsigned_rejected;
 /// unsupported_version, unsupported_model, unsupported_section, channel_config_required,
 /// channel_config_mismatch -> unsupported; any other code
 /// -> malformed. Error::ok counts nothing. Touches no other counter (not `packets`).

@@ -18,6 +18,7 @@ void count_error(Stats& stats, Error error) noexcept {
       return;
     case Error::signature_missing:
       ++stats.signature_missing;
+      ++stats.unsigned_rejected;
       return;
     case Error::unsupported_version:
     case Error::unsupported_model:

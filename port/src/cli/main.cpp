@@ -20,6 +20,7 @@
 #include "hesai_port/capture/capture.h"
 #include "hesai_port/net/udp.h"
 #include "commands.h"
+#include "live_session.h"
 #include "options.h"
 #include "pipeline.h"
 #include "report.h"
@@ -227,6 +228,28 @@ void report_receive_buffer(const port::UdpReceiver& rx, std::size_t requested, b
                  granted, requested, requested);
 }
 
+std::int64_t to_ns(float seconds) { return static_cast<std::int64_t>(static_cast<double>(seconds) * 1e9); }
+
+// listen --sensor with a secret: a live signature session where the unit signs. A secret asks for
+// verified packets, so a unit that signs none (or whose model we do not know) is refused, unless
+// --allow-unsigned says to run unverified. Exit status, with a message.
+int start_live_session(SensorLink& link, const std::string& secret, bool allow_unsigned, SessionWatchOptions watch,
+                       Pipeline& pipeline, std::unique_ptr<LiveSession>& session, std::string& error) {
+  if (link.model() != Model::qt128c2x) {
+    const std::string what = link.model() == Model::unknown
+                                 ? "the unit's inventory names no model we know"
+                                 : std::string("the ") + model_name(link.model()) + " signs no packets";
+    if (!allow_unsigned) {
+      error = "a secret was given, but " + what + ": no packet could be verified (--allow-unsigned runs unverified)";
+      return kExitInput;
+    }
+    std::fprintf(stderr, "signature: %s; no session started (--allow-unsigned)\n", what.c_str());
+    return kExitOk;
+  }
+  session = std::make_unique<LiveSession>(link.client(), secret, pipeline, watch);
+  return session->start(error);
+}
+
 int cmd_listen(Args& args) {
   DecodeOptions o;
   OutputOptions out;
@@ -235,7 +258,7 @@ int cmd_listen(Args& args) {
   port::UdpReceiveOptions receive;
   std::uint64_t port = 2368, gps_port = 10110, count = 0, ptc_port = ptc::kDefaultPort;
   std::string sensor_host;
-  float seconds = 0, idle = 0, ptc_timeout = 3;
+  float seconds = 0, idle = 0, ptc_timeout = 3, session_poll = 1, signature_grace = 1;
   bool json = false, quiet = false;
   while (!args.empty()) {
     const std::string a = args.peek();
@@ -256,13 +279,19 @@ int cmd_listen(Args& args) {
                   "  --sensor HOST           the sensor's address: its calibration, firing times and QT128\n"
                   "                          channel configuration are fetched over PTC (a --calibration,\n"
                   "                          --firetimes or --channel-config file wins), a signature session\n"
-                  "                          is started with --secret-file FILE or HESAI_SECRET (every packet\n"
-                  "                          then verified, the session stopped at the end), and datagrams\n"
-                  "                          from any other address are dropped and counted (foreign_packets)\n"
+                  "                          is started with --secret-file FILE or HESAI_SECRET (a packet\n"
+                  "                          received after it started is accepted only with a valid\n"
+                  "                          signature; a lost session is started again; the session is\n"
+                  "                          stopped at the end), datagrams from any other address are\n"
+                  "                          dropped and counted (foreign_packets), and packets of another\n"
+                  "                          model from its address too (foreign_model_packets)\n"
+                  "  --session-poll S        ask the unit whether it still signs every S seconds (default 1)\n"
+                  "  --signature-grace S     packets with no valid signature for S seconds mean the session\n"
+                  "                          was lost: it is started again (default 1)\n"
                   "  --ptc-port N            the sensor's PTC port (default 9347)\n"
                   "  --timeout S             PTC connect and per-request timeout (default 3)\n"
                   "  --json                  the summary as one JSON object (keys as in 'hesai stats --json',\n"
-                  "                          and foreign_packets)\n"
+                  "                          and foreign_packets, foreign_model_packets, session_restarts)\n"
                   "  --quiet                 no statistics once a second\n%s%s%s",
                   port::UdpReceiver::method(), kDecodeOptionsHelp, kOutputOptionsHelp, kKeyOptionsHelp);
       return kExitOk;
@@ -279,9 +308,10 @@ int cmd_listen(Args& args) {
     else if (a == "--ptc-port") {
       if (!args.value(a, v) || !parse_u64(v, ptc_port) || ptc_port == 0 || ptc_port > 65535)
         return usage_error("listen", "--ptc-port takes 1 to 65535");
-    } else if (a == "--timeout") {
-      if (!args.value(a, v) || !parse_float(v, ptc_timeout) || !(ptc_timeout > 0) || ptc_timeout > 3600)
-        return usage_error("listen", "--timeout takes seconds above 0 (at most 3600)");
+    } else if (a == "--timeout" || a == "--session-poll" || a == "--signature-grace") {
+      float& target = a == "--timeout" ? ptc_timeout : a == "--session-poll" ? session_poll : signature_grace;
+      if (!args.value(a, v) || !parse_float(v, target) || !(target > 0) || target > 3600)
+        return usage_error("listen", a + " takes seconds above 0 (at most 3600)");
     }
     else if (a == "--bind") { if (!args.value(a, bind_addr)) return usage_error("listen", "--bind needs an address"); }
     else if (a == "--multicast") {
@@ -329,13 +359,24 @@ int cmd_listen(Args& args) {
     return kExitInput;
   }
   report_receive_buffer(points_rx, receive.rcvbuf_request, quiet);
-  // The sockets are bound: what the sensor sends from now on waits for us while PTC runs.
+  // The sockets are bound: what the sensor sends from now on waits for us while PTC runs. Ctrl-C
+  // from here on ends the run in order: the session, if one started, is stopped and its key wiped.
+  std::signal(SIGINT, on_signal);
+  std::signal(SIGTERM, on_signal);
   std::unique_ptr<SensorLink> link;
+  std::unique_ptr<LiveSession> session;
   if (!sensor_host.empty()) {
     link = std::make_unique<SensorLink>(sensor_host, static_cast<std::uint16_t>(ptc_port), static_cast<int>(ptc_timeout * 1000));
     int rc = link->fetch(o, pipeline, error);
-    if (rc == kExitOk && !session_secret.empty()) rc = link->start_session(session_secret, pipeline, error);
+    if (rc == kExitOk && link->model() != Model::unknown) pipeline.fix_model(link->model());
+    if (rc == kExitOk && !session_secret.empty())
+      rc = start_live_session(*link, session_secret, o.allow_unsigned, {to_ns(session_poll), to_ns(signature_grace)},
+                              pipeline, session, error);
     secure_wipe(session_secret.data(), session_secret.size());
+    if (rc == kExitOk && g_stop) {
+      session.reset();  // stopped on the unit, key wiped
+      return kExitOk;
+    }
     if (rc != kExitOk) {
       std::fprintf(stderr, "hesai listen: %s\n", error.c_str());
       return rc;
@@ -347,8 +388,6 @@ int cmd_listen(Args& args) {
   else if (!quiet)
     std::fprintf(stderr, "listening on group %s:%u (GPS %u), joined on %s\n", receive.multicast_group.c_str(),
                  points_rx.port(), static_cast<unsigned>(gps_port), bind_addr.c_str());
-  std::signal(SIGINT, on_signal);
-  std::signal(SIGTERM, on_signal);
   const std::int64_t start = port::monotonic_ns();
   const std::int64_t deadline = seconds > 0 ? start + static_cast<std::int64_t>(seconds * 1e9) : INT64_MAX;
   std::int64_t next_report = start + 1000000000;
@@ -358,7 +397,34 @@ int cmd_listen(Args& args) {
   std::int64_t last_packet = 0;  // monotonic time of the last datagram; 0 before the first
   std::uint64_t received = 0;
   bool fatal = false;
-  while (!g_stop && !fatal && (count == 0 || received < count) && now < deadline &&
+  int status = kExitOk;  // kExitInput when the session could not be kept
+  // One datagram: dropped when it is not from the sensor, else decoded (false: a fatal error).
+  const auto take = [&](const port::Datagram& d, bool gps, bool pre_session) {
+    if (link && d.source_ipv4 != sensor_address) {
+      ++foreign;  // not the sensor's address: no point of it is decoded
+      return true;
+    }
+    ++received;
+    return pipeline.feed(ByteView{d.data, d.size}, gps ? 1 : 0, pre_session);
+  };
+  if (session) {
+    // What waits in the sockets now arrived before the session's answer was read, or while it
+    // was read. Where the kernel stamps each datagram (SO_TIMESTAMPNS), only those it received
+    // before the answer may be unsigned; on the portable path, everything queued at this moment.
+    const bool stamped = port::UdpReceiver::kernel_timestamps();
+    for (port::UdpReceiver* rx : {&points_rx, &gps_rx}) {
+      while (rx->fd() >= 0 && !fatal && rx->receive(batch, 0) > 0) {
+        for (const port::Datagram& d : batch) {
+          if (count != 0 && received >= count) break;
+          if (!take(d, rx == &gps_rx, !stamped || d.time_ns <= session->agreed_realtime_ns())) {
+            std::fprintf(stderr, "hesai listen: %s\n", pipeline.error().c_str());
+            return kExitUsage;
+          }
+        }
+      }
+    }
+  }
+  while (!g_stop && !fatal && status == kExitOk && (count == 0 || received < count) && now < deadline &&
          !(idle_ns > 0 && last_packet != 0 && now - last_packet > idle_ns)) {
     bool arrived = false;
     for (port::UdpReceiver* rx : {&points_rx, &gps_rx}) {
@@ -367,18 +433,14 @@ int cmd_listen(Args& args) {
       arrived = arrived || !batch.empty();
       for (const port::Datagram& d : batch) {
         if (count != 0 && received >= count) break;
-        if (link && d.source_ipv4 != sensor_address) {
-          ++foreign;  // not the sensor's address: no point of it is decoded
-          continue;
-        }
-        ++received;
-        if (!pipeline.feed(ByteView{d.data, d.size}, rx == &gps_rx ? 1 : 0)) {
+        if (!take(d, rx == &gps_rx, false)) {
           std::fprintf(stderr, "hesai listen: %s\n", pipeline.error().c_str());
           return kExitUsage;
         }
       }
     }
     now = port::monotonic_ns();
+    if (session && (status = session->watch(now, error)) != kExitOk) std::fprintf(stderr, "hesai listen: %s\n", error.c_str());
     if (arrived) last_packet = now;
     if (!quiet && now >= next_report) {
       const Stats& s = pipeline.stats();
@@ -391,17 +453,23 @@ int cmd_listen(Args& args) {
     }
   }
   pipeline.finish();
-  if (link) link->stop_session();
+  if (session) session->stop();
   if (sink && !sink->close(error)) std::fprintf(stderr, "hesai listen: %s\n", error.c_str());
+  const std::uint64_t restarts = session ? session->restarts() : 0;
   if (json) {
     std::string j = stats_json(pipeline.stats());
-    j.insert(j.size() - 1, ",\"foreign_packets\":" + std::to_string(foreign));
+    j.insert(j.size() - 1, ",\"foreign_packets\":" + std::to_string(foreign) + ",\"foreign_model_packets\":" +
+                               std::to_string(pipeline.foreign_model_packets()) +
+                               ",\"session_restarts\":" + std::to_string(restarts));
     std::printf("%s\n", j.c_str());
   } else {
-    std::printf("%s  kernel_drops          %s\n  foreign_packets       %llu\n", stats_text(pipeline).c_str(),
-                kernel_drops(points_rx).c_str(), static_cast<unsigned long long>(foreign));
+    std::printf("%s  kernel_drops          %s\n  foreign_packets       %llu\n  foreign_model_packets %llu\n"
+                "  session_restarts      %llu\n",
+                stats_text(pipeline).c_str(), kernel_drops(points_rx).c_str(), static_cast<unsigned long long>(foreign),
+                static_cast<unsigned long long>(pipeline.foreign_model_packets()),
+                static_cast<unsigned long long>(restarts));
   }
-  return fatal ? kExitInput : kExitOk;
+  return fatal ? kExitInput : status;
 }
 
 }  // namespace

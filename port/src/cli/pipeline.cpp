@@ -94,9 +94,12 @@ void Pipeline::start_session(const std::uint8_t key[32]) {
   std::copy(key, key + 32, options_.session_key.begin());
   for (auto& [k, s] : sources_) {
     (void)s.decoder->set_session_key(key);  // only unsupported_feature, checked at creation
-    s.decoder->set_allow_unsigned(true);
-    s.signed_seen = false;
+    s.decoder->set_allow_unsigned(options_.allow_unsigned);
   }
+}
+
+void Pipeline::allow_unsigned_for(Source& src, bool pre_session) {
+  if (session_) src.decoder->set_allow_unsigned(options_.allow_unsigned || pre_session);
 }
 
 Pipeline::Source* Pipeline::source_for(std::uint64_t key, Model model) {
@@ -158,7 +161,7 @@ Pipeline::Source* Pipeline::source_for(std::uint64_t key, Model model) {
       return nullptr;
     }
   }
-  d.set_allow_unsigned(options_.allow_unsigned || session_);
+  d.set_allow_unsigned(options_.allow_unsigned);
   if (have_gps_) d.update_gps(last_gps_);
   s.frames = options_.frames;
   d.set_rotation(options_.rotation);
@@ -174,7 +177,7 @@ void Pipeline::close_frames(FrameAssembler& frames) {
   }
 }
 
-bool Pipeline::feed(ByteView payload, std::uint64_t source_key) {
+bool Pipeline::feed(ByteView payload, std::uint64_t source_key, bool pre_session) {
   ++stats_.packets;
   Model model = Model::unknown;
   PacketKind kind = PacketKind::point_cloud;
@@ -198,9 +201,14 @@ bool Pipeline::feed(ByteView payload, std::uint64_t source_key) {
     ++rejections_[e];
     return true;
   }
+  if (fixed_model_ != Model::unknown && model != fixed_model_) {
+    ++foreign_model_packets_;  // not the sensor's model: not decoded, and the source stays as it is
+    return true;
+  }
   Source* src = source_for(source_key, model);
   if (src == nullptr) return false;
 
+  allow_unsigned_for(*src, pre_session);
   PacketInfo info;
   e = src->decoder->decode(payload, info, points_);
   if (e != Error::ok) {
@@ -216,7 +224,7 @@ bool Pipeline::feed(ByteView payload, std::uint64_t source_key) {
     const bool decided = src->rotation.observe(info);
     if (!src->rotation.known()) {
       if (src->held.full() && !release_held(*src)) return false;
-      if (src->held.push(payload, index)) return true;
+      if (src->held.push(payload, index | (pre_session ? kPreSessionTag : 0))) return true;
       // decode() accepted it, so it fits: not reached, but the packet is not lost either.
     } else if (decided) {
       const Rotation r = src->rotation.rotation();
@@ -225,6 +233,7 @@ bool Pipeline::feed(ByteView payload, std::uint64_t source_key) {
         src->decoder->set_rotation(r);
         while (!src->held.empty())
           if (!release_held(*src)) return false;
+        allow_unsigned_for(*src, pre_session);
         e = src->decoder->decode(payload, info, points_);
         if (e != Error::ok) {  // the packet decoded once: a fault of ours, but counted as bad input
           count_error(stats_, e);
@@ -239,7 +248,8 @@ bool Pipeline::feed(ByteView payload, std::uint64_t source_key) {
 
 bool Pipeline::release_held(Source& src) {
   const ByteView payload = src.held.front();
-  const std::uint64_t index = src.held.front_tag();
+  const std::uint64_t index = src.held.front_tag() & ~kPreSessionTag;
+  allow_unsigned_for(src, (src.held.front_tag() & kPreSessionTag) != 0);
   PacketInfo info;
   const Error e = src.decoder->decode(payload, info, points_);
   src.held.pop_front();
@@ -259,14 +269,13 @@ bool Pipeline::process(Source& src, std::uint64_t index, const PacketInfo& info)
   }
   last_source_ = &src;
   count_model(stats_, info.model);
-  if (session_ && !src.signed_seen && info.signature == SignatureStatus::valid) {
-    src.signed_seen = true;
-    src.decoder->set_allow_unsigned(options_.allow_unsigned);
-  }
   switch (info.signature) {
     case SignatureStatus::valid: ++stats_.signature_valid; break;
     case SignatureStatus::unverified: ++stats_.signature_unverified; break;
-    case SignatureStatus::accepted_unsigned: ++stats_.signature_missing; break;
+    case SignatureStatus::accepted_unsigned:
+      ++stats_.signature_missing;
+      ++stats_.unsigned_accepted;
+      break;
     case SignatureStatus::not_signed: break;
   }
   if (stats_.first_time_ns == 0) stats_.first_time_ns = info.time_ns;

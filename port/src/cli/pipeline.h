@@ -88,17 +88,24 @@ class Pipeline {
   /// file wins); `origin` names them in messages. Returns an exit status as load_files().
   int use_downloaded(const std::string& origin, const std::string& angles, const std::string& firetimes,
                      const std::string& channel_config, std::string& error);
-  /// Verifies signatures under `key` from now on (a live signature session), in every decoder and
-  /// those created later. Until a sensor's first valid signature its unsigned packets are accepted
-  /// and counted as signature_missing: the sensor signs from the session's start, but what it sent
-  /// before may still wait in the socket. After that first valid signature, an unsigned packet is
-  /// rejected (unless --allow-unsigned).
+  /// Verifies signatures under `key` from now on (a live signature session, or one restarted with
+  /// a new key), in every decoder and those created later. Every packet fed from now on must carry
+  /// a valid signature: an unsigned one is rejected (unsigned_rejected) unless it is fed with
+  /// `pre_session` (received before the session's key was agreed; unsigned_accepted) or
+  /// --allow-unsigned was given.
   void start_session(const std::uint8_t key[32]);
+  /// listen --sensor: the sensor's model, from its inventory. A point-cloud packet of another
+  /// model is rejected and counted (foreign_model_packets): it never ends the run and never
+  /// replaces the sensor's decoder, calibration or session.
+  void fix_model(Model model) { fixed_model_ = model; }
+  std::uint64_t foreign_model_packets() const { return foreign_model_packets_; }
 
-  /// One UDP payload; `source` identifies the sender (address and port). Returns false on a
-  /// fatal configuration error: a calibration file that does not parse, does not fit the model or
-  /// holds a value the decoder refuses (message in error(), naming the file and the Error).
-  bool feed(ByteView payload, std::uint64_t source);
+  /// One UDP payload; `source` identifies the sender (address and port); `pre_session`: during a
+  /// live session, the kernel received it before the session's key was agreed, so it may be
+  /// unsigned. Returns false on a fatal configuration error: a calibration file that does not
+  /// parse, does not fit the model or holds a value the decoder refuses (message in error(),
+  /// naming the file and the Error).
+  bool feed(ByteView payload, std::uint64_t source, bool pre_session = false);
   /// Decodes the packets still held and closes the open frames at the end of the input.
   void finish();
 
@@ -122,9 +129,13 @@ class Pipeline {
     FrameAssembler frames;
     SafetyMonitor safety;
     RotationDetector rotation;
-    HeldPackets<kHeldPackets> held;  // decoded, not yet processed: the direction is not known
-    bool signed_seen = false;        // a valid signature arrived (start_session)
+    HeldPackets<kHeldPackets> held;  // decoded, not yet processed: the direction is not known;
+                                     // tagged with the packet's index | kPreSessionTag
   };
+  // A held packet's tag: its index, with this bit when it was fed as pre_session.
+  static constexpr std::uint64_t kPreSessionTag = std::uint64_t{1} << 63;
+  // During a session, lets `src`'s decoder accept an unsigned packet only if it came pre_session.
+  void allow_unsigned_for(Source& src, bool pre_session);
   Source* source_for(std::uint64_t key, Model model);
   // Parses a channel configuration (named options_.channel_config_path in messages) into
   // channel_config_. Returns kExitOk or kExitUsage with a message.
@@ -142,6 +153,8 @@ class Pipeline {
   std::map<std::uint64_t, Source> sources_;
   const Source* last_source_ = nullptr;  // of the last decoded point-cloud packet
   bool session_ = false;  // start_session() was called
+  Model fixed_model_ = Model::unknown;  // fix_model(); unknown: any model
+  std::uint64_t foreign_model_packets_ = 0;
   GpsPacket last_gps_{};
   bool have_gps_ = false;
   Stats stats_{};

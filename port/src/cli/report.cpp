@@ -33,6 +33,8 @@ std::string stats_json(const Stats& s) {
   add(out, "signature_valid", s.signature_valid);
   add(out, "signature_invalid", s.signature_invalid);
   add(out, "signature_missing", s.signature_missing);
+  add(out, "unsigned_accepted", s.unsigned_accepted);
+  add(out, "unsigned_rejected", s.unsigned_rejected);
   add(out, "signature_unverified", s.signature_unverified);
   add(out, "malformed", s.malformed);
   add(out, "unsupported", s.unsupported);
@@ -96,6 +98,8 @@ std::string stats_text(const Pipeline& p) {
   line("signature_valid", std::to_string(s.signature_valid));
   line("signature_invalid", std::to_string(s.signature_invalid));
   line("signature_missing", std::to_string(s.signature_missing));
+  line("unsigned_accepted", std::to_string(s.unsigned_accepted));
+  line("unsigned_rejected", std::to_string(s.unsigned_rejected));
   line("signature_unverified", std::to_string(s.signature_unverified));
   line("malformed", std::to_string(s.malformed));
   line("unsupported", std::to_string(s.unsupported));

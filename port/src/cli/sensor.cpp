@@ -262,22 +262,6 @@ int sensor_file(PtcClient& client, ptc::Command command, const std::string& out_
   return fit.rfind("does not fit", 0) == 0 ? kExitInput : kExitOk;
 }
 
-// Starts a session with `secret`: the derived key in `key`. Exit status.
-int session_start(PtcClient& client, const std::string& secret, std::uint8_t key[32]) {
-  std::uint8_t client_random[ptc::kRandomBytes], lidar_random[ptc::kRandomBytes];
-  if (!port::random_bytes(client_random, sizeof client_random)) {
-    std::fprintf(stderr, "hesai sensor: cannot read /dev/urandom for the client random\n");
-    return kExitInput;
-  }
-  Bytes r;
-  if (!ask(client, ptc::Command::signature_start, ByteView{client_random, sizeof client_random}, r)) return kExitInput;
-  if (const Error e = ptc::parse_session_start(ByteView{r.data(), r.size()}, lidar_random); e != Error::ok)
-    return payload_error(client, "signature session start", e, r.size());
-  const ByteView text{reinterpret_cast<const std::uint8_t*>(secret.data()), secret.size()};
-  if (hesai_session_key(text, lidar_random, client_random, key) != Error::ok) return kExitUsage;  // length checked before
-  return kExitOk;
-}
-
 int sensor_signature(PtcClient& client, const std::string& action, const std::string& secret_file,
                      const std::string& key_out, bool json) {
   if (action == "start") {
@@ -325,6 +309,21 @@ int sensor_signature(PtcClient& client, const std::string& action, const std::st
 }
 
 }  // namespace
+
+int session_start(PtcClient& client, const std::string& secret, std::uint8_t key[32]) {
+  std::uint8_t client_random[ptc::kRandomBytes], lidar_random[ptc::kRandomBytes];
+  if (!port::random_bytes(client_random, sizeof client_random)) {
+    std::fprintf(stderr, "hesai sensor: cannot read /dev/urandom for the client random\n");
+    return kExitInput;
+  }
+  Bytes r;
+  if (!ask(client, ptc::Command::signature_start, ByteView{client_random, sizeof client_random}, r)) return kExitInput;
+  if (const Error e = ptc::parse_session_start(ByteView{r.data(), r.size()}, lidar_random); e != Error::ok)
+    return payload_error(client, "signature session start", e, r.size());
+  const ByteView text{reinterpret_cast<const std::uint8_t*>(secret.data()), secret.size()};
+  if (hesai_session_key(text, lidar_random, client_random, key) != Error::ok) return kExitUsage;  // length checked before
+  return kExitOk;
+}
 
 int cmd_sensor(Args& args) {
   std::string command, action, host, out, secret_file, key_out, v;
@@ -387,8 +386,6 @@ int cmd_sensor(Args& args) {
 
 // ---- listen --sensor ----
 
-SensorLink::~SensorLink() { stop_session(); }
-
 int SensorLink::fetch(const DecodeOptions& options, Pipeline& pipeline, std::string& error) {
   const std::string origin = client_.host() + ":" + std::to_string(client_.port());
   if (!ask_model(client_, model_)) {
@@ -417,34 +414,6 @@ int SensorLink::fetch(const DecodeOptions& options, Pipeline& pipeline, std::str
   client_.close();  // the session, if any, opens its own connection
   const auto text = [](const Bytes& b) { return std::string(b.begin(), b.end()); };
   return pipeline.use_downloaded(origin, text(files[0]), text(files[1]), text(files[2]), error);
-}
-
-int SensorLink::start_session(const std::string& secret, Pipeline& pipeline, std::string& error) {
-  if (model_ != Model::qt128c2x) {
-    if (model_ == Model::unknown) std::fprintf(stderr, "signature: the unit's inventory names no model we know; no session started\n");
-    else std::fprintf(stderr, "signature: the %s signs no packets; no session started\n", model_name(model_));
-    return kExitOk;
-  }
-  std::uint8_t key[32];
-  if (const int st = session_start(client_, secret, key); st != kExitOk) {
-    error = "no signature session (see above)";
-    return st;
-  }
-  session_ = true;
-  pipeline.start_session(key);
-  secure_wipe(key, sizeof key);
-  client_.close();
-  std::fprintf(stderr, "signature session started: every packet is verified\n");
-  return kExitOk;
-}
-
-void SensorLink::stop_session() {
-  if (!session_) return;
-  session_ = false;
-  Bytes r;
-  const PtcResult res = client_.request(ptc::Command::signature_stop, {}, r);
-  if (!res.ok()) std::fprintf(stderr, "hesai listen: warning: the session was not stopped: %s\n", res.message.c_str());
-  else std::fprintf(stderr, "signature session stopped\n");
 }
 
 }  // namespace hesai::cli

@@ -21,24 +21,24 @@ int cmd_sensor(Args& args);
 class SensorLink {
  public:
   SensorLink(const std::string& host, std::uint16_t port, int timeout_ms) : client_(host, port, timeout_ms) {}
-  ~SensorLink();
 
   /// Asks the unit its model (inventory), then downloads what the pipeline has no file for: the
   /// calibration (required), the firing times and the QT128 channel configuration (where the unit
   /// serves them). Says on stderr what it fetched and whether it fits the model. Returns an exit
   /// status (kExitInput with a message when the unit cannot be reached or refuses the calibration).
   int fetch(const DecodeOptions& options, Pipeline& pipeline, std::string& error);
-  /// Starts a signature session with `secret` and hands its key to the pipeline (QT128C2X only:
-  /// other models sign nothing, and get a note). Returns an exit status.
-  int start_session(const std::string& secret, Pipeline& pipeline, std::string& error);
-  /// Ends the session, if one was started (a failure is a warning: the unit may be gone).
-  void stop_session();
   Model model() const { return model_; }
+  /// The connection a signature session (LiveSession) runs over.
+  port::PtcClient& client() { return client_; }
 
  private:
   port::PtcClient client_;
   Model model_ = Model::unknown;
-  bool session_ = false;
 };
+
+/// Starts a signature session with `secret` (0x2E with a fresh client random): the key derived
+/// from the secret and both randoms in `key` (QT128C2X manual 4.9.3). Prints why on failure.
+/// Exit status.
+int session_start(port::PtcClient& client, const std::string& secret, std::uint8_t key[32]);
 
 }  // namespace hesai::cli

@@ -51,6 +51,7 @@ int udp_socket() {
 
 const char* UdpReceiver::method() { return HESAI_UDP_RECVMMSG ? "recvmmsg" : "recvfrom"; }
 bool UdpReceiver::kernel_drops_known() { return HESAI_UDP_RECVMMSG != 0; }
+bool UdpReceiver::kernel_timestamps() { return HESAI_UDP_RECVMMSG != 0; }
 
 UdpReceiver::UdpReceiver() : buffers_(kBatch * kSlot), control_(kBatch * kControlEach) {}
 

@@ -49,6 +49,9 @@ class UdpReceiver {
   static const char* method();
   /// Whether kernel_drops() counts anything: true on the recvmmsg path only.
   static bool kernel_drops_known();
+  /// Whether Datagram::time_ns is the kernel's receive time (SO_TIMESTAMPNS): true on the
+  /// recvmmsg path only (the portable path stamps a datagram when it is read).
+  static bool kernel_timestamps();
 
   UdpReceiver();
   ~UdpReceiver();
