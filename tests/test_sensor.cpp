@@ -16,15 +16,18 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <cstdio>
 #include <fstream>
+#include <functional>
 #include <map>
 #include <string>
 #include <thread>
 #include <vector>
 
+#include "packet_builder.h"
 #include "test_support.h"
 #include "udp_support.h"
 
@@ -408,6 +411,230 @@ TEST(Sensor, UnreachableAndUsage) {
                          std::to_string(free_udp_port()) + " --bind 127.0.0.1 --gps-port 0 --quiet");
   EXPECT_EQ(listen.status, 2);
   EXPECT_NE(listen.err.find("cannot connect"), std::string::npos) << listen.err;
+}
+
+// ---- The live signature session under attack (issue #31): a stand-in that misbehaves, and the
+// test playing an attacker on the sensor's address. ----
+
+// QT128C2X packets of the capture, made unsigned and dated 2001 (CRC3 re-sealed, signature bytes
+// zero): spoofed packets whose points, if one were written, the CSV would show by their time.
+std::vector<std::vector<std::uint8_t>> spoofed_packets(std::size_t n) {
+  std::vector<std::vector<std::uint8_t>> out = hesai_test::pcap_payloads("qt128c2x_dual.pcap");
+  out.resize(n);
+  for (auto& p : out) {
+    const hesai_test::QtOffsets o = hesai_test::qt128_offsets(p);
+    p[o.tail + 15] = 101;  // the year byte: years since 1900 (QT128C2X manual 3.1.2, the tail)
+    if (o.sig) std::fill(p.begin() + static_cast<long>(o.sig), p.begin() + static_cast<long>(o.sig + 32), 0);
+    hesai_test::qt128_seal(p);
+  }
+  return out;
+}
+
+// Sends `packets` to 127.0.0.1:`port` from `from` (the sensor's address, for a spoofer).
+void send_from(const char* from, int port, const std::vector<std::vector<std::uint8_t>>& packets) {
+  const int fd = socket(AF_INET, SOCK_DGRAM, 0);
+  sockaddr_in a{}, to{};
+  a.sin_family = to.sin_family = AF_INET;
+  inet_pton(AF_INET, from, &a.sin_addr);
+  inet_pton(AF_INET, "127.0.0.1", &to.sin_addr);
+  to.sin_port = htons(static_cast<std::uint16_t>(port));
+  ASSERT_EQ(bind(fd, reinterpret_cast<const sockaddr*>(&a), sizeof a), 0);
+  for (const auto& p : packets) {
+    ASSERT_EQ(sendto(fd, p.data(), p.size(), 0, reinterpret_cast<const sockaddr*>(&to), sizeof to),
+              static_cast<ssize_t>(p.size()));
+    usleep(200);
+  }
+  close(fd);
+}
+
+// One PTC request to 127.0.0.3:`port` as any host on the LAN may send it (PTC 1.0 has no
+// authentication): header 0x47 0x74, the command, 0, the payload length big-endian. Returns the
+// answer's return code (-1 when there is none).
+int ptc_request(int port, std::uint8_t command, const std::vector<std::uint8_t>& payload) {
+  const int fd = socket(AF_INET, SOCK_STREAM, 0);
+  sockaddr_in sa{};
+  sa.sin_family = AF_INET;
+  sa.sin_port = htons(static_cast<std::uint16_t>(port));
+  inet_pton(AF_INET, "127.0.0.3", &sa.sin_addr);
+  timeval tv{3, 0};
+  setsockopt(fd, SOL_SOCKET, SO_RCVTIMEO, &tv, sizeof tv);
+  int code = -1;
+  std::vector<std::uint8_t> request = header(0x47, 0x74, command, 0, static_cast<std::uint32_t>(payload.size()));
+  request.insert(request.end(), payload.begin(), payload.end());
+  std::uint8_t answer[8];
+  if (connect(fd, reinterpret_cast<const sockaddr*>(&sa), sizeof sa) == 0 &&
+      send(fd, request.data(), request.size(), MSG_NOSIGNAL) == static_cast<ssize_t>(request.size()) &&
+      recv(fd, answer, sizeof answer, MSG_WAITALL) == 8)
+    code = answer[3];
+  close(fd);
+  return code;
+}
+
+// 'hesai listen --sensor 127.0.0.3' with a secret, against a QT128C2X stand-in replaying its capture
+// (options added) at a twentieth of its pace (1800 packets in 0.173 s: about 520 packets a second),
+// writing a CSV; the test acts once the listener says the session started.
+struct LiveRun {
+  Ran ran;
+  std::string csv;       // the points written
+  std::string standin;   // the stand-in's stderr
+};
+LiveRun live_run(const std::string& standin_options, const std::string& listen_options,
+                 const std::function<void(int udp_port, int ptc_port)>& attack) {
+  LiveRun r;
+  const int port = free_udp_port();
+  const std::string secret = secret_file(), csv = temp_path("live.csv"), err = temp_path("live_err");
+  StandIn s("qt128c2x_dual.pcap", "127.0.0.3",
+            "--to 127.0.0.1:" + std::to_string(port) + " --rate 0.05 --loop 100 --quiet --secret-file " + secret + " " +
+                standin_options);
+  if (s.port() == 0 || port == 0) {
+    ADD_FAILURE() << s.stderr_text();
+    return r;
+  }
+  const std::string cmd = "exec env -u HESAI_SECRET " + cli() + " listen --bind 127.0.0.1 --port " + std::to_string(port) +
+                          " --gps-port 0 --sensor 127.0.0.3 --ptc-port " + std::to_string(s.port()) + " --secret-file " +
+                          secret + " --calibration " + kQtAngles + " --format csv --out " + csv + " --json --quiet " +
+                          listen_options + " >" + temp_path("live_out") + " 2>" + err;
+  const auto t0 = std::chrono::steady_clock::now();
+  const pid_t pid = fork();
+  if (pid == 0) {
+    execl("/bin/sh", "sh", "-c", cmd.c_str(), static_cast<char*>(nullptr));
+    _exit(127);
+  }
+  for (int i = 0; i < 400 && read_text(err).find("signature session started") == std::string::npos; ++i) usleep(25000);
+  if (read_text(err).find("signature session started") != std::string::npos) attack(port, s.port());
+  int st = 0;
+  waitpid(pid, &st, 0);
+  r.ran.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  r.ran.status = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
+  r.ran.out = read_text(temp_path("live_out"));
+  r.ran.err = read_text(err);
+  r.csv = read_text(csv);
+  r.standin = s.stderr_text();
+  for (const std::string& f : {csv, err, temp_path("live_out"), secret}) std::remove(f.c_str());
+  return r;
+}
+
+// CSV rows (the header aside), and those whose time_ns is before 2010: points of spoofed packets.
+std::pair<long long, long long> csv_rows(const std::string& csv) {
+  long long rows = -1, spoofed = 0;
+  std::size_t at = 0;
+  while (at < csv.size()) {
+    const std::size_t end = csv.find('\n', at);
+    const std::string line = csv.substr(at, end - at);
+    ++rows;
+    if (rows > 0 && std::stoll(line.substr(line.rfind(',') + 1)) < 1262304000000000000ll) ++spoofed;  // 2010-01-01
+    at = end == std::string::npos ? csv.size() : end + 1;
+  }
+  return {std::max(rows, 0ll), spoofed};
+}
+
+// The counters every run must keep: signature_missing is the sum of its two parts; each point
+// counted is written; no spoofed point.
+void expect_consistent(const LiveRun& r) {
+  const std::string& out = r.ran.out;
+  EXPECT_EQ(json_number(out, "signature_missing"), json_number(out, "unsigned_accepted") + json_number(out, "unsigned_rejected"))
+      << out;
+  const auto [rows, spoofed] = csv_rows(r.csv);
+  EXPECT_EQ(rows, json_number(out, "points")) << out;
+  EXPECT_EQ(spoofed, 0) << "points of spoofed packets were written";
+}
+
+// A unit that accepts the session and never signs: nothing it sends after the session's answer
+// is accepted, nor 200 unsigned packets spoofed from its address; the session is started again
+// twice, then the run ends with exit 2, naming the cause, within three graces and the PTC.
+TEST(SensorAttack, UnitThatNeverSignsEndsTheRunAfterTwoRestarts) {
+  const auto spoofed = spoofed_packets(200);
+  const LiveRun r = live_run("--never-sign", "--seconds 30 --signature-grace 1",
+                             [&](int port, int) { send_from("127.0.0.3", port, spoofed); });
+  EXPECT_EQ(r.ran.status, 2) << r.ran.err;
+  EXPECT_NE(r.ran.err.find("the signature session failed after 2 restarts in a row: no valid signature for"),
+            std::string::npos) << r.ran.err;
+  EXPECT_LT(r.ran.seconds, 10.0);  // three graces of 1 s, three PTC exchanges on the loopback
+  EXPECT_EQ(json_number(r.ran.out, "session_restarts"), 2) << r.ran.out;
+  EXPECT_EQ(json_number(r.ran.out, "signature_valid"), 0);
+  EXPECT_GE(json_number(r.ran.out, "unsigned_rejected"), 200) << r.ran.out;  // the spoofed ones at least
+  expect_consistent(r);
+  // What was accepted came before the session: as many packets as the listener said it took so.
+  const std::size_t at = r.ran.err.find("signature session started (");
+  ASSERT_NE(at, std::string::npos) << r.ran.err;
+  EXPECT_LE(json_number(r.ran.out, "unsigned_accepted"), std::stoll(r.ran.err.substr(at + 27))) << r.ran.err;
+}
+
+// The real stream signed under another key (an attacker on the LAN started a session of its own,
+// 0x2E), plus 200 unsigned packets spoofed from the sensor's address: the spoofed packets and
+// those signed under the other key are rejected, the listener starts a new session, and the
+// sensor's packets verify again.
+TEST(SensorAttack, AnotherKeyAndSpoofedPacketsAreRejectedAndTheSessionRecovers) {
+  const auto spoofed = spoofed_packets(200);
+  const LiveRun r = live_run("", "--seconds 5 --signature-grace 1 --session-poll 1", [&](int port, int ptc) {
+    usleep(500000);
+    EXPECT_EQ(ptc_request(ptc, 0x2E, std::vector<std::uint8_t>(32, 0x5A)), 0);  // the attacker's session
+    send_from("127.0.0.3", port, spoofed);
+  });
+  EXPECT_EQ(r.ran.status, 0) << r.ran.err;
+  EXPECT_EQ(json_number(r.ran.out, "session_restarts"), 1) << r.ran.out << r.ran.err;
+  EXPECT_GT(json_number(r.ran.out, "signature_invalid"), 0) << r.ran.out;  // signed under the attacker's key
+  EXPECT_GE(json_number(r.ran.out, "unsigned_rejected"), 200) << r.ran.out;
+  // After the restart, the stand-in signs under the listener's new key again: more valid packets
+  // than the half second before the attack gave (about 260), the grace and the restart aside.
+  EXPECT_GT(json_number(r.ran.out, "signature_valid"), 800) << r.ran.out;
+  EXPECT_NE(r.ran.err.find("signature session lost (no valid signature for"), std::string::npos) << r.ran.err;
+  expect_consistent(r);
+}
+
+// A third party stops the session in mid-run (0x2F): the unit sends unsigned packets, none is
+// accepted; the poll or the grace sees the session lost and a new one starts.
+TEST(SensorAttack, SessionStoppedByAThirdPartyIsStartedAgain) {
+  const auto spoofed = spoofed_packets(50);
+  const LiveRun r = live_run("", "--seconds 5 --signature-grace 1 --session-poll 0.5", [&](int port, int ptc) {
+    usleep(500000);
+    EXPECT_EQ(ptc_request(ptc, 0x2F, {}), 0);
+    send_from("127.0.0.3", port, spoofed);
+  });
+  EXPECT_EQ(r.ran.status, 0) << r.ran.err;
+  EXPECT_EQ(json_number(r.ran.out, "session_restarts"), 1) << r.ran.out << r.ran.err;
+  EXPECT_GE(json_number(r.ran.out, "unsigned_rejected"), 50) << r.ran.out;
+  EXPECT_GT(json_number(r.ran.out, "signature_valid"), 800) << r.ran.out;  // as above
+  EXPECT_NE(r.ran.err.find("signature session lost ("), std::string::npos) << r.ran.err;
+  expect_consistent(r);
+}
+
+// One datagram of another model (a Pandar64 packet) from the sensor's address: rejected and
+// counted, the run goes on, the session is not touched.
+TEST(SensorAttack, PacketOfAnotherModelFromTheSensorIsCountedNotFatal) {
+  const auto pandar64 = hesai_test::pcap_payloads("pandar64_dual.pcap");
+  const LiveRun r = live_run("", "--seconds 2", [&](int port, int) {
+    usleep(300000);
+    send_from("127.0.0.3", port, {pandar64[0]});
+  });
+  EXPECT_EQ(r.ran.status, 0) << r.ran.err;
+  EXPECT_EQ(json_number(r.ran.out, "foreign_model_packets"), 1) << r.ran.out;
+  EXPECT_EQ(json_number(r.ran.out, "session_restarts"), 0);
+  EXPECT_EQ(r.ran.out.find("Pandar64"), std::string::npos) << r.ran.out;  // "models" holds the QT128C2X alone
+  EXPECT_GT(json_number(r.ran.out, "signature_valid"), 0);
+  EXPECT_EQ(json_number(r.ran.out, "signature_invalid"), 0);
+  expect_consistent(r);
+}
+
+// A secret for a unit that signs nothing: exit 2 before any packet, unless --allow-unsigned.
+TEST(SensorAttack, SecretForAUnitThatSignsNothingIsRefused) {
+  const int port = free_udp_port();
+  ASSERT_NE(port, 0);
+  const std::string secret = secret_file();
+  StandIn s("pandar64_dual.pcap", "127.0.0.3", "--to 127.0.0.1:9 --rate 0.05 --quiet --calibration " +
+                                                   data_path("calibration/pandar64_unit_a_angles.csv"));
+  ASSERT_NE(s.port(), 0) << s.stderr_text();
+  const std::string listen = "listen --bind 127.0.0.1 --port " + std::to_string(port) +
+                             " --gps-port 0 --sensor 127.0.0.3 --ptc-port " + std::to_string(s.port()) + " --secret-file " +
+                             secret + " --seconds 0.5 --json --quiet";
+  const Ran refused = run(listen);
+  EXPECT_EQ(refused.status, 2);
+  EXPECT_NE(refused.err.find("a secret was given, but the Pandar64 signs no packets"), std::string::npos) << refused.err;
+  EXPECT_EQ(refused.out, "");
+  const Ran allowed = run(listen + " --allow-unsigned");
+  EXPECT_EQ(allowed.status, 0) << allowed.err;
+  EXPECT_NE(allowed.err.find("no session started (--allow-unsigned)"), std::string::npos) << allowed.err;
+  std::remove(secret.c_str());
 }
 
 }  // namespace

@@ -42,7 +42,6 @@ int LiveSession::start(std::string& error) {
   const Stats& s = pipeline_.stats();
   valid_seen_ = s.signature_valid;
   bad_seen_ = s.signature_invalid + s.unsigned_rejected;
-  std::fprintf(stderr, "signature session started: packets received from now on are accepted only with a valid signature\n");
   return kExitOk;
 }
 

@@ -408,21 +408,33 @@ int cmd_listen(Args& args) {
     return pipeline.feed(ByteView{d.data, d.size}, gps ? 1 : 0, pre_session);
   };
   if (session) {
-    // What waits in the sockets now arrived before the session's answer was read, or while it
-    // was read. Where the kernel stamps each datagram (SO_TIMESTAMPNS), only those it received
-    // before the answer may be unsigned; on the portable path, everything queued at this moment.
+    // What waits in the sockets arrived before the session's answer was read, or while it was
+    // read. Where the kernel stamps each datagram (SO_TIMESTAMPNS), only those it received
+    // before the answer may be unsigned, and the drain ends at the first one after it; on the
+    // portable path, what is queued at this moment (until a receive finds less than a batch).
     const bool stamped = port::UdpReceiver::kernel_timestamps();
+    std::uint64_t before = 0;
     for (port::UdpReceiver* rx : {&points_rx, &gps_rx}) {
-      while (rx->fd() >= 0 && !fatal && rx->receive(batch, 0) > 0) {
+      bool queued = rx->fd() >= 0;
+      while (queued && !fatal) {
+        const int n = rx->receive(batch, 0);
+        fatal = n < 0;
+        queued = n == static_cast<int>(port::UdpReceiver::kBatch);
         for (const port::Datagram& d : batch) {
           if (count != 0 && received >= count) break;
-          if (!take(d, rx == &gps_rx, !stamped || d.time_ns <= session->agreed_realtime_ns())) {
+          const bool pre_session = !stamped || d.time_ns <= session->agreed_realtime_ns();
+          before += pre_session;
+          queued = queued && pre_session;
+          if (!take(d, rx == &gps_rx, pre_session)) {
             std::fprintf(stderr, "hesai listen: %s\n", pipeline.error().c_str());
             return kExitUsage;
           }
         }
       }
     }
+    std::fprintf(stderr, "signature session started (%llu datagrams received before it may be unsigned): from now on "
+                         "a packet is accepted only with a valid signature\n",
+                 static_cast<unsigned long long>(before));
   }
   while (!g_stop && !fatal && status == kExitOk && (count == 0 || received < count) && now < deadline &&
          !(idle_ns > 0 && last_packet != 0 && now - last_packet > idle_ns)) {

@@ -46,6 +46,7 @@ struct StandIn {
   std::string serve;  // [ADDR:]PORT; empty: no PTC service
   std::string calibration, firetimes, channel_config, secret_file;
   bool wait_for_session = false;
+  bool never_sign = false;  // sessions accepted, no packet signed (a misbehaving unit)
 };
 
 // Opens the stand-in's PTC service for `capture`; `address` is the address it serves on (the
@@ -131,7 +132,9 @@ int cmd_replay(Args& args) {
                   "  --channel-config FILE   served for 0xA8\n"
                   "  --secret-file FILE      the shared secret: signature sessions (0x2E) are accepted, and\n"
                   "                          while one runs every QT128 packet is signed with its key\n"
-                  "  --wait-for-session      send nothing until a signature session starts\n");
+                  "  --wait-for-session      send nothing until a signature session starts\n"
+                  "  --never-sign            accept signature sessions but sign no packet (a unit that\n"
+                  "                          misbehaves, for tests)\n");
       return kExitOk;
     }
     if (a == "--to") { if (!args.value(a, to)) return usage_error("replay", "--to needs HOST:PORT"); }
@@ -141,6 +144,7 @@ int cmd_replay(Args& args) {
     else if (a == "--quiet") quiet = true;
     else if (a == "--renumber") renumber_sequence = true;
     else if (a == "--wait-for-session") stand_in.wait_for_session = true;
+    else if (a == "--never-sign") stand_in.never_sign = true;
     else if (a == "--serve-ptc" || a == "--calibration" || a == "--firetimes" || a == "--channel-config" ||
              a == "--secret-file") {
       std::string& target = a == "--serve-ptc"       ? stand_in.serve
@@ -162,9 +166,9 @@ int cmd_replay(Args& args) {
 
   const bool serving = !stand_in.serve.empty();
   if (!serving && (!stand_in.calibration.empty() || !stand_in.firetimes.empty() || !stand_in.channel_config.empty() ||
-                   !stand_in.secret_file.empty() || stand_in.wait_for_session))
-    return usage_error("replay", "--calibration, --firetimes, --channel-config, --secret-file and --wait-for-session "
-                                 "go with --serve-ptc");
+                   !stand_in.secret_file.empty() || stand_in.wait_for_session || stand_in.never_sign))
+    return usage_error("replay", "--calibration, --firetimes, --channel-config, --secret-file, --wait-for-session and "
+                                 "--never-sign go with --serve-ptc");
   if (stand_in.wait_for_session && stand_in.secret_file.empty())
     return usage_error("replay", "--wait-for-session needs --secret-file (no session can start without it)");
 
@@ -209,7 +213,7 @@ int cmd_replay(Args& args) {
         port::sleep_until_ns(loop_start + static_cast<std::int64_t>(static_cast<double>(t - first_record) / rate));
       }
       // A running session signs every QT128 packet that has room for a signature.
-      const bool sign = serving && server.session_key(key);
+      const bool sign = serving && !stand_in.never_sign && server.session_key(key);
       bool ok;
       if (renumber_sequence || sign) {
         packet.assign(d.payload.data, d.payload.data + d.payload.size);
