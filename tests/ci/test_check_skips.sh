@@ -2,9 +2,10 @@
 # ctest ci_check_skips: .ci/check-skips on hand-made JUnit files (tests/ci/junit/, as ctest
 # --output-junit writes them) against a hand-made allowlist (tests/ci/junit/allowlist): the exit
 # code and the names and GoogleTest messages it prints.
-# Usage: test_check_skips.sh SOURCE_DIR
+# Usage: test_check_skips.sh SOURCE_DIR [PYTHON]   (default python3)
 set -euo pipefail
-src=${1:?usage: test_check_skips.sh SOURCE_DIR}
+src=${1:?usage: test_check_skips.sh SOURCE_DIR [PYTHON]}
+python=${2:-python3}
 dir=$src/tests/ci/junit
 failures=0
 
@@ -14,7 +15,7 @@ expect() {
   local want=$1 junit=$2 allowlist=$3
   shift 3
   local out status=0 missing=""
-  out=$(python3 "$src/.ci/check-skips" "$dir/$junit" demo "$dir/$allowlist" 2>&1) || status=$?
+  out=$("$python" "$src/.ci/check-skips" "$dir/$junit" demo "$dir/$allowlist" 2>&1) || status=$?
   for m in "$@"; do
     [[ $out == *"$m"* ]] || missing+=" '$m'"
   done
