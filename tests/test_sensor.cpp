@@ -291,11 +291,14 @@ TEST(Sensor, SignatureStartWritesAKeyThatVerifiesTheSession) {
   std::remove(secret.c_str());
 }
 
-// A one-connection PTC server that answers the first request with `reply` (then, if `hang`, stays
-// silent until the client gives up; otherwise closes).
+// A one-connection PTC server that answers the first request with `reply`, then, if `drip_ms`,
+// sends one byte more every `drip_ms` ms until the client closes (for 10 s at most: a client that
+// waits longer then fails its test by the time it took, not by hanging it); then, if `hang`,
+// stays silent until the client gives up; otherwise closes.
 class HostileServer {
  public:
-  explicit HostileServer(std::vector<std::uint8_t> reply, bool hang) : reply_(std::move(reply)), hang_(hang) {
+  explicit HostileServer(std::vector<std::uint8_t> reply, bool hang, int drip_ms = 0)
+      : reply_(std::move(reply)), hang_(hang), drip_ms_(drip_ms) {
     fd_ = socket(AF_INET, SOCK_STREAM, 0);
     sockaddr_in sa{};
     sa.sin_family = AF_INET;
@@ -311,6 +314,12 @@ class HostileServer {
       std::uint8_t header[8];
       if (recv(c, header, sizeof header, MSG_WAITALL) == 8 && !reply_.empty())
         (void)!send(c, reply_.data(), reply_.size(), MSG_NOSIGNAL);
+      const std::uint8_t drop = 'x';
+      while (drip_ms_ > 0 && !done_ && dripped_ * drip_ms_ < 10000) {
+        usleep(static_cast<useconds_t>(drip_ms_) * 1000);
+        if (send(c, &drop, 1, MSG_NOSIGNAL) != 1) break;  // the client closed the connection
+        ++dripped_;
+      }
       if (hang_) {
         std::uint8_t b;
         while (!done_ && recv(c, &b, 1, MSG_DONTWAIT) != 0) usleep(10000);
@@ -325,10 +334,13 @@ class HostileServer {
     if (thread_.joinable()) thread_.join();
   }
   int port() const { return port_; }
+  int dripped() const { return dripped_; }
 
  private:
   std::vector<std::uint8_t> reply_;
   bool hang_;
+  int drip_ms_;
+  std::atomic<int> dripped_{0};
   int fd_ = -1;
   int port_ = 0;
   std::atomic<bool> done_{false};
@@ -386,6 +398,67 @@ TEST(Sensor, HostileSensorsEndInTimeWithANamedError) {
     EXPECT_LT(r.max_rss_kib, baseline_kib + 16 * 1024) << "baseline " << baseline_kib << " KiB";
 #endif
   }
+}
+
+// The file commands' bound: 1 MiB (ptc::kMaxFileBytes, the calibration files are a few KiB).
+// A sensor that announces a whole 1 MiB calibration and then drips a byte every 200 ms: the
+// client's deadline covers the whole answer, not each read, so it gives up 1 s after asking
+// (--timeout 1), with nothing written. A sensor that sends the whole 1 MiB at once: the client
+// stores it and writes it byte for byte, and its resident set holds the payload (at least 1 MiB
+// above the baseline run's) and stays within the bound of the test above.
+TEST(Sensor, LargestCalibrationDrippedOrWholeStaysBounded) {
+  constexpr std::uint32_t kMiB = 1u << 20;
+  const double timeout = 1.0;
+#if defined(HESAI_CLI_EMULATOR)
+  const double slack = 5.0;  // qemu-user starts the program slowly; natively the bound is 1 s
+#else
+  const double slack = 1.0;
+  const long baseline_kib = run("sensor info").max_rss_kib;
+#endif
+  const std::string out = temp_path("large_calibration.csv");
+  {
+    SCOPED_TRACE("drip");
+    std::remove(out.c_str());
+    std::vector<std::uint8_t> reply = header(0x47, 0x74, 0x05, 0, kMiB);
+    reply.push_back('#');  // the first byte of the payload; then one every 200 ms
+    HostileServer server(reply, false, 200);
+    ASSERT_NE(server.port(), 0);
+    const Ran r = run("sensor calibration 127.0.0.1 --ptc-port " + std::to_string(server.port()) + " --timeout 1 --out " + out);
+    EXPECT_EQ(r.status, 2) << r.err;
+    EXPECT_GE(r.seconds, timeout) << "gave up before its deadline";
+    EXPECT_LT(r.seconds, timeout + slack);
+    EXPECT_NE(r.err.find("127.0.0.1:" + std::to_string(server.port()) +
+                         ": command 0x05 (calibration): no response payload within 1.0 s (1048576 bytes announced)"),
+              std::string::npos)
+        << r.err;
+    struct stat st {};
+    EXPECT_NE(stat(out.c_str(), &st), 0) << "a file was written from an unfinished answer";
+#if !defined(HESAI_CLI_EMULATOR)
+    EXPECT_LT(r.max_rss_kib, baseline_kib + 16 * 1024) << "baseline " << baseline_kib << " KiB";
+#endif
+  }
+  {
+    SCOPED_TRACE("whole");
+    std::remove(out.c_str());
+    std::vector<std::uint8_t> reply = header(0x47, 0x74, 0x05, 0, kMiB);
+    std::string payload(kMiB, '\0');
+    for (std::uint32_t i = 0; i < kMiB; ++i) payload[i] = static_cast<char>('0' + i * 7 % 61);
+    reply.insert(reply.end(), payload.begin(), payload.end());
+    // Then closes: the client's inventory request (to check the file against the model) finds
+    // no answer, which leaves the model unknown, a note.
+    HostileServer server(reply, false);
+    ASSERT_NE(server.port(), 0);
+    const Ran r = run("sensor calibration 127.0.0.1 --ptc-port " + std::to_string(server.port()) + " --timeout 1 --out " + out);
+    EXPECT_EQ(r.status, 0) << r.err;
+    EXPECT_LT(r.seconds, timeout + slack);
+    EXPECT_NE(r.err.find("1048576 bytes to " + out + "; model unknown: not checked"), std::string::npos) << r.err;
+    EXPECT_TRUE(read_text(out) == payload) << "the stored file differs from the 1 MiB sent";
+#if !defined(HESAI_CLI_EMULATOR)
+    EXPECT_GE(r.max_rss_kib, baseline_kib + 1024) << "baseline " << baseline_kib << " KiB: the 1 MiB payload not resident?";
+    EXPECT_LT(r.max_rss_kib, baseline_kib + 16 * 1024) << "baseline " << baseline_kib << " KiB";
+#endif
+  }
+  std::remove(out.c_str());
 }
 
 TEST(Sensor, UnreachableAndUsage) {

@@ -18,8 +18,10 @@
 #include <cstring>
 #include <new>
 
+#include "hesai/calibration.h"
 #include "hesai/crc32.h"
 #include "hesai/decoder.h"
+#include "hesai/detail/kernel_calls.h"
 #include "hesai/hkdf.h"
 #include "hesai/hmac.h"
 #include "hesai/detail/pandar40_packet.h"
@@ -156,11 +158,14 @@ struct ColumnArrays {
   std::int32_t time_ns[hesai::kMaxPointsPerPacket];
   std::uint8_t intensity[hesai::kMaxPointsPerPacket], channel[hesai::kMaxPointsPerPacket], ret[hesai::kMaxPointsPerPacket];
 };
+// Also a unit's angle file, while it is handed to Decoder::set_angles (which keeps what it needs).
 union PointStorage {
   PointStorage() : points() {}
   hesai::PacketPoints points;
   ColumnArrays columns;
+  hesai::AngleCorrection angles;
 };
+static_assert(sizeof(hesai::AngleCorrection) <= sizeof(hesai::PacketPoints), "the angles take no RAM of their own");
 PointStorage storage;
 hesai::PacketPoints& points = storage.points;
 hesai::PointColumns column_view() {
@@ -604,11 +609,119 @@ PathResult decode_by(hesai::Decoder& decoder, ByteView bytes, hesai::DecodePath 
 }
 
 void same_on_every_path(const char* name, hesai::Decoder& decoder, ByteView bytes) {
+#if HESAI_KERNEL_COUNTERS && defined(__ARM_ARCH_7EM__) && defined(__ARM_FP)
+  // The image whose core counts kernel calls (hesai_core_alt): DecodePath::best took the packet
+  // through the assembly loops once as Points and once as columns, DecodePath::portable never.
+  using hesai::detail::Kernel;
+  hesai::detail::reset_kernel_calls();
+  const PathResult best = decode_by(decoder, bytes, hesai::DecodePath::best);
+  check(hesai::detail::kernel_calls(Kernel::armv7m_points) == 1 && hesai::detail::kernel_calls(Kernel::armv7m_columns) == 1,
+        "DecodePath::best ran the ARMv7E-M loops (kernel counters)");
+  hesai::detail::reset_kernel_calls();
+  const PathResult portable = decode_by(decoder, bytes, hesai::DecodePath::portable);
+  check(hesai::detail::kernel_calls(Kernel::armv7m_points) == 0 && hesai::detail::kernel_calls(Kernel::armv7m_columns) == 0,
+        "DecodePath::portable ran the C loops (kernel counters)");
+#else
   const PathResult best = decode_by(decoder, bytes, hesai::DecodePath::best);
   const PathResult portable = decode_by(decoder, bytes, hesai::DecodePath::portable);
+#endif
   const bool same = best.points == portable.points && best.columns == portable.columns && best.points == best.columns &&
                     best.points_digest == portable.points_digest && best.columns_digest == portable.columns_digest;
   check(same, name);
+}
+
+// Where a model's block azimuths lie (as tests/packet_builder.h's block_layout): the first at
+// `first`, then one every `stride` bytes. Pandar40/40P, Pandar64 and QT128C2X manuals Section
+// 3.1.2; PandarQT64 protocol 3.1 and PandarXT protocol 6.1 (the SDK's layouts).
+struct BlockLayout {
+  std::size_t first, stride, blocks;
+};
+BlockLayout block_layout(Model m) {
+  switch (m) {
+    case Model::pandar64: return {8, 194, 6};
+    case Model::qt128c2x: return {12, 514, 2};
+    case Model::pandar_qt64: return {12, 258, 4};
+    case Model::pandar_xt16: return {12, 66, 8};
+    case Model::pandar_xt32: return {12, 130, 8};
+    case Model::pandar_xt32m2x: return {12, 130, 6};
+    default: return {2, 124, 10};  // Pandar40, Pandar40P
+  }
+}
+
+// The packet copied into `shifted` with each block's azimuth a replaced by azimuth(a, f), f the
+// block's firing: 0 for the first block, one more at each block whose azimuth differs from the
+// block's before (the blocks of one firing, the returns, share an azimuth: validate() checks).
+// The QT128's CRCs sealed again.
+template <typename F>
+ByteView with_azimuths(Model m, ByteView original, F azimuth) {
+  std::memcpy(shifted, original.data, original.size);
+  const BlockLayout l = block_layout(m);
+  std::size_t firing = 0;
+  for (std::size_t b = 0; b < l.blocks; ++b) {
+    const std::uint8_t* was = original.data + l.first + b * l.stride;
+    if (b > 0 && hesai::load_le16(was) != hesai::load_le16(was - l.stride)) ++firing;
+    hesai::store_le16(shifted + l.first + b * l.stride, azimuth(hesai::load_le16(was), firing));
+  }
+  if (m == Model::qt128c2x) check(hesai::qt128::seal(shifted, original.size) == Error::ok, "re-seal");
+  return {shifted, original.size};
+}
+
+// The model's decoder slot (decoder_for's), built afresh: design angles, clockwise.
+hesai::Decoder& fresh_decoder(Model m) {
+  hesai::Decoder* d = m == Model::pandar40p  ? &decoders[1]
+                      : m == Model::pandar64 ? &decoders[2]
+                      : m == Model::qt128c2x ? &decoders[3]
+                                             : &decoders[0];
+  d->~Decoder();
+  return *::new (d) hesai::Decoder(m);
+}
+
+// The paths agree where the real packets do not go: a counter-clockwise unit (each block azimuth a
+// sent as 36000 - a, the decoder set to Rotation::counterclockwise), a unit's angle file whose
+// azimuth offsets span -359.5..+351.7 degrees (every beam azimuth wraps past 0 or 360 on some
+// block) and whose elevations are not the design's, and firings' block azimuths across 0: 359.98,
+// 359.99, 0, 0.01... clockwise, 0.02, 0.01, 0, 359.99... counter-clockwise. Each sensor, each
+// combination.
+void rotations_offsets_and_wraps() {
+  print("decode paths: counter-clockwise, calibration offsets, block azimuths across 0, every sensor\n");
+  for (const Subject& s : kSubjects) {
+    for (const bool offsets : {false, true}) {
+      for (const bool ccw : {false, true}) {
+        hesai::Decoder& decoder = fresh_decoder(s.model);
+        if (offsets) {
+          hesai::AngleCorrection& a = storage.angles;
+          a = hesai::AngleCorrection{};
+          a.channels = static_cast<std::uint16_t>(hesai::channel_count(s.model));
+          for (std::size_t ch = 0; ch < a.channels; ++ch) {
+            a.azimuth_deg[ch] = -359.5 + 5.6 * static_cast<double>(ch % 128);
+            a.elevation_deg[ch] = -25.0 + 0.375 * static_cast<double>(ch);
+          }
+          check(decoder.set_angles(a) == Error::ok, "set_angles: a unit's offsets");
+        }
+        decoder.set_rotation(ccw ? hesai::Rotation::counterclockwise : hesai::Rotation::clockwise);
+        const char* what = offsets ? (ccw ? "counter-clockwise, with offsets" : "clockwise, with offsets")
+                                   : (ccw ? "counter-clockwise" : "clockwise");
+        print("  ");
+        print(s.name);
+        print(" ");
+        print(what);
+        print("\n");
+        if (ccw) {
+          same_on_every_path(s.name, decoder, with_azimuths(s.model, s.packet, [](std::uint16_t a, std::size_t) {
+                               return static_cast<std::uint16_t>((36000u - a) % 36000u);
+                             }));
+        } else if (offsets) {
+          same_on_every_path(s.name, decoder, s.packet);
+        }
+        same_on_every_path(s.name, decoder, with_azimuths(s.model, s.packet, [ccw](std::uint16_t, std::size_t firing) {
+                             const auto step = static_cast<std::uint32_t>(firing);
+                             return static_cast<std::uint16_t>(ccw ? (36002u - step) % 36000u : (35998u + step) % 36000u);
+                           }));
+      }
+    }
+  }
+  // Every decoder as paths_agree() left it, for the counts below: design angles, clockwise.
+  for (const Model m : {Model::pandar40p, Model::pandar64, Model::qt128c2x}) fresh_decoder(m);
 }
 
 // On the Cortex-M4F (and M7) DecodePath::best runs the assembly loops of kernels/armv7m_loops.h,
@@ -701,6 +814,7 @@ int main() {
   real_packets();
   c_path();
   paths_agree();
+  rotations_offsets_and_wraps();
   instruction_counts();
   stack_use();
   print("sizeof(Decoder): ");

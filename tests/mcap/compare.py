@@ -117,6 +117,9 @@ def main():
         fail(f"more messages than the CSV's {len(frames)} frames: '{extra.strip()}'")
     if points != sum(1 for _ in open(csv_path)) - 1:
         fail(f"{points} points compared, the CSV has more rows (a frame without a message)")
+    # Every bundled capture has points: a decode that wrote none would compare nothing and pass.
+    if points == 0 or not frames:
+        fail(f"nothing compared: {len(frames)} frames, {points} points (the CSV has no rows)")
     print(f"{name}: {len(frames)} messages = {len(frames)} frames, {points} points match the CSV")
 
 if __name__ == "__main__":

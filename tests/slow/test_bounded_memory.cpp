@@ -8,6 +8,10 @@
 // each run on the large capture gives the throughput table of the README; a plain read() is the
 // baseline.
 //
+// Every run must also give every point: stats' "points" and each decode's summary line ("... P
+// points written", on stderr) must equal the copies times the bundled capture's 337 108 points
+// (tests/test_golden.cpp counts them from the raw bytes).
+//
 // Label "slow" (ctest -L slow). Needs the large capture's size free in the temporary directory.
 // The outputs but the PNG go to /dev/null, so that the disk's speed does not count; it is
 // seekable, so the PCD/PLY header is rewritten there as in a file. Native unsanitized builds only.
@@ -47,12 +51,12 @@ double cpu_seconds(const rusage& ru) {
          static_cast<double>(ru.ru_utime.tv_usec + ru.ru_stime.tv_usec) / 1e6;
 }
 
-// Runs `args` with stdout to `out_path`, stderr to /dev/null; waits for it with wait4, whose
+// Runs `args` with stdout to `out_path`, stderr to `err_path`; waits for it with wait4, whose
 // rusage is this child's alone.
-Child spawn(const std::vector<std::string>& args, const std::string& out_path) {
+Child spawn(const std::vector<std::string>& args, const std::string& out_path, const std::string& err_path) {
   Child c;
   const auto start = std::chrono::steady_clock::now();
-  const pid_t pid = hesai_test::start_process(args, out_path);
+  const pid_t pid = hesai_test::start_process(args, out_path, err_path);
   if (pid == 0) return c;
   int status = 0;
   rusage ru{};
@@ -68,6 +72,14 @@ Child spawn(const std::vector<std::string>& args, const std::string& out_path) {
 long long json_points(const std::string& json) {
   const std::size_t at = json.find("\"points\":");
   return at == std::string::npos ? -1 : std::stoll(json.substr(at + 9));
+}
+
+// P in the summary line "N packets, F frames, P points written to ..." of hesai decode; -1 when absent.
+long long summary_points(const std::string& text) {
+  const std::size_t end = text.find(" points written");
+  if (end == std::string::npos) return -1;
+  const std::size_t start = text.rfind(", ", end);
+  return start == std::string::npos ? -1 : std::stoll(text.substr(start + 2, end - start - 2));
 }
 
 // Appends copies of the bundled capture's records to `path` (its header first when `copies_now`
@@ -86,7 +98,9 @@ bool grow_capture(const std::string& path, const std::vector<std::uint8_t>& one,
 }
 
 TEST(BoundedMemory, PeakMemoryUnder256MiBAndTheSameAt256MiBAnd1GiB) {
-  // The captures: the bundled file's header, then its records again and again.
+  // The captures: the bundled file's header, then its records again and again. Without --quiet
+  // each decode prints its summary line (stderr is not a terminal: no progress line); the CSV to
+  // a named file (/dev/null) for it, as to stdout it prints none.
   const std::vector<std::uint8_t> one = hesai_test::read_file(hesai_test::data_path("qt128c2x_dual.pcap"));
   ASSERT_GT(one.size(), 24u);
   const std::size_t body = one.size() - 24;
@@ -102,6 +116,7 @@ TEST(BoundedMemory, PeakMemoryUnder256MiBAndTheSameAt256MiBAnd1GiB) {
       << "this test writes a " << large_size / 1048576 << " MiB capture into " << dir << ": free space there first";
   const std::string capture = dir + "/big.pcap";
   const std::string json = dir + "/stats.json";
+  const std::string summary = dir + "/stderr.txt";
   struct Case {
     const char* name;
     std::vector<std::string> args;
@@ -109,10 +124,10 @@ TEST(BoundedMemory, PeakMemoryUnder256MiBAndTheSameAt256MiBAnd1GiB) {
   };
   const std::vector<Case> cases = {
       {"stats", {HESAI_CLI_PATH, "stats", capture, "--json", "--quiet"}, json},
-      {"decode csv", {HESAI_CLI_PATH, "decode", capture, "--quiet", "--out", "-"}, "/dev/null"},
-      {"decode pcd", {HESAI_CLI_PATH, "decode", capture, "--quiet", "--format", "pcd", "--out", "/dev/null"}, "/dev/null"},
-      {"decode ply", {HESAI_CLI_PATH, "decode", capture, "--quiet", "--format", "ply", "--out", "/dev/null"}, "/dev/null"},
-      {"decode png", {HESAI_CLI_PATH, "decode", capture, "--quiet", "--format", "png", "--out", dir + "/one.png"}, "/dev/null"},
+      {"decode csv", {HESAI_CLI_PATH, "decode", capture, "--out", "/dev/null"}, "/dev/null"},
+      {"decode pcd", {HESAI_CLI_PATH, "decode", capture, "--format", "pcd", "--out", "/dev/null"}, "/dev/null"},
+      {"decode ply", {HESAI_CLI_PATH, "decode", capture, "--format", "ply", "--out", "/dev/null"}, "/dev/null"},
+      {"decode png", {HESAI_CLI_PATH, "decode", capture, "--format", "png", "--out", dir + "/one.png"}, "/dev/null"},
   };
   std::vector<long> small_rss_kb;
 
@@ -146,7 +161,7 @@ TEST(BoundedMemory, PeakMemoryUnder256MiBAndTheSameAt256MiBAnd1GiB) {
     long long points = -1;
     for (std::size_t i = 0; i < cases.size(); ++i) {
       const Case& c = cases[i];
-      const Child r = spawn(c.args, c.out);
+      const Child r = spawn(c.args, c.out, summary);
       EXPECT_EQ(r.exit_status, 0) << c.name;
       EXPECT_GT(r.max_rss_kb, 0) << c.name;
       EXPECT_LT(r.max_rss_kb, kMaxRssKb) << c.name << ": peak RSS " << r.max_rss_kb / 1024 << " MiB";
@@ -158,19 +173,24 @@ TEST(BoundedMemory, PeakMemoryUnder256MiBAndTheSameAt256MiBAnd1GiB) {
             << c.name << ": peak RSS " << small_rss_kb[i] << " kB on " << small_copies << " copies, " << r.max_rss_kb
             << " kB on " << large_copies;
       }
+      // Every packet decodes: 337 108 points per copy (test_golden.cpp counts them in the bundled file).
+      const std::vector<std::uint8_t> err = hesai_test::read_file(summary);
       if (c.out == json) {
         const std::vector<std::uint8_t> text = hesai_test::read_file(json);
         points = json_points(std::string(text.begin(), text.end()));
+        EXPECT_EQ(points, static_cast<long long>(copies) * 337108) << c.name;
+      } else {
+        EXPECT_EQ(summary_points(std::string(err.begin(), err.end())), static_cast<long long>(copies) * 337108)
+            << c.name << ": " << std::string(err.begin(), err.end());
       }
       std::printf("| %-10s | %6.2f | %6.2f | %11.0f | %15.3g | %12.1f |\n", c.name, r.seconds, r.cpu_seconds,
                   mb / r.cpu_seconds, static_cast<double>(points) / r.cpu_seconds, static_cast<double>(r.max_rss_kb) / 1024.0);
       ::testing::Test::RecordProperty(std::string(c.name) + (large ? " 1 GiB" : " 256 MiB") + " peak RSS kB",
                                       std::to_string(r.max_rss_kb));
     }
-    // Every packet decodes: 337 108 points per copy (test_golden.cpp counts them in the bundled file).
-    EXPECT_EQ(points, static_cast<long long>(copies) * 337108);
   }
   std::remove(json.c_str());
+  std::remove(summary.c_str());
   std::remove((dir + "/one.png").c_str());
   std::remove(capture.c_str());
   ::rmdir(dir.c_str());

@@ -74,7 +74,7 @@ struct PacketColumns {
 /// assembly loops), the portable scalar code every target has (the only one on other Cortex-M
 /// cores), or `avx2`: the AVX2 code even where AVX-512 is
 /// present, for tests and benchmarks (elsewhere the same as `best`). Every path gives the same
-/// points: the same float operations in the same order (tests/test_columns.cpp).
+/// points: the same float operations in the same order (tests/kernels/test_columns.cpp).
 enum class DecodePath : std::uint8_t { best, portable, avx2 };
 
 }  // namespace hesai

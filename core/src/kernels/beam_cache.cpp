@@ -1,6 +1,7 @@
 #include "beam_cache.h"
 
 #include "hesai/detail/math.h"
+#include "kernel_counters.h"
 #include "kernel_inputs.h"
 #include "x86_units.h"
 
@@ -183,10 +184,12 @@ void rebuild_beams(const BeamLoop& l, std::size_t channels, float omega, [[maybe
                    std::int32_t& lo_key, std::int32_t& hi_key) noexcept {
 #if defined(HESAI_KERNELS_X86)
   if (isa == VectorIsa::avx512) {
+    HESAI_COUNT_KERNEL(avx512_beams);
     spin_loop_avx512<true>(l, channels, omega, lo_key, hi_key);
     return;
   }
   if (isa == VectorIsa::avx2) {
+    HESAI_COUNT_KERNEL(avx2_beams);
     spin_loop_avx2<true>(l, channels, omega, lo_key, hi_key);
     return;
   }

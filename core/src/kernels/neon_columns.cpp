@@ -4,12 +4,14 @@
 
 #if defined(HESAI_KERNELS_NEON)
 
+#include "kernel_counters.h"
 #include "neon_units.h"
 
 namespace hesai::kernels {
 
 bool columns_vector(const PacketConstants& k, VectorIsa isa, const PointColumns out, std::size_t& count) noexcept {
   if (!neon_fits(k, isa)) return false;
+  HESAI_COUNT_KERNEL(neon_columns);
   EightUnits eight_units(k);
   const std::size_t blocks = k.blocks, units = k.units;
   const uint32_t lane_bit_values[4] = {1, 2, 4, 8};

@@ -6,6 +6,7 @@
 
 #include <cstddef>
 
+#include "kernel_counters.h"
 #include "neon_units.h"
 
 namespace hesai::kernels {
@@ -24,6 +25,7 @@ static_assert(offsetof(Point, y) == 4 && offsetof(Point, z) == 8 && offsetof(Poi
 // the scalar loop.
 bool points_vector(const PacketConstants& k, VectorIsa isa, Point* out, std::size_t& count) noexcept {
   if (!neon_fits(k, isa)) return false;
+  HESAI_COUNT_KERNEL(neon_points);
   EightUnits eight_units(k);
   const std::size_t blocks = k.blocks, units = k.units;
   const float32x4_t full_turn = vdupq_n_f32(360.0f);

@@ -2,7 +2,7 @@
 // hands them a whole packet's blocks, once per packet, when the units need no channel map; they
 // write every unit, or decline (return false) and the scalar loops (scalar_loops.h), which every
 // target has, write them. Each gives the scalar loop's values: the same float operations in the
-// same order, no fused multiply-add (tests/test_columns.cpp checks every point of every capture on
+// same order, no fused multiply-add (tests/kernels/test_columns.cpp checks every point of every capture on
 // every path).
 // - x86-64: AVX-512 (F, BW, DQ, VL) sixteen units a step, AVX2 eight (x86_columns.cpp,
 //   x86_points.cpp, their shared loads in x86_units.h).

@@ -4,6 +4,7 @@
 
 #if defined(HESAI_KERNELS_X86)
 
+#include "kernel_counters.h"
 #include "x86_units.h"
 
 namespace hesai::kernels {
@@ -111,11 +112,13 @@ HESAI_AVX512_TARGET void columns_avx512(const PacketConstants& k, const PointCol
 bool columns_vector(const PacketConstants& k, VectorIsa isa, const PointColumns out, std::size_t& count) noexcept {
   switch (isa) {
     case VectorIsa::avx512:
+      HESAI_COUNT_KERNEL(avx512_columns);
       if (k.unit_bytes == 4) columns_avx512<4>(k, out, count);
       else columns_avx512<3>(k, out, count);
       return true;
     case VectorIsa::avx2:
       if (k.units % 8 != 0) return false;
+      HESAI_COUNT_KERNEL(avx2_columns);
       columns_avx2(k, out, count);
       return true;
     default: break;

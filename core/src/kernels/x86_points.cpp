@@ -6,6 +6,7 @@
 
 #include <cstddef>
 
+#include "kernel_counters.h"
 #include "x86_units.h"
 
 namespace hesai::kernels {
@@ -186,11 +187,13 @@ HESAI_AVX512_TARGET void points_avx512(const PacketConstants& k, Point* out, std
 bool points_vector(const PacketConstants& k, VectorIsa isa, Point* out, std::size_t& count) noexcept {
   switch (isa) {
     case VectorIsa::avx512:
+      HESAI_COUNT_KERNEL(avx512_points);
       if (k.unit_bytes == 4) points_avx512<4>(k, out, count);
       else points_avx512<3>(k, out, count);
       return true;
     case VectorIsa::avx2:
       if (k.units % 8 != 0) return false;
+      HESAI_COUNT_KERNEL(avx2_points);
       points_avx2(k, out, count);
       return true;
     default: break;

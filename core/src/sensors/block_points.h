@@ -10,6 +10,7 @@
 
 #include "../base/compiler.h"
 #include "../kernels/armv7m_loops.h"
+#include "../kernels/kernel_counters.h"
 #include "../kernels/scalar_loops.h"
 #include "../kernels/vector_kernels.h"
 #include "hesai/bytes.h"
@@ -162,6 +163,7 @@ HESAI_ALWAYS_INLINE inline void SensorBase::emit_blocks_armv7m(const Decoder& d,
   // The records assigned field by field: a braced initialiser made GCC zero them first by a memset
   // call (picolibc's, a byte at a time: 261 instructions a packet).
   if (out.points == nullptr) {
+    HESAI_COUNT_KERNEL(armv7m_columns);
     const PointColumns& c = out.columns;
     kernels::ArmColumnsBlock k;
     k.n = out.count, k.x = c.x, k.y = c.y, k.z = c.z, k.time_ns = c.time_ns, k.intensity = c.intensity;
@@ -179,6 +181,7 @@ HESAI_ALWAYS_INLINE inline void SensorBase::emit_blocks_armv7m(const Decoder& d,
     out.count = k.n;
     return;
   }
+  HESAI_COUNT_KERNEL(armv7m_points);
   kernels::ArmPointsBlock k;
   k.out = out.points + out.count, k.sin_el = geo.sin_el.data(), k.keep_bias = keep_bias, k.unit_m = unit_m;
   k.full_turn = 360.0f;

@@ -1,6 +1,8 @@
 // The columnar output (PointColumns, PacketColumns<N>) against the Point output, and the vector
 // paths (AVX-512 and AVX2 on x86-64, NEON on AArch64) against the portable scalar path: every
-// point of every bundled capture.
+// point of every bundled capture. Each test counts the packets it expects each vector kernel to
+// decode and requires the counters of the core's test build to say the same (kernel_calls.h):
+// the kernel a test names ran, on every packet, and not the scalar loops in its place.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -17,6 +19,7 @@
 #include "hesai/detail/qt128_packet.h"
 #include "hesai/detail/qt64_packet.h"
 #include "hesai/detail/xt_packet.h"
+#include "kernel_calls.h"
 #include "packet_builder.h"
 #include "test_support.h"
 #include "vector_paths.h"
@@ -44,11 +47,13 @@ struct Columns {
 };
 
 // Decodes every packet of a capture into Points and, with a second decoder of the same settings,
-// into columns; calls check(points, info, columns) per packet.
+// into columns; calls check(points, info, columns) per packet. The Points by DecodePath::best's
+// kernel and the columns by `path`'s, each on every packet.
 template <typename Setup, typename Check>
 void each_packet(const Capture& cap, Setup setup, DecodePath path, Check check) {
   const auto packets = pcap_payloads(cap.file);
   ASSERT_FALSE(packets.empty()) << cap.file;
+  KernelTally tally;
   Decoder by_point(cap.model), by_column(cap.model);
   setup(by_point);
   setup(by_column);
@@ -63,8 +68,11 @@ void each_packet(const Capture& cap, Setup setup, DecodePath path, Check check) 
     ASSERT_EQ(cols.c.count, pts.count) << cap.file;
     check(pts, info, cols.c);
     points += pts.count;
+    tally.decoded(DecodePath::best, Output::points);
+    tally.decoded(path, Output::columns);
   }
   EXPECT_GT(points, 0u) << cap.file;
+  tally.check(cap.file);
 }
 
 // Every column of every point equals the Point's field (time: from the packet time).
@@ -123,11 +131,13 @@ TEST(Columns, VectorPathWithinOneMillionthOfScalar) {
     Decoder scalar(cap.model), vector(cap.model);
     static Columns a, b;
     std::size_t points = 0;
+    KernelTally tally;
     const auto near = [](float u, float v) { return std::fabs(u - v) <= 1e-6f * std::max(std::fabs(u), std::fabs(v)); };
     for (const auto& p : packets) {
       PacketInfo info;
       ASSERT_EQ(scalar.decode(view(p), info, a.c, DecodePath::portable), Error::ok);
       ASSERT_EQ(vector.decode(view(p), info, b.c), Error::ok);
+      tally.decoded(DecodePath::best, Output::columns);
       ASSERT_EQ(a.c.count, b.c.count);
       for (std::size_t i = 0; i < a.c.count; ++i) {
         ASSERT_TRUE(near(a.c.x[i], b.c.x[i]) && near(a.c.y[i], b.c.y[i]) && near(a.c.z[i], b.c.z[i]))
@@ -140,6 +150,7 @@ TEST(Columns, VectorPathWithinOneMillionthOfScalar) {
       points += a.c.count;
     }
     EXPECT_GT(points, 0u) << cap.file;
+    tally.check(cap.file);
   }
 }
 
@@ -156,22 +167,31 @@ TEST(Columns, Qt128ThreeByteUnitsAndCustomisedChannels) {
   static PacketPoints pts;
   static Columns cols;
   std::size_t points = 0;
+  // The 3-byte units go to the vector kernels; the customised channels (a channel map) to the
+  // scalar loops on every path.
+  KernelTally tally;
   for (std::size_t i = 0; i < 64; ++i) {
     const auto& p = qt[i];
     std::vector<std::size_t> keep;
     for (std::size_t j = 0; j < config.laser_num; ++j) keep.push_back(config.channel[(p[1066] & 1) ? 0 : 1][j] - 1u);
-    for (const auto& v : {qt128_rebuild(p, 128, 0x0D, {first_units(128), first_units(128)}),
-                          qt128_rebuild(p, static_cast<std::uint8_t>(config.laser_num), 0x4D, {keep, keep})}) {
+    for (const bool customised : {false, true}) {
+      const auto v = customised ? qt128_rebuild(p, static_cast<std::uint8_t>(config.laser_num), 0x4D, {keep, keep})
+                                : qt128_rebuild(p, 128, 0x0D, {first_units(128), first_units(128)});
       for (const DecodePath path : {DecodePath::best, DecodePath::avx2, DecodePath::portable}) {
         PacketInfo info;
         ASSERT_EQ(by_point.decode(view(v), info, pts), Error::ok);
         ASSERT_EQ(by_column.decode(view(v), info, cols.c, path), Error::ok);
+        if (!customised) {
+          tally.decoded(DecodePath::best, Output::points);
+          tally.decoded(path, Output::columns);
+        }
         expect_equal(pts, info, cols.c, "packet " + std::to_string(i));
         points += pts.count;
       }
     }
   }
   EXPECT_GT(points, 0u);
+  tally.check("QT128 3-byte units and customised channels");
 }
 
 // The same bits (== would take -0 for +0).
@@ -207,30 +227,37 @@ TEST(Columns, PointsVectorPathEqualsScalarOnEveryCapture) {
   for (const Capture& cap : kCaptures) {
     Decoder dec(cap.model);
     std::size_t points = 0;
+    KernelTally tally;
     for (const auto& p : pcap_payloads(cap.file)) {
       PacketInfo info;
       ASSERT_EQ(dec.decode(view(p), info, a, DecodePath::portable), Error::ok);
       for (const DecodePath path : {DecodePath::best, DecodePath::avx2}) {
         ASSERT_EQ(dec.decode(view(p), info, b, path), Error::ok);
+        tally.decoded(path, Output::points);
         expect_same_point_fields(a, b, cap.file);
       }
       points += a.count;
     }
     EXPECT_GT(points, 0u) << cap.file;
+    tally.check(cap.file);
   }
   // QT128 3-byte units (no confidence byte) and customised channels.
   const auto qt = pcap_payloads("qt128c2x_dual.pcap");
   Decoder dec(Model::qt128c2x);
+  KernelTally tally;
   for (std::size_t i = 0; i < 64; ++i) {
     const auto v = qt128_rebuild(qt[i], 128, 0x0D, {first_units(128), first_units(128)});
     PacketInfo info;
     ASSERT_EQ(dec.decode(view(v), info, a, DecodePath::portable), Error::ok);
     ASSERT_EQ(dec.decode(view(v), info, b, DecodePath::best), Error::ok);
+    tally.decoded(DecodePath::best, Output::points);
     expect_same_point_fields(a, b, "3-byte units, packet " + std::to_string(i));
   }
+  tally.check("QT128 3-byte units");
   // QT128 confidence bytes, all 0 in the capture: a different one in each unit of a block (not
   // in the resting channels' units, which must stay 0).
   std::size_t confident = 0;
+  KernelTally confidence_tally;
   for (std::size_t i = 0; i < 64; ++i) {
     auto v = qt[i];
     const auto l = qt128::Layout::from_header(v[qt128::kLaserNum], v[qt128::kFlags]);
@@ -245,10 +272,12 @@ TEST(Columns, PointsVectorPathEqualsScalarOnEveryCapture) {
     PacketInfo info;
     ASSERT_EQ(dec.decode(view(v), info, a, DecodePath::portable), Error::ok);
     ASSERT_EQ(dec.decode(view(v), info, b, DecodePath::best), Error::ok);
+    confidence_tally.decoded(DecodePath::best, Output::points);
     expect_same_point_fields(a, b, "confidence bytes, packet " + std::to_string(i));
     for (std::size_t n = 0; n < a.count; ++n) confident += a.points[n].confidence != 0;
   }
   EXPECT_GT(confident, 0u);
+  confidence_tally.check("QT128 confidence bytes");
 }
 
 // Storage sized per model: PacketColumns<max_points(model)> suffices; one element less is refused
@@ -357,11 +386,16 @@ TEST(Columns, SpinRebuildSameBitsOnEveryPath) {
           for (Decoder* d : {&scalar, &avx2, &best}) ASSERT_EQ(d->set_angles(angles), Error::ok);
         }
         for (Decoder* d : {&scalar, &avx2, &best}) d->set_rotation(rotation);
+        KernelTally tally;
+        const std::string what = std::string(cap.file) + (offsets ? " offsets " : " design ") +
+                                 (rotation == Rotation::clockwise ? "cw" : "ccw");
         for (const auto& p : packets) {
           PacketInfo info;
           ASSERT_EQ(scalar.decode(view(p), info, a, DecodePath::portable), Error::ok);
           ASSERT_EQ(avx2.decode(view(p), info, b, DecodePath::avx2), Error::ok);
           ASSERT_EQ(best.decode(view(p), info, c, DecodePath::best), Error::ok);
+          tally.decoded(DecodePath::avx2, Output::points);
+          tally.decoded(DecodePath::best, Output::points);
           expect_same_point_fields(a, b, std::string(cap.file) + " avx2");
           expect_same_point_fields(a, c, std::string(cap.file) + " best");
           const AzimuthSpread sa = scalar.beam_spread(), sb = avx2.beam_spread(), sc = best.beam_spread();
@@ -369,6 +403,9 @@ TEST(Columns, SpinRebuildSameBitsOnEveryPath) {
                       sa.max_deg == sc.max_deg)
               << cap.file << " rpm " << info.motor_rpm;
         }
+        tally.check(what);
+        expect_beams_rebuilt(DecodePath::avx2, what);
+        expect_beams_rebuilt(DecodePath::best, what);
       }
     }
   }
@@ -392,6 +429,7 @@ TEST(Columns, SpinRebuildLazyLoopsSameBits) {
         if (cap.model == Model::qt128c2x) qt128_seal(packets[i]);
       }
       Decoder scalar(cap.model), mixed(cap.model), scalar_columns(cap.model), mixed_columns(cap.model);
+      KernelTally tally;
       for (std::size_t i = 0; i < packets.size(); ++i) {
         const DecodePath path = paths[i % 3];
         PacketInfo info;
@@ -400,6 +438,8 @@ TEST(Columns, SpinRebuildLazyLoopsSameBits) {
         expect_same_point_fields(a, b, std::string(cap.file) + " packet " + std::to_string(i));
         ASSERT_EQ(scalar_columns.decode(view(packets[i]), info, ca.c, DecodePath::portable), Error::ok);
         ASSERT_EQ(mixed_columns.decode(view(packets[i]), info, cb.c, path), Error::ok);
+        tally.decoded(path, Output::points);
+        tally.decoded(path, Output::columns);
         ASSERT_EQ(ca.c.count, a.count);
         ASSERT_EQ(cb.c.count, a.count);
         for (std::size_t j = 0; j < a.count; ++j) {
@@ -413,6 +453,10 @@ TEST(Columns, SpinRebuildLazyLoopsSameBits) {
               << cap.file << " packet " << i;
         }
       }
+      const std::string what = std::string(cap.file) + " rate changed every " + std::to_string(every) + " packets";
+      tally.check(what);
+      expect_beams_rebuilt(DecodePath::avx2, what);
+      expect_beams_rebuilt(DecodePath::best, what);
     }
   }
 }
