@@ -369,7 +369,7 @@ int cmd_listen(Args& args) {
     link = std::make_unique<SensorLink>(sensor_host, static_cast<std::uint16_t>(ptc_port), static_cast<int>(ptc_timeout * 1000));
     int rc = link->fetch(o, pipeline, error);
     if (rc == kExitOk && link->model() != Model::unknown) pipeline.fix_model(link->model());
-    if (rc == kExitOk && !session_secret.empty())
+    if (rc == kExitOk && !session_secret.empty() && !g_stop)
       rc = start_live_session(*link, session_secret, o.allow_unsigned, {to_ns(session_poll), to_ns(signature_grace)},
                               pipeline, session, error);
     secure_wipe(session_secret.data(), session_secret.size());
