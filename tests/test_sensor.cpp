@@ -404,8 +404,8 @@ TEST(Sensor, HostileSensorsEndInTimeWithANamedError) {
 // A sensor that announces a whole 1 MiB calibration and then drips a byte every 200 ms: the
 // client's deadline covers the whole answer, not each read, so it gives up 1 s after asking
 // (--timeout 1), with nothing written. A sensor that sends the whole 1 MiB at once: the client
-// stores it and writes it byte for byte, and its resident set holds the payload (at least 1 MiB
-// above the baseline run's) and stays within the bound of the test above.
+// stores it and writes it byte for byte, and its resident set holds the payload (above the run
+// given a 16-byte calibration by more than half a MiB) and stays within the bound of the test above.
 TEST(Sensor, LargestCalibrationDrippedOrWholeStaysBounded) {
   constexpr std::uint32_t kMiB = 1u << 20;
   const double timeout = 1.0;
@@ -413,9 +413,20 @@ TEST(Sensor, LargestCalibrationDrippedOrWholeStaysBounded) {
   const double slack = 5.0;  // qemu-user starts the program slowly; natively the bound is 1 s
 #else
   const double slack = 1.0;
-  const long baseline_kib = run("sensor info").max_rss_kib;
 #endif
   const std::string out = temp_path("large_calibration.csv");
+#if !defined(HESAI_CLI_EMULATOR)
+  // The baseline: the same command on the same path, answered with a 16-byte calibration.
+  long baseline_kib = 0;
+  {
+    std::vector<std::uint8_t> reply = header(0x47, 0x74, 0x05, 0, 16);
+    reply.resize(reply.size() + 16, '#');
+    HostileServer server(reply, false);
+    ASSERT_NE(server.port(), 0);
+    baseline_kib = run("sensor calibration 127.0.0.1 --ptc-port " + std::to_string(server.port()) + " --timeout 1 --out " + out)
+                       .max_rss_kib;
+  }
+#endif
   {
     SCOPED_TRACE("drip");
     std::remove(out.c_str());
@@ -454,7 +465,9 @@ TEST(Sensor, LargestCalibrationDrippedOrWholeStaysBounded) {
     EXPECT_NE(r.err.find("1048576 bytes to " + out + "; model unknown: not checked"), std::string::npos) << r.err;
     EXPECT_TRUE(read_text(out) == payload) << "the stored file differs from the 1 MiB sent";
 #if !defined(HESAI_CLI_EMULATOR)
-    EXPECT_GE(r.max_rss_kib, baseline_kib + 1024) << "baseline " << baseline_kib << " KiB: the 1 MiB payload not resident?";
+    // The peak resident sets of two runs differ by more than the payload's pages: which pages of
+    // the shared libraries (OpenSSL's among them) a run touches varies by up to a few hundred KiB.
+    EXPECT_GE(r.max_rss_kib, baseline_kib + 512) << "baseline " << baseline_kib << " KiB: the 1 MiB payload not resident?";
     EXPECT_LT(r.max_rss_kib, baseline_kib + 16 * 1024) << "baseline " << baseline_kib << " KiB";
 #endif
   }

@@ -260,6 +260,7 @@ int cmd_listen(Args& args) {
   std::string sensor_host;
   float seconds = 0, idle = 0, ptc_timeout = 3, session_poll = 1, signature_grace = 1;
   bool json = false, quiet = false;
+  TlsOptions tls;
   while (!args.empty()) {
     const std::string a = args.peek();
     if (a == "--help" || a == "-h") {
@@ -289,14 +290,15 @@ int cmd_listen(Args& args) {
                   "  --signature-grace S     packets with no valid signature for S seconds mean the session\n"
                   "                          was lost: it is started again (default 1)\n"
                   "  --ptc-port N            the sensor's PTC port (default 9347)\n"
-                  "  --timeout S             PTC connect and per-request timeout (default 3)\n"
+                  "  --timeout S             PTC timeout of each request, connecting included (default 3)\n"
+                  "  --tls ...               PTCS: the PTC of --sensor over TLS (the options below)\n"
                   "  --json                  the summary as one JSON object (keys as in 'hesai stats --json',\n"
                   "                          and foreign_packets, foreign_model_packets, session_restarts)\n"
-                  "  --quiet                 no statistics once a second\n%s%s%s",
-                  port::UdpReceiver::method(), kDecodeOptionsHelp, kOutputOptionsHelp, kKeyOptionsHelp);
+                  "  --quiet                 no statistics once a second\n%s%s%s%s",
+                  port::UdpReceiver::method(), kDecodeOptionsHelp, kOutputOptionsHelp, kKeyOptionsHelp, kTlsOptionsHelp);
       return kExitOk;
     }
-    if (parse_decode_option(args, o, error) || parse_output_option(args, out, error)) {
+    if (parse_decode_option(args, o, error) || parse_output_option(args, out, error) || parse_tls_option(args, tls, error)) {
       if (!error.empty()) return usage_error("listen", error);
       continue;
     }
@@ -334,6 +336,9 @@ int cmd_listen(Args& args) {
       if (!args.value(a, v) || !parse_float(v, target) || target <= 0) return usage_error("listen", a + " needs a positive number");
     } else return usage_error("listen", "unknown option " + a);
   }
+  if (tls.tls && sensor_host.empty()) return usage_error("listen", "--tls goes with --sensor HOST");
+  std::shared_ptr<port::TlsContext> tls_context;
+  if (const int st = finish_tls_options(tls, tls_context, error); st != kExitOk) return fail("listen", st, error);
   o.session_secret_allowed = !sensor_host.empty();  // the session's randoms come from the sensor
   if (const int st = finish_key_options(o, error); st != kExitOk) return fail("listen", st, error);
   std::uint32_t sensor_address = 0;
@@ -366,7 +371,8 @@ int cmd_listen(Args& args) {
   std::unique_ptr<SensorLink> link;
   std::unique_ptr<LiveSession> session;
   if (!sensor_host.empty()) {
-    link = std::make_unique<SensorLink>(sensor_host, static_cast<std::uint16_t>(ptc_port), static_cast<int>(ptc_timeout * 1000));
+    link = std::make_unique<SensorLink>(sensor_host, static_cast<std::uint16_t>(ptc_port), static_cast<int>(ptc_timeout * 1000),
+                                        tls_context);
     int rc = link->fetch(o, pipeline, error);
     if (rc == kExitOk && link->model() != Model::unknown) pipeline.fix_model(link->model());
     if (rc == kExitOk && !session_secret.empty() && !g_stop)

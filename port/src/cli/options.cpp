@@ -386,6 +386,67 @@ int read_secret(const std::string& secret_file, std::string& secret, std::string
   return status;
 }
 
+const char* const kTlsOptionsHelp =
+    "  --tls                   PTCS, PTC over TLS 1.3 (a unit set to TLS or mTLS); the unit's\n"
+    "                          certificate must chain to --ca and name its serial (CN or\n"
+    "                          serialNumber); its host name or address is not checked\n"
+    "  --ca FILE               PEM: the CA certificate(s) the unit's certificate must chain to\n"
+    "  --cert FILE --key FILE  PEM, mTLS: this client's certificate and key (the key file must be a\n"
+    "                          regular file that group and others cannot access: mode 0600)\n"
+    "  --expect-serial SN      the unit's certificate must name SN, checked before any command\n"
+    "  --insecure              do not verify the unit's certificate (a warning; no --ca)\n";
+
+bool parse_tls_option(Args& args, TlsOptions& o, std::string& error) {
+  const std::string opt = args.peek();
+  if (opt == "--tls" || opt == "--insecure") {
+    args.take();
+    if (opt == "--insecure") o.client.insecure = true;
+    else o.tls = true;
+    if (opt == "--tls" && !port::tls_available())
+      error = "built without TLS: --tls needs a build with OpenSSL (libssl-dev, cmake -DHESAI_WITH_TLS=ON)";
+    return true;
+  }
+  std::string* target = opt == "--ca"              ? &o.client.ca_file
+                        : opt == "--cert"          ? &o.client.cert_file
+                        : opt == "--key"           ? &o.client.key_file
+                        : opt == "--expect-serial" ? &o.client.expect_serial
+                                                   : nullptr;
+  if (target == nullptr) return false;
+  args.take();
+  if (!args.value(opt, *target) || target->empty()) error = opt + " needs a value";
+  return true;
+}
+
+int finish_tls_options(const TlsOptions& o, std::shared_ptr<port::TlsContext>& context, std::string& error) {
+  context.reset();
+  const port::TlsClientOptions& c = o.client;
+  if (!o.tls) {
+    if (c.insecure || !c.ca_file.empty() || !c.cert_file.empty() || !c.key_file.empty() || !c.expect_serial.empty()) {
+      error = "--ca, --cert, --key, --expect-serial and --insecure go with --tls";
+      return kExitUsage;
+    }
+    return kExitOk;
+  }
+  if (c.cert_file.empty() != c.key_file.empty()) {
+    error = "--cert and --key go together (mTLS: the client's certificate and its key)";
+    return kExitUsage;
+  }
+  if (c.insecure && !c.ca_file.empty()) {
+    error = "--insecure verifies nothing: give --ca FILE or --insecure, not both";
+    return kExitUsage;
+  }
+  if (!c.insecure && c.ca_file.empty()) {
+    error = "--tls needs --ca FILE, the CA the unit's certificate chains to (or --insecure, which verifies nothing)";
+    return kExitUsage;
+  }
+  if (c.insecure)
+    std::fprintf(stderr, "hesai: warning: --insecure: the unit's certificate is not verified (neither its chain nor its "
+                         "serial%s): anyone on the network path can pose as the unit\n",
+                 c.expect_serial.empty() ? "" : ", but for --expect-serial");
+  context = port::TlsContext::client(c, error);
+  return context ? kExitOk : kExitInput;
+}
+
 bool parse_output_option(Args& args, OutputOptions& o, std::string& error) {
   const std::string opt = args.peek();
   if (opt == "--per-frame") {

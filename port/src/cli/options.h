@@ -2,9 +2,11 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
+#include "hesai_port/net/tls.h"
 #include "pipeline.h"
 
 namespace hesai::cli {
@@ -64,6 +66,22 @@ void wipe_key(DecodeOptions& o);
 /// from HESAI_SECRET; 8 to 32 characters. Returns an exit status, with a message that never holds
 /// the secret.
 int read_secret(const std::string& secret_file, std::string& secret, std::string& error);
+
+/// PTCS options of 'sensor' and 'listen --sensor': --tls, --ca, --cert, --key, --insecure,
+/// --expect-serial.
+struct TlsOptions {
+  bool tls = false;
+  port::TlsClientOptions client;
+};
+/// Parses one TLS option at the front of `args` if it is one; returns true when it consumed it.
+/// `error` is set when the option is malformed, and for --tls in a build without TLS.
+bool parse_tls_option(Args& args, TlsOptions& o, std::string& error);
+/// Once all options are read: checks that they go together (kExitUsage), warns about --insecure,
+/// and makes the context (null without --tls): kExitInput with a message for a CA, certificate or
+/// key file that cannot be used (a key that group or others may access, or that is not a regular
+/// file, is refused).
+int finish_tls_options(const TlsOptions& o, std::shared_ptr<port::TlsContext>& context, std::string& error);
+extern const char* const kTlsOptionsHelp;
 
 /// Help text of the decode options, the key options and the output options.
 extern const char* const kDecodeOptionsHelp;

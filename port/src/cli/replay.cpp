@@ -11,6 +11,7 @@
 #include "hesai_port/base/clock.h"
 #include "hesai_port/capture/capture.h"
 #include "hesai_port/net/ptc_server.h"
+#include "hesai_port/net/tls.h"
 #include "hesai_port/net/udp.h"
 #include "commands.h"
 #include "pipeline.h"  // read_text_file
@@ -45,6 +46,7 @@ Model first_model(const std::string& capture, std::uint16_t& rpm) {
 struct StandIn {
   std::string serve;  // [ADDR:]PORT; empty: no PTC service
   std::string calibration, firetimes, channel_config, secret_file;
+  port::TlsServerOptions tls;  // --tls-cert, --tls-key, --client-ca: PTCS
   bool wait_for_session = false;
   bool never_sign = false;  // sessions accepted, no packet signed (a misbehaving unit)
 };
@@ -75,12 +77,22 @@ int open_stand_in(const StandIn& o, const std::string& capture, port::PtcServer&
       return st;
     }
   }
+  if (!o.tls.cert_file.empty()) {
+    if (!port::tls_available()) return usage_error("replay", "built without TLS: --tls-cert needs a build with OpenSSL");
+    std::shared_ptr<port::TlsContext> tls = port::TlsContext::server(o.tls, error);
+    if (!tls) {
+      std::fprintf(stderr, "hesai replay: %s\n", error.c_str());
+      return kExitInput;
+    }
+    server.use_tls(std::move(tls));
+  }
   if (!server.open(address, static_cast<std::uint16_t>(port), std::move(content), error)) {
     std::fprintf(stderr, "hesai replay: %s\n", error.c_str());
     return kExitInput;
   }
   server.set_motor_speed(rpm);
-  std::fprintf(stderr, "serving PTC on %s:%u\n", address.c_str(), server.port());
+  std::fprintf(stderr, "serving PTC on %s:%u%s\n", address.c_str(), server.port(),
+               o.tls.cert_file.empty() ? "" : o.tls.client_ca_file.empty() ? " over TLS (PTCS)" : " over mTLS (PTCS)");
   return kExitOk;
 }
 
@@ -134,7 +146,11 @@ int cmd_replay(Args& args) {
                   "                          while one runs every QT128 packet is signed with its key\n"
                   "  --wait-for-session      send nothing until a signature session starts\n"
                   "  --never-sign            accept signature sessions but sign no packet (a unit that\n"
-                  "                          misbehaves, for tests)\n");
+                  "                          misbehaves, for tests)\n"
+                  "  --tls-cert FILE --tls-key FILE  PTCS: serve over TLS 1.3 with this certificate (PEM; its\n"
+                  "                          subject should name the serial the inventory gives, STANDIN)\n"
+                  "                          and key (mode 0600)\n"
+                  "  --client-ca FILE        mTLS: require a client certificate that chains to this CA (PEM)\n");
       return kExitOk;
     }
     if (a == "--to") { if (!args.value(a, to)) return usage_error("replay", "--to needs HOST:PORT"); }
@@ -146,11 +162,14 @@ int cmd_replay(Args& args) {
     else if (a == "--wait-for-session") stand_in.wait_for_session = true;
     else if (a == "--never-sign") stand_in.never_sign = true;
     else if (a == "--serve-ptc" || a == "--calibration" || a == "--firetimes" || a == "--channel-config" ||
-             a == "--secret-file") {
+             a == "--secret-file" || a == "--tls-cert" || a == "--tls-key" || a == "--client-ca") {
       std::string& target = a == "--serve-ptc"       ? stand_in.serve
                             : a == "--calibration"   ? stand_in.calibration
                             : a == "--firetimes"     ? stand_in.firetimes
                             : a == "--channel-config" ? stand_in.channel_config
+                            : a == "--tls-cert"      ? stand_in.tls.cert_file
+                            : a == "--tls-key"       ? stand_in.tls.key_file
+                            : a == "--client-ca"     ? stand_in.tls.client_ca_file
                                                      : stand_in.secret_file;
       if (!args.value(a, target)) return usage_error("replay", a + " needs a value");
     }
@@ -169,6 +188,13 @@ int cmd_replay(Args& args) {
                    !stand_in.secret_file.empty() || stand_in.wait_for_session || stand_in.never_sign))
     return usage_error("replay", "--calibration, --firetimes, --channel-config, --secret-file, --wait-for-session and "
                                  "--never-sign go with --serve-ptc");
+  const port::TlsServerOptions& tls = stand_in.tls;
+  if (!serving && (!tls.cert_file.empty() || !tls.key_file.empty() || !tls.client_ca_file.empty()))
+    return usage_error("replay", "--tls-cert, --tls-key and --client-ca go with --serve-ptc");
+  if (tls.cert_file.empty() != tls.key_file.empty())
+    return usage_error("replay", "--tls-cert and --tls-key go together");
+  if (!tls.client_ca_file.empty() && tls.cert_file.empty())
+    return usage_error("replay", "--client-ca (mTLS) needs --tls-cert and --tls-key");
   if (stand_in.wait_for_session && stand_in.secret_file.empty())
     return usage_error("replay", "--wait-for-session needs --secret-file (no session can start without it)");
 

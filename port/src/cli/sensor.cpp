@@ -22,10 +22,9 @@ using port::PtcResult;
 using Bytes = std::vector<std::uint8_t>;
 
 constexpr const char* kSensorUsage =
-    "usage: hesai sensor COMMAND HOST [--ptc-port N] [--timeout SECONDS] [--json]\n"
+    "usage: hesai sensor COMMAND HOST [--ptc-port N] [--timeout SECONDS] [--json] [--tls --ca FILE ...]\n"
     "\n"
-    "Talks to a sensor over PTC (Pandar TCP Commands, plain TCP; a unit set to PTCS/TLS only is out\n"
-    "of reach: take its session key from another tool and use --session-key-file).\n"
+    "Talks to a sensor over PTC (Pandar TCP Commands), on plain TCP or, with --tls, over TLS (PTCS).\n"
     "\n"
     "commands:\n"
     "  info                    serial, manufacture date, MAC, versions, model (0x07)\n"
@@ -49,8 +48,10 @@ constexpr const char* kSensorUsage =
     "                          gps_pps_locked, gprmc_valid, startups, operating_time (minutes),\n"
     "                          ptp_status)\n"
     "\n"
-    "Exit status: 0 success, 1 usage, 2 an unreachable sensor, a timeout, a malformed answer or an\n"
-    "error code from the sensor (named in the message).\n";
+    "Exit status: 0 success, 1 usage, 2 an unreachable sensor, a timeout, a malformed answer, an\n"
+    "error code from the sensor, a TLS failure (named in the message).\n"
+    "\n"
+    "PTCS:\n";
 
 std::string json_string(const char* s) {
   std::string out = "\"";
@@ -334,10 +335,16 @@ int cmd_sensor(Args& args) {
     std::fprintf(stderr, "hesai sensor: %s\nRun 'hesai sensor --help' for usage.\n", message.c_str());
     return kExitUsage;
   };
+  TlsOptions tls;
+  std::string error;
   while (!args.empty()) {
+    if (parse_tls_option(args, tls, error)) {
+      if (!error.empty()) return usage(error);
+      continue;
+    }
     const std::string a = args.take();
     if (a == "--help" || a == "-h") {
-      std::printf("%s", kSensorUsage);
+      std::printf("%s%s", kSensorUsage, kTlsOptionsHelp);
       return kExitOk;
     }
     if (a == "--json") json = true;
@@ -373,7 +380,14 @@ int cmd_sensor(Args& args) {
   if (host.empty()) return usage("missing HOST");
   if (file_command && out.empty()) return usage(command + " needs --out FILE");
 
+  std::shared_ptr<port::TlsContext> tls_context;
+  if (const int st = finish_tls_options(tls, tls_context, error); st != kExitOk) {
+    if (st == kExitUsage) return usage(error);
+    std::fprintf(stderr, "hesai sensor: %s\n", error.c_str());
+    return st;
+  }
   PtcClient client(host, static_cast<std::uint16_t>(port), static_cast<int>(timeout_s * 1000));
+  client.use_tls(tls_context);
   if (command == "info") return sensor_info(client, json);
   if (command == "config") return sensor_config(client, json);
   if (command == "status") return sensor_status(client, json);

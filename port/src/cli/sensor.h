@@ -5,6 +5,7 @@
 
 #include <array>
 #include <cstdint>
+#include <memory>
 #include <string>
 
 #include "hesai/model.h"
@@ -20,7 +21,11 @@ int cmd_sensor(Args& args);
 /// listen --sensor: the unit's PTC link.
 class SensorLink {
  public:
-  SensorLink(const std::string& host, std::uint16_t port, int timeout_ms) : client_(host, port, timeout_ms) {}
+  /// `tls`: PTCS with this context (null: plain TCP).
+  SensorLink(const std::string& host, std::uint16_t port, int timeout_ms, std::shared_ptr<port::TlsContext> tls = nullptr)
+      : client_(host, port, timeout_ms) {
+    client_.use_tls(std::move(tls));
+  }
 
   /// Asks the unit its model (inventory), then downloads what the pipeline has no file for: the
   /// calibration (required), the firing times and the QT128 channel configuration (where the unit

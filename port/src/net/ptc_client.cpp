@@ -13,6 +13,7 @@
 #include <unistd.h>
 
 #include "hesai_port/base/clock.h"
+#include "hesai_port/net/tls.h"
 
 namespace hesai::port {
 namespace {
@@ -61,7 +62,8 @@ TcpTransport::~TcpTransport() {
   if (fd_ >= 0) ::close(fd_);
 }
 
-PtcTransport::Io TcpTransport::connect(const std::string& host, std::uint16_t port, int timeout_ms, std::string& error) {
+PtcTransport::Io TcpTransport::connect(const std::string& host, std::uint16_t port, std::int64_t deadline_ns,
+                                       std::string& error) {
   addrinfo hints{};
   hints.ai_family = AF_INET;
   hints.ai_socktype = SOCK_STREAM;
@@ -87,8 +89,8 @@ PtcTransport::Io TcpTransport::connect(const std::string& host, std::uint16_t po
     return Io::error;
   }
   if (rc != 0) {
-    if (!wait_ready(fd_, POLLOUT, monotonic_ns() + static_cast<std::int64_t>(timeout_ms) * 1000000)) {
-      error = "no connection within " + std::to_string(timeout_ms) + " ms";
+    if (!wait_ready(fd_, POLLOUT, deadline_ns)) {
+      error = "no connection";
       return Io::timeout;
     }
     int so_error = 0;
@@ -146,25 +148,76 @@ PtcResult PtcClient::fail(PtcOutcome outcome, ptc::Command command, const std::s
   return r;
 }
 
+std::string PtcClient::seconds() const {
+  return std::to_string(timeout_ms_ / 1000) + "." + std::to_string(timeout_ms_ % 1000 / 100) + " s";
+}
+
 PtcResult PtcClient::request(ptc::Command command, ByteView payload, std::vector<std::uint8_t>& response) {
   std::lock_guard<std::mutex> lock(mutex_);
   response.clear();
-  const std::int64_t timeout_ns = static_cast<std::int64_t>(timeout_ms_) * 1000000;
+  const std::int64_t deadline = monotonic_ns() + static_cast<std::int64_t>(timeout_ms_) * 1000000;
   if (!transport_) {
+    if (PtcResult r = open(command, deadline); !r.ok()) return r;
+  }
+  return exchange(command, payload, response, deadline);
+}
+
+PtcResult PtcClient::open(ptc::Command command, std::int64_t deadline) {
+  std::string error;
+  if (!tls_) {
     auto tcp = std::make_unique<TcpTransport>();
-    std::string error;
-    const PtcTransport::Io io = tcp->connect(host_, port_, timeout_ms_, error);
-    if (io == PtcTransport::Io::timeout) return fail(PtcOutcome::timeout, command, error);
+    const PtcTransport::Io io = tcp->connect(host_, port_, deadline, error);
+    if (io == PtcTransport::Io::timeout) return fail(PtcOutcome::timeout, command, error + " within " + seconds());
     if (io != PtcTransport::Io::ok) return fail(PtcOutcome::unreachable, command, error);
     transport_ = std::move(tcp);
+    return PtcResult{};
   }
-  const std::int64_t deadline = monotonic_ns() + timeout_ns;
+  auto tls = std::make_unique<TlsTransport>();
+  const PtcTransport::Io io = tls->connect(tls_, host_, port_, deadline, error);
+  if (io == PtcTransport::Io::timeout) return fail(PtcOutcome::timeout, command, error + " within " + seconds());
+  if (io != PtcTransport::Io::ok && !tls->tcp_connected()) return fail(PtcOutcome::unreachable, command, error);
+  if (io != PtcTransport::Io::ok) return fail(PtcOutcome::tls, command, "TLS: " + error);
+  const std::vector<SubjectName> subject = tls->peer_subject();
+  const TlsClientOptions& o = tls_->client_options();
+  // The serial the user expects, before any command reaches the unit.
+  if (!o.expect_serial.empty() && !subject_names_serial(subject, o.expect_serial))
+    return fail(PtcOutcome::tls, command,
+                "TLS: the unit's certificate (" + subject_text(subject) + ") does not name the expected serial '" +
+                    o.expect_serial + "' (--expect-serial); no command was sent");
+  transport_ = std::move(tls);
+  if (o.insecure) return PtcResult{};
+  // The serial the unit gives for itself: its certificate must name it.
+  std::vector<std::uint8_t> inventory;
+  if (PtcResult r = exchange(ptc::Command::inventory, {}, inventory, deadline); !r.ok()) {
+    if (command != ptc::Command::inventory) r.message += " (the inventory is asked first on a PTCS connection, for its serial)";
+    return r;
+  }
+  ptc::Inventory inv;
+  if (const Error e = ptc::parse_inventory(ByteView{inventory.data(), inventory.size()}, inv); e != Error::ok)
+    return fail(PtcOutcome::tls, command,
+                            "TLS: the inventory (" + std::to_string(inventory.size()) +
+                    " bytes) gives no serial to check the certificate by: " + error_name(e));
+  std::string serial(inv.serial);  // without the spaces a unit may pad it with
+  const std::size_t first = serial.find_first_not_of(' ');
+  serial = first == std::string::npos ? std::string() : serial.substr(first, serial.find_last_not_of(' ') - first + 1);
+  if (!subject_names_serial(subject, serial))
+    return fail(PtcOutcome::tls, command,
+                "TLS: the unit's certificate (" + subject_text(subject) + ") does not name the serial '" + serial +
+                    "' of its inventory (0x07): not the unit it claims to be");
+  return PtcResult{};
+}
+
+PtcResult PtcClient::exchange(ptc::Command command, ByteView payload, std::vector<std::uint8_t>& response,
+                              std::int64_t deadline) {
+  response.clear();
   const auto io_failure = [&](PtcTransport::Io io, const char* during) {
-    const std::string seconds = std::to_string(timeout_ms_ / 1000) + "." + std::to_string(timeout_ms_ % 1000 / 100) + " s";
+    const std::string cause = transport_ ? transport_->last_error() : std::string();
     switch (io) {
-      case PtcTransport::Io::timeout: return fail(PtcOutcome::timeout, command, std::string("no ") + during + " within " + seconds);
+      case PtcTransport::Io::timeout: return fail(PtcOutcome::timeout, command, std::string("no ") + during + " within " + seconds());
       case PtcTransport::Io::closed: return fail(PtcOutcome::cut_short, command, std::string("the sensor closed the connection within the ") + during);
-      default: return fail(PtcOutcome::io_error, command, std::string("socket error during the ") + during + ": " + std::strerror(errno));
+      default:
+        if (!cause.empty()) return fail(PtcOutcome::tls, command, std::string("TLS error during the ") + during + ": " + cause);
+        return fail(PtcOutcome::io_error, command, std::string("socket error during the ") + during + ": " + std::strerror(errno));
     }
   };
 

@@ -15,6 +15,7 @@
 #include "hesai/ptc.h"
 #include "hesai_port/base/clock.h"
 #include "hesai_port/net/ptc_client.h"  // random_bytes
+#include "hesai_port/net/tls.h"
 
 namespace hesai::port {
 namespace {
@@ -116,19 +117,52 @@ bool PtcServer::session_key(std::uint8_t key[32]) const {
 }
 
 void PtcServer::serve(int fd) {
+  std::unique_ptr<TlsTransport> tls;
+  if (tls_) {
+    tls = std::make_unique<TlsTransport>();
+    std::string error;
+    if (tls->accept(tls_, fd, monotonic_ns() + static_cast<std::int64_t>(kIdleMs) * 1000000, error) != PtcTransport::Io::ok) {
+      std::fprintf(stderr, "stand-in: TLS handshake: %s\n", error.c_str());
+      tls.reset();
+      // The alert has been sent: let it reach the client before the close (a close with unread
+      // bytes would reset the connection, and the client might lose the alert).
+      shutdown(fd, SHUT_WR);
+      std::uint8_t drain[256];
+      for (int i = 0; i < 20; ++i) {
+        pollfd p{fd, POLLIN, 0};
+        if (poll(&p, 1, 10) > 0 && ::recv(fd, drain, sizeof drain, MSG_DONTWAIT) == 0) break;
+      }
+      return;
+    }
+  }
+  // A message's bytes: plain, or over TLS (waiting for a header, stop() is checked every 100 ms).
+  const auto read = [&](std::uint8_t* data, std::size_t size, bool header) {
+    if (!tls) return read_exact(fd, data, size, stop_);
+    if (header) {
+      int waited = 0;
+      pollfd p{fd, POLLIN, 0};
+      while (!tls->pending() && poll(&p, 1, 100) == 0)
+        if (stop_ || (waited += 100) >= kIdleMs) return false;
+    }
+    return tls->receive_exact(data, size, monotonic_ns() + static_cast<std::int64_t>(kIdleMs) * 1000000) == PtcTransport::Io::ok;
+  };
+  const auto write = [&](const std::uint8_t* data, std::size_t size) {
+    if (!tls) return write_all(fd, data, size);
+    return tls->send_all(data, size, monotonic_ns() + static_cast<std::int64_t>(kIdleMs) * 1000000) == PtcTransport::Io::ok;
+  };
   std::vector<std::uint8_t> request;
   while (!stop_) {
     std::uint8_t h[ptc::kHeaderBytes];
-    if (!read_exact(fd, h, sizeof h, stop_)) return;
+    if (!read(h, sizeof h, true)) return;
     ptc::Header header;
     if (ptc::parse_header(ByteView{h, sizeof h}, header) != Error::ok || header.length > kMaxRequestBytes) return;
     request.resize(header.length);
-    if (!read_exact(fd, request.data(), request.size(), stop_)) return;
+    if (!read(request.data(), request.size(), false)) return;
     std::uint8_t code = 0;
     const std::vector<std::uint8_t> payload = answer(header.command, request, code);
     std::uint8_t out[ptc::kHeaderBytes];
     ptc::encode_header(header.command, code, static_cast<std::uint32_t>(payload.size()), out);
-    if (!write_all(fd, out, sizeof out) || !write_all(fd, payload.data(), payload.size())) return;
+    if (!write(out, sizeof out) || !write(payload.data(), payload.size())) return;
   }
 }
 

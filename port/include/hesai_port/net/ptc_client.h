@@ -1,15 +1,21 @@
 // A PTC client: one request at a time to a sensor's TCP command port (9347), framed and checked by
 // the core's codec (hesai/ptc.h).
 //
-// Every request has one deadline, the client's timeout from the moment it is sent (connecting has
-// its own, the same length): a sensor that stays silent, or sends a byte now and then, costs at
-// most the timeout. A response's announced length is checked against the command's bound
+// Every request has one deadline, the client's timeout from the moment it starts: connecting (and,
+// over TLS, the handshake and the serial check) when no connection is open, sending, and reading
+// the answer. A sensor that stays silent, or sends a byte now and then, costs at most the timeout.
+// A response's announced length is checked against the command's bound
 // (ptc::max_response_bytes, 1 MiB for files) before any byte of its payload is stored. After any
 // framing error (another magic, another command's echo, a length past the bound, an answer cut
 // short, a timeout) the connection is closed; the next request connects again.
 //
-// The byte stream is a PtcTransport: plain TCP here (TcpTransport). PTCS, PTC over TLS, would be
-// another transport; the project takes on no TLS library, so a unit set to TLS-only is out of reach.
+// The byte stream is a PtcTransport: plain TCP (TcpTransport), or PTCS, PTC over TLS (TlsTransport,
+// hesai_port/net/tls.h) once use_tls() is called. Over TLS, each new connection is checked before
+// the request goes out: the chain to the CA (TlsContext), then the serial. The unit's certificate
+// must name, in its subject's CN or serialNumber, the expected serial when one is given (before
+// any command is sent), and the serial of the unit's own inventory (0x07, asked first on every
+// connection; skipped with the insecure option, which checks no chain either); a mismatch names
+// both.
 #pragma once
 
 #include <cstdint>
@@ -23,6 +29,8 @@
 
 namespace hesai::port {
 
+class TlsContext;
+
 /// Fills `out` with `n` random bytes from the kernel (/dev/urandom), for the randoms of a
 /// signature session. False when it cannot.
 bool random_bytes(std::uint8_t* out, std::size_t n);
@@ -35,6 +43,8 @@ class PtcTransport {
   virtual Io send_all(const std::uint8_t* data, std::size_t size, std::int64_t deadline_ns) = 0;
   /// Reads exactly `size` bytes; closed when the peer ends the stream first.
   virtual Io receive_exact(std::uint8_t* data, std::size_t size, std::int64_t deadline_ns) = 0;
+  /// After Io::error or Io::closed: the cause, when the transport knows more than errno (TLS).
+  virtual std::string last_error() const { return {}; }
 };
 
 /// Plain TCP over IPv4.
@@ -45,11 +55,12 @@ class TcpTransport final : public PtcTransport {
   TcpTransport(const TcpTransport&) = delete;
   TcpTransport& operator=(const TcpTransport&) = delete;
 
-  /// Connects to an IPv4 address of `host` (a dotted quad or a name) within `timeout_ms`.
-  /// Returns Io::ok, Io::timeout, or Io::error with a message in `error`.
-  Io connect(const std::string& host, std::uint16_t port, int timeout_ms, std::string& error);
+  /// Connects to an IPv4 address of `host` (a dotted quad or a name) by `deadline_ns`.
+  /// Returns Io::ok, Io::timeout ("no connection" in `error`), or Io::error with a message.
+  Io connect(const std::string& host, std::uint16_t port, std::int64_t deadline_ns, std::string& error);
   Io send_all(const std::uint8_t* data, std::size_t size, std::int64_t deadline_ns) override;
   Io receive_exact(std::uint8_t* data, std::size_t size, std::int64_t deadline_ns) override;
+  int fd() const { return fd_; }
 
  private:
   int fd_ = -1;
@@ -64,6 +75,7 @@ enum class PtcOutcome {
   framing,       ///< a header the codec refused (error: ptc_bad_magic, ptc_command_mismatch, ptc_length_exceeds_bound)
   sensor_error,  ///< a non-zero return code (return_code)
   io_error,      ///< a socket error other than the above
+  tls,           ///< PTCS: the handshake failed or the unit's certificate is not the one expected
 };
 
 struct PtcResult {
@@ -80,6 +92,13 @@ class PtcClient {
 
   PtcClient(std::string host, std::uint16_t port = ptc::kDefaultPort, int timeout_ms = kDefaultTimeoutMs);
 
+  /// Speaks PTCS from the next connection on (null: plain TCP again).
+  void use_tls(std::shared_ptr<TlsContext> tls) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    tls_ = std::move(tls);
+    transport_.reset();
+  }
+
   /// Sends `command` with `payload` and reads the answer's payload into `response` (resized to
   /// the announced length, which is at most ptc::max_response_bytes(command)). Requests from
   /// several threads are serialised: one is on the wire at a time.
@@ -95,10 +114,16 @@ class PtcClient {
 
  private:
   PtcResult fail(PtcOutcome outcome, ptc::Command command, const std::string& what);
+  // Opens transport_ (over TLS: handshake and serial checks) by `deadline`.
+  PtcResult open(ptc::Command command, std::int64_t deadline);
+  // One request and its answer on the open transport_.
+  PtcResult exchange(ptc::Command command, ByteView payload, std::vector<std::uint8_t>& response, std::int64_t deadline);
+  std::string seconds() const;
 
   std::string host_;
   std::uint16_t port_;
   int timeout_ms_;
+  std::shared_ptr<TlsContext> tls_;          // null: plain TCP
   std::unique_ptr<PtcTransport> transport_;  // connected, or null
   std::mutex mutex_;                         // one request on the wire at a time
 };

@@ -13,11 +13,17 @@
 //
 // One connection is served at a time, each until its client closes it, sends a header without the
 // magic or a payload over 4 KiB, or stays silent for 10 s.
+//
+// With use_tls(), PTCS: every connection starts with a TLS 1.3 handshake (within 10 s) with the
+// context's certificate, and with its client CA a client certificate is required and verified
+// (mTLS). A failed handshake is said on stderr ("stand-in: TLS handshake: ...") and the connection
+// closed.
 #pragma once
 
 #include <array>
 #include <atomic>
 #include <cstdint>
+#include <memory>
 #include <mutex>
 #include <string>
 #include <vector>
@@ -25,6 +31,8 @@
 #include "hesai/model.h"
 
 namespace hesai::port {
+
+class TlsContext;
 
 struct StandInContent {
   Model model = Model::unknown;
@@ -42,6 +50,8 @@ class PtcServer {
   /// Listens on `address` (IPv4 dotted quad) and `port` (0: any free port). False with a message.
   bool open(const std::string& address, std::uint16_t port, StandInContent content, std::string& error);
   std::uint16_t port() const { return port_; }
+  /// PTCS from now on, with a server context (TlsContext::server); null: plain TCP.
+  void use_tls(std::shared_ptr<TlsContext> tls) { tls_ = std::move(tls); }
 
   /// Serves connections until stop() is called (from another thread).
   void run();
@@ -59,6 +69,7 @@ class PtcServer {
 
   int fd_ = -1;
   std::uint16_t port_ = 0;
+  std::shared_ptr<TlsContext> tls_;
   StandInContent content_;
   std::int64_t opened_ns_ = 0;
   std::atomic<bool> stop_{false};
