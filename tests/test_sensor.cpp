@@ -6,7 +6,10 @@
 // Expectations: the stand-in's answers as its header documents them (hesai_port/net/ptc_server.h), the
 // bundled files byte for byte, and 'hesai decode' of the same capture with the same files.
 #include <arpa/inet.h>
+#include <dirent.h>
+#include <fcntl.h>
 #include <netinet/in.h>
+#include <poll.h>
 #include <signal.h>
 #include <sys/resource.h>
 #include <sys/socket.h>
@@ -16,7 +19,9 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <atomic>
+#include <functional>
 #include <chrono>
 #include <cstdio>
 #include <fstream>
@@ -25,6 +30,7 @@
 #include <thread>
 #include <vector>
 
+#include "hesai/ptc.h"
 #include "test_support.h"
 #include "udp_support.h"
 
@@ -107,6 +113,22 @@ class StandIn {
   }
   int port() const { return port_; }
   std::string stderr_text() const { return read_text(err_); }
+  /// Sends SIGINT and waits (at most 10 s) for the program to end: the seconds it took, -1 when it
+  /// did not end (it is then killed).
+  double interrupt() {
+    const auto t0 = std::chrono::steady_clock::now();
+    kill(pid_, SIGINT);
+    double seconds = -1;
+    for (int i = 0; i < 10000; ++i) {
+      if (waitpid(pid_, nullptr, WNOHANG) == pid_) {
+        seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+        pid_ = -1;
+        return seconds;
+      }
+      usleep(1000);
+    }
+    return seconds;  // the destructor kills it
+  }
 
  private:
   static inline int count_ = 0;
@@ -408,6 +430,286 @@ TEST(Sensor, UnreachableAndUsage) {
                          std::to_string(free_udp_port()) + " --bind 127.0.0.1 --gps-port 0 --quiet");
   EXPECT_EQ(listen.status, 2);
   EXPECT_NE(listen.err.find("cannot connect"), std::string::npos) << listen.err;
+}
+
+
+// ---- issue #31, part 3: the key file, the stand-in's limits, secrets, the unit's text ----
+
+// A PTC server that answers each request by its command from a script (the whole answer, header
+// and payload), on one connection after another until destroyed; a command in `silent` gets no
+// answer (the connection stays open), any other command not in the script 'unsupported command'.
+class ScriptedServer {
+ public:
+  ScriptedServer(std::map<std::uint8_t, std::vector<std::uint8_t>> replies, std::vector<std::uint8_t> silent = {})
+      : replies_(std::move(replies)), silent_(std::move(silent)) {
+    fd_ = socket(AF_INET, SOCK_STREAM | SOCK_CLOEXEC, 0);
+    sockaddr_in sa{};
+    sa.sin_family = AF_INET;
+    sa.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+    socklen_t len = sizeof sa;
+    if (bind(fd_, reinterpret_cast<const sockaddr*>(&sa), sizeof sa) != 0 || listen(fd_, 4) != 0 ||
+        getsockname(fd_, reinterpret_cast<sockaddr*>(&sa), &len) != 0)
+      return;
+    port_ = ntohs(sa.sin_port);
+    thread_ = std::thread([this] {
+      while (!done_) {
+        pollfd p{fd_, POLLIN, 0};
+        if (poll(&p, 1, 50) <= 0) continue;
+        const int c = accept(fd_, nullptr, nullptr);
+        if (c < 0) continue;
+        serve(c);
+        close(c);
+      }
+    });
+  }
+  ~ScriptedServer() {
+    done_ = true;
+    if (thread_.joinable()) thread_.join();
+    close(fd_);
+  }
+  int port() const { return port_; }
+  int requests() const { return requests_; }
+
+ private:
+  // Reads exactly n bytes, giving up when the client closes or the server is destroyed.
+  bool read_n(int c, std::uint8_t* data, std::size_t n) {
+    std::size_t done = 0;
+    while (done < n && !done_) {
+      pollfd p{c, POLLIN, 0};
+      if (poll(&p, 1, 50) <= 0) continue;
+      const ssize_t got = recv(c, data + done, n - done, 0);
+      if (got <= 0) return false;
+      done += static_cast<std::size_t>(got);
+    }
+    return done == n;
+  }
+  void serve(int c) {
+    std::uint8_t h[8];
+    while (read_n(c, h, sizeof h)) {
+      const std::uint32_t length = std::uint32_t{h[4]} << 24 | std::uint32_t{h[5]} << 16 | std::uint32_t{h[6]} << 8 | h[7];
+      std::vector<std::uint8_t> payload(length);
+      if (payload.size() > 4096 || !read_n(c, payload.data(), payload.size())) return;
+      ++requests_;
+      const std::uint8_t command = h[2];
+      if (std::find(silent_.begin(), silent_.end(), command) != silent_.end()) {
+        while (!done_ && read_n(c, h, 1)) {
+        }
+        return;
+      }
+      const auto it = replies_.find(command);
+      std::vector<std::uint8_t> reply = it != replies_.end() ? it->second : std::vector<std::uint8_t>{0x47, 0x74, command, 5, 0, 0, 0, 0};
+      if (send(c, reply.data(), reply.size(), MSG_NOSIGNAL) != static_cast<ssize_t>(reply.size())) return;
+    }
+  }
+
+  std::map<std::uint8_t, std::vector<std::uint8_t>> replies_;
+  std::vector<std::uint8_t> silent_;
+  int fd_ = -1;
+  int port_ = 0;
+  std::atomic<bool> done_{false};
+  std::atomic<int> requests_{0};
+  std::thread thread_;
+};
+
+// A whole answer: header (magic, command, code 0, length) and payload.
+std::vector<std::uint8_t> answer_of(std::uint8_t command, const std::vector<std::uint8_t>& payload) {
+  const std::vector<std::uint8_t> h = header(0x47, 0x74, command, 0, static_cast<std::uint32_t>(payload.size()));
+  std::vector<std::uint8_t> out(h.size() + payload.size());
+  std::copy(h.begin(), h.end(), out.begin());
+  std::copy(payload.begin(), payload.end(), out.begin() + static_cast<std::ptrdiff_t>(h.size()));
+  return out;
+}
+
+// An inventory answer in the common layout (hesai/ptc.h: serial 0..17, date 18..33, MAC 34..39,
+// four versions of 16 bytes from 40, product model at 106, lines at 108; 120 bytes).
+std::vector<std::uint8_t> inventory_answer(const std::string& serial, const std::string& version, std::uint8_t product,
+                                           std::uint8_t lines) {
+  std::vector<std::uint8_t> p(hesai::ptc::kInvBytes, 0);
+  std::copy(serial.begin(), serial.begin() + static_cast<std::ptrdiff_t>(std::min<std::size_t>(serial.size(), 18)), p.begin());
+  const std::string date = "2026-01-01";
+  std::copy(date.begin(), date.end(), p.begin() + 18);
+  for (const std::size_t at : {40u, 56u, 72u, 88u})
+    std::copy(version.begin(), version.begin() + static_cast<std::ptrdiff_t>(std::min<std::size_t>(version.size(), 16)),
+              p.begin() + static_cast<std::ptrdiff_t>(at));
+  p[hesai::ptc::kInvModel] = product;
+  p[hesai::ptc::kInvLines] = lines;
+  return answer_of(0x07, p);
+}
+
+// The names in a folder, but . and ..
+std::vector<std::string> folder_entries(const std::string& dir) {
+  std::vector<std::string> names;
+  if (DIR* d = opendir(dir.c_str())) {
+    while (const dirent* e = readdir(d))
+      if (std::string(e->d_name) != "." && std::string(e->d_name) != "..") names.emplace_back(e->d_name);
+    closedir(d);
+  }
+  std::sort(names.begin(), names.end());
+  return names;
+}
+
+std::string make_folder(const std::string& name) {
+  const std::string dir = temp_path(name);
+  mkdir(dir.c_str(), 0700);
+  return dir;
+}
+
+void remove_folder(const std::string& dir) {
+  for (const std::string& n : folder_entries(dir)) {
+    const std::string path = dir + "/" + n;
+    if (rmdir(path.c_str()) != 0) unlink(path.c_str());
+  }
+  rmdir(dir.c_str());
+}
+
+// Finding 1: --session-key-out wrote in place, through symlinks (O_TRUNC, no O_NOFOLLOW): a link's
+// target was overwritten with the key, and a reader holding the old file read the new key. Now the
+// key is written to a new file and renamed over the path; a link, a folder or a FIFO at the path is
+// refused (exit 2, before any session starts) and left as it is; nothing is left behind.
+TEST(Sensor, SessionKeyFileIsWrittenAtomicallyAndNeverThroughALink) {
+  const std::string secret = secret_file(), dir = make_folder("keys");
+  StandIn s("qt128c2x_dual.pcap", "127.0.0.1", "--to 127.0.0.1:9 --rate 0.05 --quiet --secret-file " + secret);
+  ASSERT_NE(s.port(), 0) << s.stderr_text();
+  const std::string start = "sensor signature start 127.0.0.1 --ptc-port " + std::to_string(s.port()) + " --secret-file " +
+                            secret + " --session-key-out ";
+
+  // A symbolic link at the key's path: refused, its target untouched, the link still a link.
+  const std::string target = dir + "/target", link = dir + "/link.key";
+  std::ofstream(target) << "precious\n";
+  ASSERT_EQ(symlink(target.c_str(), link.c_str()), 0);
+  Ran r = run(start + link);
+  EXPECT_EQ(r.status, 2) << r.err;
+  EXPECT_NE(r.err.find("refusing to write '" + link + "': it is a symbolic link"), std::string::npos) << r.err;
+  EXPECT_EQ(read_text(target), "precious\n");
+  struct stat st {};
+  ASSERT_EQ(lstat(link.c_str(), &st), 0);
+  EXPECT_TRUE(S_ISLNK(st.st_mode));
+  // A dangling link (which O_CREAT would have followed to create its target) is refused too.
+  const std::string dangling = dir + "/dangling.key";
+  ASSERT_EQ(symlink((dir + "/created_through_link").c_str(), dangling.c_str()), 0);
+  EXPECT_EQ(run(start + dangling).status, 2);
+  // A folder and a FIFO (opening a FIFO to write would block until a reader came): refused at once.
+  const std::string folder = dir + "/folder.key", fifo = dir + "/fifo.key";
+  ASSERT_EQ(mkdir(folder.c_str(), 0700), 0);
+  ASSERT_EQ(mkfifo(fifo.c_str(), 0600), 0);
+  r = run(start + folder);
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find("it is a folder"), std::string::npos) << r.err;
+  const int fifo_reader = open(fifo.c_str(), O_RDONLY | O_NONBLOCK);  // so that a regression writes, not hangs
+  r = run(start + fifo);
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find("it is a FIFO"), std::string::npos) << r.err;
+  close(fifo_reader);
+  // Refused before the session: the stand-in never started one.
+  EXPECT_EQ(run("sensor signature status 127.0.0.1 --ptc-port " + std::to_string(s.port())).out, "signature off\n");
+  EXPECT_EQ(folder_entries(dir), (std::vector<std::string>{"dangling.key", "fifo.key", "folder.key", "link.key", "target"}));
+
+  // A regular file: replaced whole. A reader holding the old key file keeps reading the old bytes.
+  const std::string key = dir + "/session.key";
+  ASSERT_EQ(run(start + key).status, 0);
+  const std::string first = read_text(key);
+  ASSERT_EQ(first.size(), 65u);
+  const int held = open(key.c_str(), O_RDONLY);
+  ASSERT_GE(held, 0);
+  r = run(start + key);
+  ASSERT_EQ(r.status, 0) << r.err;
+  const std::string second = read_text(key);
+  EXPECT_EQ(second.size(), 65u);
+  EXPECT_NE(second, first);  // another session, another key
+  char buf[128];
+  const ssize_t n = pread(held, buf, sizeof buf, 0);
+  close(held);
+  EXPECT_EQ(std::string(buf, static_cast<std::size_t>(n > 0 ? n : 0)), first);
+  ASSERT_EQ(stat(key.c_str(), &st), 0);
+  EXPECT_EQ(st.st_mode & 0777, 0600u);
+  EXPECT_EQ(folder_entries(dir),
+            (std::vector<std::string>{"dangling.key", "fifo.key", "folder.key", "link.key", "session.key", "target"}));
+
+  // A folder the key cannot be created in: exit 2, nothing left there.
+  const std::string locked = dir + "/locked";
+  ASSERT_EQ(mkdir(locked.c_str(), 0500), 0);
+  if (geteuid() != 0) {  // root writes anywhere
+    EXPECT_EQ(run(start + locked + "/session.key").status, 2);
+    EXPECT_TRUE(folder_entries(locked).empty());
+  }
+  chmod(locked.c_str(), 0700);
+  remove_folder(folder);
+  remove_folder(dir);
+  std::remove(secret.c_str());
+}
+
+// Finding 4: the unit's strings reached the terminal raw: escape sequences in a forged inventory
+// went to stdout. Now text output shows every byte outside printable ASCII as \xNN; JSON escapes
+// them as \u00NN.
+TEST(Sensor, TheUnitsTextIsEscapedForTheTerminal) {
+  const std::string serial = "\x1b]0;owned\x07\x1b[2J", version = "1.0\x7f\x9b" "31m\xff\r\n\t\\";
+  ScriptedServer unit({{0x07, inventory_answer(serial, version, 2, 64)}});
+  ASSERT_NE(unit.port(), 0);
+  for (const char* json : {"", " --json"}) {
+    SCOPED_TRACE(json);
+    const Ran r = run("sensor info 127.0.0.1 --ptc-port " + std::to_string(unit.port()) + json);
+    ASSERT_EQ(r.status, 0) << r.err;
+    // No byte below 0x20 but the line feed, no DEL, nothing from 0x80 on (the output is not
+    // printed on failure: it would reach the terminal running the tests).
+    std::size_t bad = 0, first_bad = 0;
+    for (std::size_t i = 0; i < r.out.size(); ++i) {
+      const unsigned char b = static_cast<unsigned char>(r.out[i]);
+      if ((b < 0x20 && b != '\n') || b >= 0x7F) first_bad = bad++ == 0 ? i : first_bad;
+    }
+    EXPECT_EQ(bad, 0u) << "the first at offset " << first_bad;
+    EXPECT_NE(r.out.find(*json ? "\\u001b]0;owned\\u0007\\u001b[2J" : "\\x1b]0;owned\\x07\\x1b[2J"), std::string::npos);
+    EXPECT_NE(r.out.find(*json ? "1.0\\u007f\\u009b31m\\u00ff\\u000d\\u000a\\u0009\\\\"
+                               : "1.0\\x7f\\x9b31m\\xff\\x0d\\x0a\\x09\\x5c"),
+              std::string::npos);
+  }
+}
+
+// Finding 5 (iii): 'sensor calibration' wrote the file before checking it, and exited 0 on 1 MiB of
+// "x" from a unit of unknown model. Now a file is checked first (for the unit's model, or for every
+// model we know when the unit names none) and written, atomically, only when it parses.
+TEST(Sensor, ADownloadedFileIsWrittenOnlyWhenItParses) {
+  const std::string dir = make_folder("downloads"), out = dir + "/angles.csv";
+  const auto calibration = [](const std::string& text) {
+    return answer_of(0x05, std::vector<std::uint8_t>(text.begin(), text.end()));
+  };
+  const std::string qt_angles = read_text(kQtAngles);
+  const auto fetch = [&](ScriptedServer& unit) {
+    return run("sensor calibration 127.0.0.1 --ptc-port " + std::to_string(unit.port()) + " --timeout 3 --out " + out);
+  };
+  {  // 1 MiB of "x", a unit that serves no inventory: fits no model, nothing written.
+    ScriptedServer unit({{0x05, calibration(std::string(1u << 20, 'x'))}});
+    const Ran r = fetch(unit);
+    EXPECT_EQ(r.status, 2) << r.err;
+    EXPECT_NE(r.err.find("1048576 bytes from 127.0.0.1:" + std::to_string(unit.port()) + " not written to " + out +
+                         ": model unknown; it fits no model we know"),
+              std::string::npos)
+        << r.err;
+    EXPECT_TRUE(folder_entries(dir).empty());
+  }
+  {  // The same over an earlier file: left as it was.
+    std::ofstream(out) << "earlier\n";
+    ScriptedServer unit({{0x05, calibration(std::string(1000, 'x'))}, {0x07, inventory_answer("S", "1", 0xEE, 7)}});
+    EXPECT_EQ(fetch(unit).status, 2);
+    EXPECT_EQ(read_text(out), "earlier\n");
+    EXPECT_EQ(folder_entries(dir), std::vector<std::string>{"angles.csv"});
+    std::remove(out.c_str());
+  }
+  {  // A QT128 file from a Pandar64 (product 2): does not fit its model, nothing written.
+    ScriptedServer unit({{0x05, calibration(qt_angles)}, {0x07, inventory_answer("S", "1", 2, 64)}});
+    const Ran r = fetch(unit);
+    EXPECT_EQ(r.status, 2);
+    EXPECT_NE(r.err.find("does not fit the Pandar64: calib_"), std::string::npos) << r.err;
+    EXPECT_TRUE(folder_entries(dir).empty());
+  }
+  {  // A QT128 file from a unit of unknown model (product 0xEE): it fits the QT128C2X, written.
+    ScriptedServer unit({{0x05, calibration(qt_angles)}, {0x07, inventory_answer("S", "1", 0xEE, 7)}});
+    const Ran r = fetch(unit);
+    EXPECT_EQ(r.status, 0) << r.err;
+    EXPECT_NE(r.err.find("model unknown; fits the QT128C2X (128 channels)"), std::string::npos) << r.err;
+    EXPECT_EQ(read_text(out), qt_angles);
+    EXPECT_EQ(folder_entries(dir), std::vector<std::string>{"angles.csv"});
+  }
+  remove_folder(dir);
 }
 
 }  // namespace
