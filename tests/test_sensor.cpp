@@ -638,6 +638,51 @@ TEST(Sensor, SessionKeyFileIsWrittenAtomicallyAndNeverThroughALink) {
   std::remove(secret.c_str());
 }
 
+// Sends `count` requests for `command` on a new connection to 127.0.0.1:`port`, reading nothing;
+// returns the socket (-1 when the connection failed).
+int flood(int port, std::uint8_t command, int count) {
+  const int fd = socket(AF_INET, SOCK_STREAM, 0);
+  sockaddr_in sa{};
+  sa.sin_family = AF_INET;
+  sa.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+  sa.sin_port = htons(static_cast<std::uint16_t>(port));
+  if (connect(fd, reinterpret_cast<const sockaddr*>(&sa), sizeof sa) != 0) {
+    close(fd);
+    return -1;
+  }
+  const std::vector<std::uint8_t> request = header(0x47, 0x74, command, 0, 0);
+  for (int i = 0; i < count; ++i)
+    if (send(fd, request.data(), request.size(), MSG_NOSIGNAL | MSG_DONTWAIT) != 8) break;  // the server stopped reading
+  return fd;
+}
+
+// Finding 2: one client froze the stand-in: it sent requests and never read, the stand-in blocked
+// in its send for ever, a second client timed out, and Ctrl-C then left 'replay' waiting in join
+// (33 s measured). Now a client that never reads holds only its own connection (until the send
+// deadline), others are answered, and SIGINT ends replay within 1 s whatever the client does.
+TEST(Sensor, AClientThatNeverReadsFreezesNeitherTheStandInNorCtrlC) {
+  StandIn s("qt128c2x_dual.pcap", "127.0.0.1", "--to 127.0.0.1:9 --rate 0.05 --loop 100 --quiet --calibration " + kQtAngles);
+  ASSERT_NE(s.port(), 0) << s.stderr_text();
+  // 3 000 calibration requests (3 595 bytes each answered: 10 MiB, more than the socket buffers
+  // hold), none of the answers read.
+  const int hog = flood(s.port(), 0x05, 3000);
+  ASSERT_GE(hog, 0);
+  usleep(300000);  // the stand-in is now blocked on the hog's full buffers, or would be
+  const Ran status = run("sensor status 127.0.0.1 --ptc-port " + std::to_string(s.port()) + " --timeout 3 --json");
+  EXPECT_EQ(status.status, 0) << status.err;
+  EXPECT_LT(status.seconds, 3.0);
+  EXPECT_NE(status.out.find("\"uptime_s\":"), std::string::npos) << status.out;
+  // A second hog, still connected and sending, when SIGINT comes.
+  const int hog2 = flood(s.port(), 0x05, 3000);
+  usleep(200000);
+  const double seconds = s.interrupt();
+  RecordProperty("seconds_from_sigint_to_exit", std::to_string(seconds));
+  EXPECT_GE(seconds, 0.0) << "replay did not end";
+  EXPECT_LT(seconds, 1.0) << "replay took " << seconds << " s to end after SIGINT";
+  close(hog);
+  if (hog2 >= 0) close(hog2);
+}
+
 // Finding 4: the unit's strings reached the terminal raw: escape sequences in a forged inventory
 // went to stdout. Now text output shows every byte outside printable ASCII as \xNN; JSON escapes
 // them as \u00NN.

@@ -41,6 +41,16 @@ Model first_model(const std::string& capture, std::uint16_t& rpm) {
   return Model::unknown;
 }
 
+// Sleeps until `deadline_ns` (monotonic), in slices of at most 100 ms: Ctrl-C ends even a long
+// pause of a slowed-down replay within one.
+void sleep_unless_stopped(std::int64_t deadline_ns) {
+  while (!g_stop) {
+    const std::int64_t now = port::monotonic_ns();
+    if (now >= deadline_ns) return;
+    port::sleep_until_ns(deadline_ns - now < 100000000 ? deadline_ns : now + 100000000);
+  }
+}
+
 // The stand-in's options: --serve-ptc [ADDR:]PORT and the files it serves.
 struct StandIn {
   std::string serve;  // [ADDR:]PORT; empty: no PTC service
@@ -206,7 +216,7 @@ int cmd_replay(Args& args) {
       if (rate > 0) {
         const std::int64_t t = static_cast<std::int64_t>(d.time_ns);
         if (first_record < 0) first_record = t;
-        port::sleep_until_ns(loop_start + static_cast<std::int64_t>(static_cast<double>(t - first_record) / rate));
+        sleep_unless_stopped(loop_start + static_cast<std::int64_t>(static_cast<double>(t - first_record) / rate));
       }
       // A running session signs every QT128 packet that has room for a signature.
       const bool sign = serving && server.session_key(key);
