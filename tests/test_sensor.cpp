@@ -683,6 +683,48 @@ TEST(Sensor, AClientThatNeverReadsFreezesNeitherTheStandInNorCtrlC) {
   if (hog2 >= 0) close(hog2);
 }
 
+// Finding 3: HESAI_SECRET (and HESAI_SESSION_KEY) stayed in the environment, which
+// /proc/PID/environ shows for the whole run. Once read, each is wiped in place and removed.
+TEST(Sensor, KeyVariablesLeaveTheEnvironmentOnceRead) {
+  // Reads /proc/PID/environ of a program started by `command` once `ready` says it has read its key.
+  const auto environ_of = [](const std::string& command, const std::function<bool()>& ready) {
+    const pid_t pid = fork();
+    if (pid == 0) {
+      execl("/bin/sh", "sh", "-c", ("exec " + command).c_str(), static_cast<char*>(nullptr));
+      _exit(127);
+    }
+    std::string env;
+    for (int i = 0; i < 200 && !ready(); ++i) usleep(25000);
+    if (ready()) env = read_text("/proc/" + std::to_string(pid) + "/environ");
+    kill(pid, SIGTERM);
+    waitpid(pid, nullptr, 0);
+    return env;
+  };
+  const std::string secret = "env-secret-31415", key_hex(64, 'c');
+
+  // sensor signature start with HESAI_SECRET, against a unit that never answers the session start:
+  // the secret was read before the request went out.
+  ScriptedServer unit({}, {0x2E});
+  ASSERT_NE(unit.port(), 0);
+  std::string env = environ_of("env -u HESAI_SESSION_KEY HESAI_MARKER=present HESAI_SECRET=" + secret + " " + cli() +
+                                   " sensor signature start 127.0.0.1 --ptc-port " + std::to_string(unit.port()) +
+                                   " --timeout 5 --session-key-out " + temp_path("never.key") + " >/dev/null 2>&1",
+                               [&] { return unit.requests() > 0; });
+  EXPECT_NE(env.find("HESAI_MARKER=present"), std::string::npos) << "not the program's environment";
+  EXPECT_EQ(env.find(secret), std::string::npos);
+  EXPECT_EQ(env.find("HESAI_SECRET"), std::string::npos);
+
+  // listen with HESAI_SESSION_KEY: read before the sockets are bound ("listening on").
+  const std::string err = temp_path("listen_env_err");
+  env = environ_of("env -u HESAI_SECRET HESAI_MARKER=present HESAI_SESSION_KEY=" + key_hex + " " + cli() +
+                       " listen --bind 127.0.0.1 --port " + std::to_string(free_udp_port()) + " --gps-port 0 --seconds 5 >/dev/null 2>" + err,
+                   [&] { return read_text(err).find("listening on") != std::string::npos; });
+  EXPECT_NE(env.find("HESAI_MARKER=present"), std::string::npos) << "not the program's environment";
+  EXPECT_EQ(env.find(key_hex), std::string::npos);
+  EXPECT_EQ(env.find("HESAI_SESSION_KEY"), std::string::npos);
+  std::remove(err.c_str());
+}
+
 // Finding 4: the unit's strings reached the terminal raw: escape sequences in a forged inventory
 // went to stdout. Now text output shows every byte outside printable ASCII as \xNN; JSON escapes
 // them as \u00NN.

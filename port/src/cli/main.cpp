@@ -120,6 +120,7 @@ int cmd_decode(Args& args) {
     else return usage_error("decode", "one capture at a time ('" + a + "')");
   }
   if (capture.empty()) return usage_error("decode", "missing CAPTURE");
+  const KeyWipe key_wipe(o);  // every return below
   if (const int st = finish_key_options(o, error); st != kExitOk) return fail("decode", st, error);
 
   // The input first: an unreadable capture leaves any existing output untouched.
@@ -186,6 +187,7 @@ int cmd_stats(Args& args) {
     else return usage_error("stats", "one capture at a time ('" + a + "')");
   }
   if (capture.empty()) return usage_error("stats", "missing CAPTURE");
+  const KeyWipe key_wipe(o);  // every return below
   if (const int st = finish_key_options(o, error); st != kExitOk) return fail("stats", st, error);
   // An unreadable capture gets its error alone; one damaged part-way, the counts up to the damage.
   port::CaptureFile file;
@@ -305,10 +307,11 @@ int cmd_listen(Args& args) {
     } else return usage_error("listen", "unknown option " + a);
   }
   o.session_secret_allowed = !sensor_host.empty();  // the session's randoms come from the sensor
+  std::string session_secret;
+  const KeyWipe key_wipe(o, &session_secret);  // every return below
   if (const int st = finish_key_options(o, error); st != kExitOk) return fail("listen", st, error);
   std::uint32_t sensor_address = 0;
   if (!sensor_host.empty() && !port::resolve_ipv4(sensor_host, sensor_address, error)) return fail("listen", kExitInput, error);
-  std::string session_secret;
   session_secret.swap(o.session_secret);  // the pipeline gets no copy
 
   std::unique_ptr<OutputSink> sink;
