@@ -31,6 +31,7 @@
 #include <vector>
 
 #include "hesai/ptc.h"
+#include "hesai_port/net/ptc_client.h"
 #include "test_support.h"
 #include "udp_support.h"
 
@@ -749,6 +750,53 @@ TEST(Sensor, TheUnitsTextIsEscapedForTheTerminal) {
                                : "1.0\\x7f\\x9b31m\\xff\\x0d\\x0a\\x09\\x5c"),
               std::string::npos);
   }
+}
+
+// Finding 5 (i): connecting had its own deadline, so one request could take twice --timeout. A
+// unit whose accept queue is full drops the SYN; the client's retransmission (after about 1 s)
+// connects, and the unit then stays silent: the request must still end at --timeout.
+TEST(Sensor, OneDeadlineCoversConnectingAndTheRequest) {
+  const int fd = socket(AF_INET, SOCK_STREAM, 0);
+  sockaddr_in sa{};
+  sa.sin_family = AF_INET;
+  sa.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+  socklen_t len = sizeof sa;
+  ASSERT_EQ(bind(fd, reinterpret_cast<const sockaddr*>(&sa), sizeof sa), 0);
+  ASSERT_EQ(listen(fd, 0), 0);  // an accept queue of one connection
+  ASSERT_EQ(getsockname(fd, reinterpret_cast<sockaddr*>(&sa), &len), 0);
+  const int filler = socket(AF_INET, SOCK_STREAM, 0);
+  ASSERT_EQ(connect(filler, reinterpret_cast<const sockaddr*>(&sa), sizeof sa), 0);  // fills it
+  std::thread unit([fd] {
+    usleep(500000);  // then makes room: the program's retransmitted SYN gets in
+    const int c = accept(fd, nullptr, nullptr);
+    if (c >= 0) close(c);
+  });
+  const Ran r = run("sensor info 127.0.0.1 --ptc-port " + std::to_string(ntohs(sa.sin_port)) + " --timeout 2");
+  unit.join();
+  EXPECT_EQ(r.status, 2);
+  // It connected (the answer is what timed out), and all of it took one timeout: twice would be 3 s.
+  EXPECT_NE(r.err.find("no response header within 2.0 s"), std::string::npos) << r.err;
+  EXPECT_GT(r.seconds, 1.9);
+  EXPECT_LT(r.seconds, 2.5);
+  close(filler);
+  close(fd);
+}
+
+// Finding 5 (ii): listen --sensor resolved the host twice (PTC and the datagram filter), and the
+// two could disagree. PtcClient now takes the address the caller resolved: the name given with it
+// is not looked up again (one that cannot resolve still reaches the address).
+TEST(Sensor, PtcClientTalksToTheAddressItWasGiven) {
+  ScriptedServer unit({{0x07, inventory_answer("RESOLVED", "1", 2, 64)}});
+  ASSERT_NE(unit.port(), 0);
+  std::vector<std::uint8_t> response;
+  hesai::port::PtcClient given("sensor.invalid", htonl(INADDR_LOOPBACK), static_cast<std::uint16_t>(unit.port()), 1000);
+  const hesai::port::PtcResult ok = given.request(hesai::ptc::Command::inventory, {}, response);
+  EXPECT_TRUE(ok.ok()) << ok.message;
+  EXPECT_EQ(std::string(reinterpret_cast<const char*>(response.data())), "RESOLVED");
+  hesai::port::PtcClient by_name("sensor.invalid", static_cast<std::uint16_t>(unit.port()), 1000);
+  const hesai::port::PtcResult failed = by_name.request(hesai::ptc::Command::inventory, {}, response);
+  EXPECT_EQ(failed.outcome, hesai::port::PtcOutcome::unreachable);
+  EXPECT_NE(failed.message.find("cannot resolve sensor.invalid"), std::string::npos) << failed.message;
 }
 
 // Finding 5 (iii): 'sensor calibration' wrote the file before checking it, and exited 0 on 1 MiB of

@@ -262,7 +262,7 @@ int cmd_listen(Args& args) {
                   "                          then verified, the session stopped at the end), and datagrams\n"
                   "                          from any other address are dropped and counted (foreign_packets)\n"
                   "  --ptc-port N            the sensor's PTC port (default 9347)\n"
-                  "  --timeout S             PTC connect and per-request timeout (default 3)\n"
+                  "  --timeout S             the deadline of each PTC request, connecting included (default 3)\n"
                   "  --json                  the summary as one JSON object (keys as in 'hesai stats --json',\n"
                   "                          and foreign_packets)\n"
                   "  --quiet                 no statistics once a second\n%s%s%s",
@@ -310,6 +310,7 @@ int cmd_listen(Args& args) {
   std::string session_secret;
   const KeyWipe key_wipe(o, &session_secret);  // every return below
   if (const int st = finish_key_options(o, error); st != kExitOk) return fail("listen", st, error);
+  // Resolved once: PTC talks to the address the datagrams are filtered by.
   std::uint32_t sensor_address = 0;
   if (!sensor_host.empty() && !port::resolve_ipv4(sensor_host, sensor_address, error)) return fail("listen", kExitInput, error);
   session_secret.swap(o.session_secret);  // the pipeline gets no copy
@@ -335,7 +336,8 @@ int cmd_listen(Args& args) {
   // The sockets are bound: what the sensor sends from now on waits for us while PTC runs.
   std::unique_ptr<SensorLink> link;
   if (!sensor_host.empty()) {
-    link = std::make_unique<SensorLink>(sensor_host, static_cast<std::uint16_t>(ptc_port), static_cast<int>(ptc_timeout * 1000));
+    link = std::make_unique<SensorLink>(sensor_host, sensor_address, static_cast<std::uint16_t>(ptc_port),
+                                        static_cast<int>(ptc_timeout * 1000));
     int rc = link->fetch(o, pipeline, error);
     if (rc == kExitOk && !session_secret.empty()) rc = link->start_session(session_secret, pipeline, error);
     secure_wipe(session_secret.data(), session_secret.size());

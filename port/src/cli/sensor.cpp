@@ -45,7 +45,7 @@ constexpr const char* kSensorUsage =
     "  signature stop          end the session (0x2F)\n"
     "\n"
     "  --ptc-port N            PTC port (default 9347)\n"
-    "  --timeout SECONDS       connect and per-request timeout (default 3)\n"
+    "  --timeout SECONDS       the deadline of each request, connecting included (default 3)\n"
     "  --json                  one JSON object (info: serial, manufacture_date, mac, software_version,\n"
     "                          hardware_version, control_firmware, sensor_firmware, model,\n"
     "                          product_model, lines; status: uptime_s, motor_speed_rpm, temperatures_c,\n"

@@ -21,6 +21,10 @@ int cmd_sensor(Args& args);
 class SensorLink {
  public:
   SensorLink(const std::string& host, std::uint16_t port, int timeout_ms) : client_(host, port, timeout_ms) {}
+  /// The unit at `ipv4` (in_addr.s_addr), resolved from `host` by the caller: the address its
+  /// datagrams are filtered by is the one PTC talks to.
+  SensorLink(const std::string& host, std::uint32_t ipv4, std::uint16_t port, int timeout_ms)
+      : client_(host, ipv4, port, timeout_ms) {}
   ~SensorLink();
 
   /// Asks the unit its model (inventory), then downloads what the pipeline has no file for: the

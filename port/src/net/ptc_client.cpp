@@ -5,7 +5,6 @@
 #include <cstdio>
 #include <cstring>
 #include <fcntl.h>
-#include <netdb.h>
 #include <netinet/in.h>
 #include <netinet/tcp.h>
 #include <poll.h>
@@ -13,6 +12,7 @@
 #include <unistd.h>
 
 #include "hesai_port/base/clock.h"
+#include "hesai_port/net/udp.h"  // resolve_ipv4
 
 namespace hesai::port {
 namespace {
@@ -62,33 +62,35 @@ TcpTransport::~TcpTransport() {
 }
 
 PtcTransport::Io TcpTransport::connect(const std::string& host, std::uint16_t port, int timeout_ms, std::string& error) {
-  addrinfo hints{};
-  hints.ai_family = AF_INET;
-  hints.ai_socktype = SOCK_STREAM;
-  addrinfo* res = nullptr;
-  const std::string service = std::to_string(port);
-  if (const int rc = getaddrinfo(host.c_str(), service.c_str(), &hints, &res); rc != 0) {
-    error = std::string("cannot resolve: ") + gai_strerror(rc);
-    return Io::error;
-  }
+  const std::int64_t deadline = monotonic_ns() + static_cast<std::int64_t>(timeout_ms) * 1000000;
+  std::uint32_t ipv4 = 0;
+  if (!resolve_ipv4(host, ipv4, error)) return Io::error;
+  return connect_ipv4(ipv4, port, deadline, error);
+}
+
+PtcTransport::Io TcpTransport::connect_ipv4(std::uint32_t ipv4, std::uint16_t port, std::int64_t deadline_ns,
+                                            std::string& error) {
+  sockaddr_in sa{};
+  sa.sin_family = AF_INET;
+  sa.sin_port = htons(port);
+  sa.sin_addr.s_addr = ipv4;
+  if (fd_ >= 0) ::close(fd_);
   fd_ = socket(AF_INET, SOCK_STREAM | SOCK_CLOEXEC, 0);
   if (fd_ < 0) {
     error = std::string("socket: ") + std::strerror(errno);
-    freeaddrinfo(res);
     return Io::error;
   }
   fcntl(fd_, F_SETFL, fcntl(fd_, F_GETFL) | O_NONBLOCK);
   const int one = 1;
   setsockopt(fd_, IPPROTO_TCP, TCP_NODELAY, &one, sizeof one);
-  const int rc = ::connect(fd_, res->ai_addr, res->ai_addrlen);
-  freeaddrinfo(res);
+  const int rc = ::connect(fd_, reinterpret_cast<const sockaddr*>(&sa), sizeof sa);
   if (rc != 0 && errno != EINPROGRESS) {
     error = std::string("cannot connect: ") + std::strerror(errno);
     return Io::error;
   }
   if (rc != 0) {
-    if (!wait_ready(fd_, POLLOUT, monotonic_ns() + static_cast<std::int64_t>(timeout_ms) * 1000000)) {
-      error = "no connection within " + std::to_string(timeout_ms) + " ms";
+    if (!wait_ready(fd_, POLLOUT, deadline_ns)) {
+      error = "no connection within the timeout";
       return Io::timeout;
     }
     int so_error = 0;
@@ -137,6 +139,9 @@ PtcTransport::Io TcpTransport::receive_exact(std::uint8_t* data, std::size_t siz
 PtcClient::PtcClient(std::string host, std::uint16_t port, int timeout_ms)
     : host_(std::move(host)), port_(port), timeout_ms_(timeout_ms) {}
 
+PtcClient::PtcClient(std::string host, std::uint32_t ipv4, std::uint16_t port, int timeout_ms)
+    : host_(std::move(host)), port_(port), timeout_ms_(timeout_ms), resolved_(true), ipv4_(ipv4) {}
+
 PtcResult PtcClient::fail(PtcOutcome outcome, ptc::Command command, const std::string& what) {
   transport_.reset();
   PtcResult r;
@@ -150,15 +155,18 @@ PtcResult PtcClient::request(ptc::Command command, ByteView payload, std::vector
   std::lock_guard<std::mutex> lock(mutex_);
   response.clear();
   const std::int64_t timeout_ns = static_cast<std::int64_t>(timeout_ms_) * 1000000;
+  const std::int64_t deadline = monotonic_ns() + timeout_ns;  // one deadline: connecting and the request
   if (!transport_) {
     auto tcp = std::make_unique<TcpTransport>();
     std::string error;
-    const PtcTransport::Io io = tcp->connect(host_, port_, timeout_ms_, error);
+    std::uint32_t ipv4 = ipv4_;
+    const PtcTransport::Io io = !resolved_ && !resolve_ipv4(host_, ipv4, error)
+                                    ? PtcTransport::Io::error
+                                    : tcp->connect_ipv4(ipv4, port_, deadline, error);
     if (io == PtcTransport::Io::timeout) return fail(PtcOutcome::timeout, command, error);
     if (io != PtcTransport::Io::ok) return fail(PtcOutcome::unreachable, command, error);
     transport_ = std::move(tcp);
   }
-  const std::int64_t deadline = monotonic_ns() + timeout_ns;
   const auto io_failure = [&](PtcTransport::Io io, const char* during) {
     const std::string seconds = std::to_string(timeout_ms_ / 1000) + "." + std::to_string(timeout_ms_ % 1000 / 100) + " s";
     switch (io) {

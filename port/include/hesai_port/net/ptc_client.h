@@ -1,9 +1,9 @@
 // A PTC client: one request at a time to a sensor's TCP command port (9347), framed and checked by
 // the core's codec (hesai/ptc.h).
 //
-// Every request has one deadline, the client's timeout from the moment it is sent (connecting has
-// its own, the same length): a sensor that stays silent, or sends a byte now and then, costs at
-// most the timeout. A response's announced length is checked against the command's bound
+// Every request has one deadline, the client's timeout from the moment request() is called: it
+// covers connecting (when the request opens the connection), sending and the whole answer, so a
+// sensor that accepts slowly, stays silent, or sends a byte now and then costs at most the timeout. A response's announced length is checked against the command's bound
 // (ptc::max_response_bytes, 1 MiB for files) before any byte of its payload is stored. After any
 // framing error (another magic, another command's echo, a length past the bound, an answer cut
 // short, a timeout) the connection is closed; the next request connects again.
@@ -48,6 +48,8 @@ class TcpTransport final : public PtcTransport {
   /// Connects to an IPv4 address of `host` (a dotted quad or a name) within `timeout_ms`.
   /// Returns Io::ok, Io::timeout, or Io::error with a message in `error`.
   Io connect(const std::string& host, std::uint16_t port, int timeout_ms, std::string& error);
+  /// Connects to `ipv4` (in_addr.s_addr, network byte order) before `deadline_ns` (monotonic_ns()).
+  Io connect_ipv4(std::uint32_t ipv4, std::uint16_t port, std::int64_t deadline_ns, std::string& error);
   Io send_all(const std::uint8_t* data, std::size_t size, std::int64_t deadline_ns) override;
   Io receive_exact(std::uint8_t* data, std::size_t size, std::int64_t deadline_ns) override;
 
@@ -79,6 +81,10 @@ class PtcClient {
   static constexpr int kDefaultTimeoutMs = 3000;
 
   PtcClient(std::string host, std::uint16_t port = ptc::kDefaultPort, int timeout_ms = kDefaultTimeoutMs);
+  /// A client of the address `ipv4` (in_addr.s_addr, network byte order), already resolved from
+  /// `host`, which names it in messages only: a caller that also filters datagrams by the sensor's
+  /// address resolves the name once, and both use the same address.
+  PtcClient(std::string host, std::uint32_t ipv4, std::uint16_t port, int timeout_ms);
 
   /// Sends `command` with `payload` and reads the answer's payload into `response` (resized to
   /// the announced length, which is at most ptc::max_response_bytes(command)). Requests from
@@ -99,6 +105,8 @@ class PtcClient {
   std::string host_;
   std::uint16_t port_;
   int timeout_ms_;
+  bool resolved_ = false;    // ipv4_ given: host_ is not resolved again
+  std::uint32_t ipv4_ = 0;
   std::unique_ptr<PtcTransport> transport_;  // connected, or null
   std::mutex mutex_;                         // one request on the wire at a time
 };
