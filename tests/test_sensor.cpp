@@ -216,7 +216,7 @@ TEST(Sensor, ListenFetchesCalibrationAndVerifiesEverySignature) {
                              " --gps-port 0 --sensor 127.0.0.3 --ptc-port PTC --secret-file " + secret +
                              " --count 1800 --seconds 60 --idle 5 --format csv --out " + csv + " --json --quiet";
   StandIn s("qt128c2x_dual.pcap", "127.0.0.3",
-            "--to 127.0.0.1:" + std::to_string(port) + " --rate 4 --loop 1000 --quiet --wait-for-session --secret-file " + secret +
+            "--to 127.0.0.1:" + std::to_string(port) + " --rate 1 --loop 1000 --quiet --wait-for-session --secret-file " + secret +
                 " --calibration " + kQtAngles + " --firetimes " + kQtFiretimes);
   ASSERT_NE(s.port(), 0) << s.stderr_text();
   std::string cmd = listen;
