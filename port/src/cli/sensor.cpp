@@ -395,10 +395,13 @@ int sensor_signature(PtcClient& client, const std::string& action, const std::st
       std::fprintf(stderr, "hesai sensor: %s\n", error.c_str());
       return st;
     }
-    std::uint8_t key[32];
+    std::uint8_t key[32] = {};
     const int st = session_start(client, secret, key);
-    secure_wipe(secret.data(), secret.size());
-    if (st != kExitOk) return st;
+    wipe_secret(secret);
+    if (st != kExitOk) {
+      secure_wipe(key, sizeof key);  // whatever a failed derivation left
+      return st;
+    }
     Bytes hex(65);
     for (std::size_t i = 0; i < 32; ++i) std::snprintf(reinterpret_cast<char*>(&hex[2 * i]), 3, "%02x", key[i]);
     hex[64] = '\n';
