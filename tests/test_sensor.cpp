@@ -626,6 +626,20 @@ TEST(Sensor, SessionKeyFileIsWrittenAtomicallyAndNeverThroughALink) {
   EXPECT_EQ(folder_entries(dir),
             (std::vector<std::string>{"dangling.key", "fifo.key", "folder.key", "link.key", "session.key", "target"}));
 
+  // A write that fails after the temporary file was made (RLIMIT_FSIZE 0, SIGXFSZ ignored: the
+  // write returns EFBIG): exit 2, the earlier key as it was, no temporary file left.
+  FILE* limited = popen(("trap '' XFSZ; ulimit -f 0; exec env -u HESAI_SECRET " + cli() + " " + start + key + " 2>&1").c_str(), "r");
+  ASSERT_NE(limited, nullptr);
+  std::string said;
+  std::size_t got;
+  while ((got = std::fread(buf, 1, sizeof buf, limited)) > 0) said.append(buf, got);
+  const int limited_status = pclose(limited);
+  EXPECT_TRUE(WIFEXITED(limited_status) && WEXITSTATUS(limited_status) == 2) << said;
+  EXPECT_NE(said.find("cannot write '" + key + "': File too large"), std::string::npos) << said;
+  EXPECT_EQ(read_text(key), second);
+  EXPECT_EQ(folder_entries(dir),
+            (std::vector<std::string>{"dangling.key", "fifo.key", "folder.key", "link.key", "session.key", "target"}));
+
   // A folder the key cannot be created in: exit 2, nothing left there.
   const std::string locked = dir + "/locked";
   ASSERT_EQ(mkdir(locked.c_str(), 0500), 0);
