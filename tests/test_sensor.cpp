@@ -866,6 +866,23 @@ TEST(Sensor, ADownloadedFileIsWrittenOnlyWhenItParses) {
     EXPECT_NE(r.err.find("model unknown; fits the QT128C2X (128 channels)"), std::string::npos) << r.err;
     EXPECT_EQ(read_text(out), qt_angles);
     EXPECT_EQ(folder_entries(dir), std::vector<std::string>{"angles.csv"});
+    std::remove(out.c_str());
+  }
+  {  // A channel configuration from a unit of unknown model: it has no channel count to try; it
+     // parses or it does not.
+    const std::string config = read_text(data_path("calibration/qt128c2x_channel_config.csv"));
+    ScriptedServer unit({{0xA8, answer_of(0xA8, std::vector<std::uint8_t>(config.begin(), config.end()))}});
+    const std::string at = " 127.0.0.1 --ptc-port " + std::to_string(unit.port()) + " --timeout 3 --out " + out;
+    Ran r = run("sensor channel-config" + at);
+    EXPECT_EQ(r.status, 0) << r.err;
+    EXPECT_NE(r.err.find("model unknown; a valid channel configuration"), std::string::npos) << r.err;
+    EXPECT_EQ(read_text(out), config);
+    std::remove(out.c_str());
+    ScriptedServer junk({{0xA8, answer_of(0xA8, std::vector<std::uint8_t>(100, 'x'))}});
+    r = run("sensor channel-config 127.0.0.1 --ptc-port " + std::to_string(junk.port()) + " --timeout 3 --out " + out);
+    EXPECT_EQ(r.status, 2);
+    EXPECT_NE(r.err.find("model unknown; not a channel configuration: calib_"), std::string::npos) << r.err;
+    EXPECT_TRUE(folder_entries(dir).empty());
   }
   remove_folder(dir);
 }

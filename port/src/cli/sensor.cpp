@@ -210,6 +210,13 @@ bool file_fits(ptc::Command command, const Bytes& file, Model model, std::string
     ChannelConfig c;
     return parse_channel_config_csv(view, c);
   };
+  if (model == Model::unknown && command == ptc::Command::channel_config) {  // no channel count to try
+    const ParseResult r = parse(0);
+    text = r.error == Error::ok ? "model unknown; a valid channel configuration"
+                                : std::string("model unknown; not a channel configuration: ") + error_name(r.error) +
+                                      " at line " + std::to_string(r.line);
+    return r.error == Error::ok;
+  }
   if (model == Model::unknown) {
     std::string fitting;
     std::size_t channels = 0;
