@@ -6,7 +6,10 @@
 // Expectations: the stand-in's answers as its header documents them (hesai_port/net/ptc_server.h), the
 // bundled files byte for byte, and 'hesai decode' of the same capture with the same files.
 #include <arpa/inet.h>
+#include <dirent.h>
+#include <fcntl.h>
 #include <netinet/in.h>
+#include <poll.h>
 #include <signal.h>
 #include <sys/resource.h>
 #include <sys/socket.h>
@@ -18,6 +21,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <functional>
 #include <chrono>
 #include <cstdio>
 #include <fstream>
@@ -27,6 +31,8 @@
 #include <thread>
 #include <vector>
 
+#include "hesai/ptc.h"
+#include "hesai_port/net/ptc_client.h"
 #include "packet_builder.h"
 #include "test_support.h"
 #include "udp_support.h"
@@ -110,6 +116,22 @@ class StandIn {
   }
   int port() const { return port_; }
   std::string stderr_text() const { return read_text(err_); }
+  /// Sends SIGINT and waits (at most 10 s) for the program to end: the seconds it took, -1 when it
+  /// did not end (it is then killed).
+  double interrupt() {
+    const auto t0 = std::chrono::steady_clock::now();
+    kill(pid_, SIGINT);
+    double seconds = -1;
+    for (int i = 0; i < 10000; ++i) {
+      if (waitpid(pid_, nullptr, WNOHANG) == pid_) {
+        seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+        pid_ = -1;
+        return seconds;
+      }
+      usleep(1000);
+    }
+    return seconds;  // the destructor kills it
+  }
 
  private:
   static inline int count_ = 0;
@@ -196,7 +218,7 @@ TEST(Sensor, ListenFetchesCalibrationAndVerifiesEverySignature) {
                              " --gps-port 0 --sensor 127.0.0.3 --ptc-port PTC --secret-file " + secret +
                              " --count 1800 --seconds 60 --idle 5 --format csv --out " + csv + " --json --quiet";
   StandIn s("qt128c2x_dual.pcap", "127.0.0.3",
-            "--to 127.0.0.1:" + std::to_string(port) + " --rate 4 --loop 1000 --quiet --wait-for-session --secret-file " + secret +
+            "--to 127.0.0.1:" + std::to_string(port) + " --rate 1 --loop 1000 --quiet --wait-for-session --secret-file " + secret +
                 " --calibration " + kQtAngles + " --firetimes " + kQtFiretimes);
   ASSERT_NE(s.port(), 0) << s.stderr_text();
   std::string cmd = listen;
@@ -404,8 +426,9 @@ TEST(Sensor, HostileSensorsEndInTimeWithANamedError) {
 // A sensor that announces a whole 1 MiB calibration and then drips a byte every 200 ms: the
 // client's deadline covers the whole answer, not each read, so it gives up 1 s after asking
 // (--timeout 1), with nothing written. A sensor that sends the whole 1 MiB at once: the client
-// stores it and writes it byte for byte, and its resident set holds the payload (above the run
-// given a 16-byte calibration by more than half a MiB) and stays within the bound of the test above.
+// stores it (and, as it fits no model, writes nothing), and its resident set holds the payload
+// (above the run given a 16-byte calibration by more than half a MiB) and stays within the bound of
+// the test above.
 TEST(Sensor, LargestCalibrationDrippedOrWholeStaysBounded) {
   constexpr std::uint32_t kMiB = 1u << 20;
   const double timeout = 1.0;
@@ -460,10 +483,16 @@ TEST(Sensor, LargestCalibrationDrippedOrWholeStaysBounded) {
     HostileServer server(reply, false);
     ASSERT_NE(server.port(), 0);
     const Ran r = run("sensor calibration 127.0.0.1 --ptc-port " + std::to_string(server.port()) + " --timeout 1 --out " + out);
-    EXPECT_EQ(r.status, 0) << r.err;
+    // Stored whole, then parsed for every model we know (the unit named none): it fits none, so
+    // nothing is written (ADownloadedFileIsWrittenOnlyWhenItParses), exit 2.
+    EXPECT_EQ(r.status, 2) << r.err;
     EXPECT_LT(r.seconds, timeout + slack);
-    EXPECT_NE(r.err.find("1048576 bytes to " + out + "; model unknown: not checked"), std::string::npos) << r.err;
-    EXPECT_TRUE(read_text(out) == payload) << "the stored file differs from the 1 MiB sent";
+    EXPECT_NE(r.err.find("1048576 bytes from 127.0.0.1:" + std::to_string(server.port()) + " not written to " + out +
+                         ": model unknown; it fits no model we know"),
+              std::string::npos)
+        << r.err;
+    struct stat st {};
+    EXPECT_NE(stat(out.c_str(), &st), 0) << "a file was written that fits no model";
 #if !defined(HESAI_CLI_EMULATOR)
     // The peak resident sets of two runs differ by more than the payload's pages: which pages of
     // the shared libraries (OpenSSL's among them) a run touches varies by up to a few hundred KiB.
@@ -720,6 +749,461 @@ TEST(SensorAttack, SecretForAUnitThatSignsNothingIsRefused) {
   EXPECT_EQ(allowed.status, 0) << allowed.err;
   EXPECT_NE(allowed.err.find("no session started (--allow-unsigned)"), std::string::npos) << allowed.err;
   std::remove(secret.c_str());
+}
+
+
+// ---- issue #31, part 3: the key file, the stand-in's limits, secrets, the unit's text ----
+
+#if defined(HESAI_CLI_EMULATOR)
+constexpr double kStartSlack = 5.0;  // qemu-user starts the program slowly: time bounds get this much more
+#else
+constexpr double kStartSlack = 0.0;
+#endif
+
+// A PTC server that answers each request by its command from a script (the whole answer, header
+// and payload), on one connection after another until destroyed; a command in `silent` gets no
+// answer (the connection stays open), any other command not in the script 'unsupported command'.
+class ScriptedServer {
+ public:
+  ScriptedServer(std::map<std::uint8_t, std::vector<std::uint8_t>> replies, std::vector<std::uint8_t> silent = {})
+      : replies_(std::move(replies)), silent_(std::move(silent)) {
+    fd_ = socket(AF_INET, SOCK_STREAM | SOCK_CLOEXEC, 0);
+    sockaddr_in sa{};
+    sa.sin_family = AF_INET;
+    sa.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+    socklen_t len = sizeof sa;
+    if (bind(fd_, reinterpret_cast<const sockaddr*>(&sa), sizeof sa) != 0 || listen(fd_, 4) != 0 ||
+        getsockname(fd_, reinterpret_cast<sockaddr*>(&sa), &len) != 0)
+      return;
+    port_ = ntohs(sa.sin_port);
+    thread_ = std::thread([this] {
+      while (!done_) {
+        pollfd p{fd_, POLLIN, 0};
+        if (poll(&p, 1, 50) <= 0) continue;
+        const int c = accept(fd_, nullptr, nullptr);
+        if (c < 0) continue;
+        serve(c);
+        close(c);
+      }
+    });
+  }
+  ~ScriptedServer() {
+    done_ = true;
+    if (thread_.joinable()) thread_.join();
+    close(fd_);
+  }
+  int port() const { return port_; }
+  int requests() const { return requests_; }
+
+ private:
+  // Reads exactly n bytes, giving up when the client closes or the server is destroyed.
+  bool read_n(int c, std::uint8_t* data, std::size_t n) {
+    std::size_t done = 0;
+    while (done < n && !done_) {
+      pollfd p{c, POLLIN, 0};
+      if (poll(&p, 1, 50) <= 0) continue;
+      const ssize_t got = recv(c, data + done, n - done, 0);
+      if (got <= 0) return false;
+      done += static_cast<std::size_t>(got);
+    }
+    return done == n;
+  }
+  void serve(int c) {
+    std::uint8_t h[8];
+    while (read_n(c, h, sizeof h)) {
+      const std::uint32_t length = std::uint32_t{h[4]} << 24 | std::uint32_t{h[5]} << 16 | std::uint32_t{h[6]} << 8 | h[7];
+      std::vector<std::uint8_t> payload(length);
+      if (payload.size() > 4096 || !read_n(c, payload.data(), payload.size())) return;
+      ++requests_;
+      const std::uint8_t command = h[2];
+      if (std::find(silent_.begin(), silent_.end(), command) != silent_.end()) {
+        while (!done_ && read_n(c, h, 1)) {
+        }
+        return;
+      }
+      const auto it = replies_.find(command);
+      std::vector<std::uint8_t> reply = it != replies_.end() ? it->second : std::vector<std::uint8_t>{0x47, 0x74, command, 5, 0, 0, 0, 0};
+      if (send(c, reply.data(), reply.size(), MSG_NOSIGNAL) != static_cast<ssize_t>(reply.size())) return;
+    }
+  }
+
+  std::map<std::uint8_t, std::vector<std::uint8_t>> replies_;
+  std::vector<std::uint8_t> silent_;
+  int fd_ = -1;
+  int port_ = 0;
+  std::atomic<bool> done_{false};
+  std::atomic<int> requests_{0};
+  std::thread thread_;
+};
+
+// A whole answer: header (magic, command, code 0, length) and payload.
+std::vector<std::uint8_t> answer_of(std::uint8_t command, const std::vector<std::uint8_t>& payload) {
+  const std::vector<std::uint8_t> h = header(0x47, 0x74, command, 0, static_cast<std::uint32_t>(payload.size()));
+  std::vector<std::uint8_t> out(h.size() + payload.size());
+  std::copy(h.begin(), h.end(), out.begin());
+  std::copy(payload.begin(), payload.end(), out.begin() + static_cast<std::ptrdiff_t>(h.size()));
+  return out;
+}
+
+// An inventory answer in the common layout (hesai/ptc.h: serial 0..17, date 18..33, MAC 34..39,
+// four versions of 16 bytes from 40, product model at 106, lines at 108; 120 bytes).
+std::vector<std::uint8_t> inventory_answer(const std::string& serial, const std::string& version, std::uint8_t product,
+                                           std::uint8_t lines) {
+  std::vector<std::uint8_t> p(hesai::ptc::kInvBytes, 0);
+  std::copy(serial.begin(), serial.begin() + static_cast<std::ptrdiff_t>(std::min<std::size_t>(serial.size(), 18)), p.begin());
+  const std::string date = "2026-01-01";
+  std::copy(date.begin(), date.end(), p.begin() + 18);
+  for (const std::size_t at : {40u, 56u, 72u, 88u})
+    std::copy(version.begin(), version.begin() + static_cast<std::ptrdiff_t>(std::min<std::size_t>(version.size(), 16)),
+              p.begin() + static_cast<std::ptrdiff_t>(at));
+  p[hesai::ptc::kInvModel] = product;
+  p[hesai::ptc::kInvLines] = lines;
+  return answer_of(0x07, p);
+}
+
+// The names in a folder, but . and ..
+std::vector<std::string> folder_entries(const std::string& dir) {
+  std::vector<std::string> names;
+  if (DIR* d = opendir(dir.c_str())) {
+    while (const dirent* e = readdir(d))
+      if (std::string(e->d_name) != "." && std::string(e->d_name) != "..") names.emplace_back(e->d_name);
+    closedir(d);
+  }
+  std::sort(names.begin(), names.end());
+  return names;
+}
+
+std::string make_folder(const std::string& name) {
+  const std::string dir = temp_path(name);
+  mkdir(dir.c_str(), 0700);
+  return dir;
+}
+
+void remove_folder(const std::string& dir) {
+  for (const std::string& n : folder_entries(dir)) {
+    const std::string path = dir + "/" + n;
+    if (rmdir(path.c_str()) != 0) unlink(path.c_str());
+  }
+  rmdir(dir.c_str());
+}
+
+// Finding 1: --session-key-out wrote in place, through symlinks (O_TRUNC, no O_NOFOLLOW): a link's
+// target was overwritten with the key, and a reader holding the old file read the new key. Now the
+// key is written to a new file and renamed over the path; a link, a folder or a FIFO at the path is
+// refused (exit 2, before any session starts) and left as it is; nothing is left behind.
+TEST(Sensor, SessionKeyFileIsWrittenAtomicallyAndNeverThroughALink) {
+  const std::string secret = secret_file(), dir = make_folder("keys");
+  StandIn s("qt128c2x_dual.pcap", "127.0.0.1", "--to 127.0.0.1:9 --rate 0.05 --quiet --secret-file " + secret);
+  ASSERT_NE(s.port(), 0) << s.stderr_text();
+  const std::string start = "sensor signature start 127.0.0.1 --ptc-port " + std::to_string(s.port()) + " --secret-file " +
+                            secret + " --session-key-out ";
+
+  // A symbolic link at the key's path: refused, its target untouched, the link still a link.
+  const std::string target = dir + "/target", link = dir + "/link.key";
+  std::ofstream(target) << "precious\n";
+  ASSERT_EQ(symlink(target.c_str(), link.c_str()), 0);
+  Ran r = run(start + link);
+  EXPECT_EQ(r.status, 2) << r.err;
+  EXPECT_NE(r.err.find("refusing to write '" + link + "': it is a symbolic link"), std::string::npos) << r.err;
+  EXPECT_EQ(read_text(target), "precious\n");
+  struct stat st {};
+  ASSERT_EQ(lstat(link.c_str(), &st), 0);
+  EXPECT_TRUE(S_ISLNK(st.st_mode));
+  // A dangling link (which O_CREAT would have followed to create its target) is refused too.
+  const std::string dangling = dir + "/dangling.key";
+  ASSERT_EQ(symlink((dir + "/created_through_link").c_str(), dangling.c_str()), 0);
+  EXPECT_EQ(run(start + dangling).status, 2);
+  // A folder and a FIFO (opening a FIFO to write would block until a reader came): refused at once.
+  const std::string folder = dir + "/folder.key", fifo = dir + "/fifo.key";
+  ASSERT_EQ(mkdir(folder.c_str(), 0700), 0);
+  ASSERT_EQ(mkfifo(fifo.c_str(), 0600), 0);
+  r = run(start + folder);
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find("it is a folder"), std::string::npos) << r.err;
+  const int fifo_reader = open(fifo.c_str(), O_RDONLY | O_NONBLOCK);  // so that a regression writes, not hangs
+  r = run(start + fifo);
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find("it is a FIFO"), std::string::npos) << r.err;
+  close(fifo_reader);
+  // Refused before the session: the stand-in never started one.
+  EXPECT_EQ(run("sensor signature status 127.0.0.1 --ptc-port " + std::to_string(s.port())).out, "signature off\n");
+  EXPECT_EQ(folder_entries(dir), (std::vector<std::string>{"dangling.key", "fifo.key", "folder.key", "link.key", "target"}));
+
+  // A regular file: replaced whole. A reader holding the old key file keeps reading the old bytes.
+  const std::string key = dir + "/session.key";
+  ASSERT_EQ(run(start + key).status, 0);
+  const std::string first = read_text(key);
+  ASSERT_EQ(first.size(), 65u);
+  const int held = open(key.c_str(), O_RDONLY);
+  ASSERT_GE(held, 0);
+  r = run(start + key);
+  ASSERT_EQ(r.status, 0) << r.err;
+  const std::string second = read_text(key);
+  EXPECT_EQ(second.size(), 65u);
+  EXPECT_NE(second, first);  // another session, another key
+  char buf[128];
+  const ssize_t n = pread(held, buf, sizeof buf, 0);
+  close(held);
+  EXPECT_EQ(std::string(buf, static_cast<std::size_t>(n > 0 ? n : 0)), first);
+  ASSERT_EQ(stat(key.c_str(), &st), 0);
+  EXPECT_EQ(st.st_mode & 0777, 0600u);
+  EXPECT_EQ(folder_entries(dir),
+            (std::vector<std::string>{"dangling.key", "fifo.key", "folder.key", "link.key", "session.key", "target"}));
+
+  // A write that fails after the temporary file was made (RLIMIT_FSIZE 0, SIGXFSZ ignored: the
+  // write returns EFBIG): exit 2, the earlier key as it was, no temporary file left.
+  FILE* limited = popen(("trap '' XFSZ; ulimit -f 0; exec env -u HESAI_SECRET " + cli() + " " + start + key + " 2>&1").c_str(), "r");
+  ASSERT_NE(limited, nullptr);
+  std::string said;
+  std::size_t got;
+  while ((got = std::fread(buf, 1, sizeof buf, limited)) > 0) said.append(buf, got);
+  const int limited_status = pclose(limited);
+  EXPECT_TRUE(WIFEXITED(limited_status) && WEXITSTATUS(limited_status) == 2) << said;
+  EXPECT_NE(said.find("cannot write '" + key + "': File too large"), std::string::npos) << said;
+  EXPECT_EQ(read_text(key), second);
+  EXPECT_EQ(folder_entries(dir),
+            (std::vector<std::string>{"dangling.key", "fifo.key", "folder.key", "link.key", "session.key", "target"}));
+
+  // A folder the key cannot be created in: exit 2, nothing left there.
+  const std::string locked = dir + "/locked";
+  ASSERT_EQ(mkdir(locked.c_str(), 0500), 0);
+  if (geteuid() != 0) {  // root writes anywhere
+    EXPECT_EQ(run(start + locked + "/session.key").status, 2);
+    EXPECT_TRUE(folder_entries(locked).empty());
+  }
+  chmod(locked.c_str(), 0700);
+  remove_folder(folder);
+  remove_folder(dir);
+  std::remove(secret.c_str());
+}
+
+// Sends `count` requests for `command` on a new connection to 127.0.0.1:`port`, reading nothing;
+// returns the socket (-1 when the connection failed).
+int flood(int port, std::uint8_t command, int count) {
+  const int fd = socket(AF_INET, SOCK_STREAM, 0);
+  sockaddr_in sa{};
+  sa.sin_family = AF_INET;
+  sa.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+  sa.sin_port = htons(static_cast<std::uint16_t>(port));
+  if (connect(fd, reinterpret_cast<const sockaddr*>(&sa), sizeof sa) != 0) {
+    close(fd);
+    return -1;
+  }
+  const std::vector<std::uint8_t> request = header(0x47, 0x74, command, 0, 0);
+  for (int i = 0; i < count; ++i)
+    if (send(fd, request.data(), request.size(), MSG_NOSIGNAL | MSG_DONTWAIT) != 8) break;  // the server stopped reading
+  return fd;
+}
+
+// Finding 2: one client froze the stand-in: it sent requests and never read, the stand-in blocked
+// in its send for ever, a second client timed out, and Ctrl-C then left 'replay' waiting in join
+// (33 s measured). Now a client that never reads holds only its own connection (until the send
+// deadline), others are answered, and SIGINT ends replay within 1 s whatever the client does.
+TEST(Sensor, AClientThatNeverReadsFreezesNeitherTheStandInNorCtrlC) {
+  StandIn s("qt128c2x_dual.pcap", "127.0.0.1", "--to 127.0.0.1:9 --rate 0.05 --loop 100 --quiet --calibration " + kQtAngles);
+  ASSERT_NE(s.port(), 0) << s.stderr_text();
+  // 3 000 calibration requests (3 595 bytes each answered: 10 MiB, more than the socket buffers
+  // hold), none of the answers read.
+  const int hog = flood(s.port(), 0x05, 3000);
+  ASSERT_GE(hog, 0);
+  usleep(300000);  // the stand-in is now blocked on the hog's full buffers, or would be
+  const Ran status = run("sensor status 127.0.0.1 --ptc-port " + std::to_string(s.port()) + " --timeout 3 --json");
+  EXPECT_EQ(status.status, 0) << status.err;
+  EXPECT_LT(status.seconds, 3.0 + kStartSlack);
+  EXPECT_NE(status.out.find("\"uptime_s\":"), std::string::npos) << status.out;
+  // A second hog, still connected and sending, when SIGINT comes.
+  const int hog2 = flood(s.port(), 0x05, 3000);
+  usleep(200000);
+  const double seconds = s.interrupt();
+  RecordProperty("seconds_from_sigint_to_exit", std::to_string(seconds));
+  EXPECT_GE(seconds, 0.0) << "replay did not end";
+  EXPECT_LT(seconds, 1.0 + kStartSlack) << "replay took " << seconds << " s to end after SIGINT";
+  close(hog);
+  if (hog2 >= 0) close(hog2);
+}
+
+// Finding 3: HESAI_SECRET (and HESAI_SESSION_KEY) stayed in the environment, which
+// /proc/PID/environ shows for the whole run. Once read, each is wiped in place and removed.
+TEST(Sensor, KeyVariablesLeaveTheEnvironmentOnceRead) {
+#if defined(HESAI_CLI_EMULATOR)
+  GTEST_SKIP() << "under qemu-user /proc/PID/environ is the emulator's, not the program's";
+#endif
+  // Reads /proc/PID/environ of a program started by `command` once `ready` says it has read its key.
+  const auto environ_of = [](const std::string& command, const std::function<bool()>& ready) {
+    const pid_t pid = fork();
+    if (pid == 0) {
+      execl("/bin/sh", "sh", "-c", ("exec " + command).c_str(), static_cast<char*>(nullptr));
+      _exit(127);
+    }
+    std::string env;
+    for (int i = 0; i < 200 && !ready(); ++i) usleep(25000);
+    if (ready()) env = read_text("/proc/" + std::to_string(pid) + "/environ");
+    kill(pid, SIGTERM);
+    waitpid(pid, nullptr, 0);
+    return env;
+  };
+  const std::string secret = "env-secret-31415", key_hex(64, 'c');
+
+  // sensor signature start with HESAI_SECRET, against a unit that never answers the session start:
+  // the secret was read before the request went out.
+  ScriptedServer unit({}, {0x2E});
+  ASSERT_NE(unit.port(), 0);
+  std::string env = environ_of("env -u HESAI_SESSION_KEY HESAI_MARKER=present HESAI_SECRET=" + secret + " " + cli() +
+                                   " sensor signature start 127.0.0.1 --ptc-port " + std::to_string(unit.port()) +
+                                   " --timeout 5 --session-key-out " + temp_path("never.key") + " >/dev/null 2>&1",
+                               [&] { return unit.requests() > 0; });
+  EXPECT_NE(env.find("HESAI_MARKER=present"), std::string::npos) << "not the program's environment";
+  EXPECT_EQ(env.find(secret), std::string::npos);
+  EXPECT_EQ(env.find("HESAI_SECRET"), std::string::npos);
+
+  // listen with HESAI_SESSION_KEY: read before the sockets are bound ("listening on").
+  const std::string err = temp_path("listen_env_err");
+  env = environ_of("env -u HESAI_SECRET HESAI_MARKER=present HESAI_SESSION_KEY=" + key_hex + " " + cli() +
+                       " listen --bind 127.0.0.1 --port " + std::to_string(free_udp_port()) + " --gps-port 0 --seconds 5 >/dev/null 2>" + err,
+                   [&] { return read_text(err).find("listening on") != std::string::npos; });
+  EXPECT_NE(env.find("HESAI_MARKER=present"), std::string::npos) << "not the program's environment";
+  EXPECT_EQ(env.find(key_hex), std::string::npos);
+  EXPECT_EQ(env.find("HESAI_SESSION_KEY"), std::string::npos);
+  std::remove(err.c_str());
+}
+
+// Finding 4: the unit's strings reached the terminal raw: escape sequences in a forged inventory
+// went to stdout. Now text output shows every byte outside printable ASCII as \xNN; JSON escapes
+// them as \u00NN.
+TEST(Sensor, TheUnitsTextIsEscapedForTheTerminal) {
+  const std::string serial = "\x1b]0;owned\x07\x1b[2J", version = "1.0\x7f\x9b" "31m\xff\r\n\t\\";
+  ScriptedServer unit({{0x07, inventory_answer(serial, version, 2, 64)}});
+  ASSERT_NE(unit.port(), 0);
+  for (const char* json : {"", " --json"}) {
+    SCOPED_TRACE(json);
+    const Ran r = run("sensor info 127.0.0.1 --ptc-port " + std::to_string(unit.port()) + json);
+    ASSERT_EQ(r.status, 0) << r.err;
+    // No byte below 0x20 but the line feed, no DEL, nothing from 0x80 on (the output is not
+    // printed on failure: it would reach the terminal running the tests).
+    std::size_t bad = 0, first_bad = 0;
+    for (std::size_t i = 0; i < r.out.size(); ++i) {
+      const unsigned char b = static_cast<unsigned char>(r.out[i]);
+      if ((b < 0x20 && b != '\n') || b >= 0x7F) first_bad = bad++ == 0 ? i : first_bad;
+    }
+    EXPECT_EQ(bad, 0u) << "the first at offset " << first_bad;
+    EXPECT_NE(r.out.find(*json ? "\\u001b]0;owned\\u0007\\u001b[2J" : "\\x1b]0;owned\\x07\\x1b[2J"), std::string::npos);
+    EXPECT_NE(r.out.find(*json ? "1.0\\u007f\\u009b31m\\u00ff\\u000d\\u000a\\u0009\\\\"
+                               : "1.0\\x7f\\x9b31m\\xff\\x0d\\x0a\\x09\\x5c"),
+              std::string::npos);
+  }
+}
+
+// Finding 5 (i): connecting had its own deadline, so one request could take twice --timeout. A
+// unit whose accept queue is full drops the SYN; the client's retransmission (after about 1 s)
+// connects, and the unit then stays silent: the request must still end at --timeout.
+TEST(Sensor, OneDeadlineCoversConnectingAndTheRequest) {
+  const int fd = socket(AF_INET, SOCK_STREAM, 0);
+  sockaddr_in sa{};
+  sa.sin_family = AF_INET;
+  sa.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+  socklen_t len = sizeof sa;
+  ASSERT_EQ(bind(fd, reinterpret_cast<const sockaddr*>(&sa), sizeof sa), 0);
+  ASSERT_EQ(listen(fd, 0), 0);  // an accept queue of one connection
+  ASSERT_EQ(getsockname(fd, reinterpret_cast<sockaddr*>(&sa), &len), 0);
+  const int filler = socket(AF_INET, SOCK_STREAM, 0);
+  ASSERT_EQ(connect(filler, reinterpret_cast<const sockaddr*>(&sa), sizeof sa), 0);  // fills it
+  std::thread unit([fd] {
+    usleep(500000);  // then makes room: the program's retransmitted SYN gets in
+    const int c = accept(fd, nullptr, nullptr);
+    if (c >= 0) close(c);
+  });
+  const Ran r = run("sensor info 127.0.0.1 --ptc-port " + std::to_string(ntohs(sa.sin_port)) + " --timeout 2");
+  unit.join();
+  EXPECT_EQ(r.status, 2);
+  // It connected (the answer is what timed out), and all of it took one timeout: twice would be 3 s.
+  EXPECT_NE(r.err.find("no response header within 2.0 s"), std::string::npos) << r.err;
+  EXPECT_GT(r.seconds, 1.9);
+  EXPECT_LT(r.seconds, 2.5 + kStartSlack);  // natively: a second less than twice the timeout
+  close(filler);
+  close(fd);
+}
+
+// Finding 5 (ii): listen --sensor resolved the host twice (PTC and the datagram filter), and the
+// two could disagree. PtcClient now takes the address the caller resolved: the name given with it
+// is not looked up again (one that cannot resolve still reaches the address).
+TEST(Sensor, PtcClientTalksToTheAddressItWasGiven) {
+  ScriptedServer unit({{0x07, inventory_answer("RESOLVED", "1", 2, 64)}});
+  ASSERT_NE(unit.port(), 0);
+  std::vector<std::uint8_t> response;
+  hesai::port::PtcClient given("sensor.invalid", htonl(INADDR_LOOPBACK), static_cast<std::uint16_t>(unit.port()), 1000);
+  const hesai::port::PtcResult ok = given.request(hesai::ptc::Command::inventory, {}, response);
+  EXPECT_TRUE(ok.ok()) << ok.message;
+  EXPECT_EQ(std::string(reinterpret_cast<const char*>(response.data())), "RESOLVED");
+  hesai::port::PtcClient by_name("sensor.invalid", static_cast<std::uint16_t>(unit.port()), 1000);
+  const hesai::port::PtcResult failed = by_name.request(hesai::ptc::Command::inventory, {}, response);
+  EXPECT_EQ(failed.outcome, hesai::port::PtcOutcome::unreachable);
+  EXPECT_EQ(failed.message.find("sensor.invalid:"), 0u) << failed.message;
+  EXPECT_NE(failed.message.find("cannot resolve"), std::string::npos) << failed.message;
+}
+
+// Finding 5 (iii): 'sensor calibration' wrote the file before checking it, and exited 0 on 1 MiB of
+// "x" from a unit of unknown model. Now a file is checked first (for the unit's model, or for every
+// model we know when the unit names none) and written, atomically, only when it parses.
+TEST(Sensor, ADownloadedFileIsWrittenOnlyWhenItParses) {
+  const std::string dir = make_folder("downloads"), out = dir + "/angles.csv";
+  const auto calibration = [](const std::string& text) {
+    return answer_of(0x05, std::vector<std::uint8_t>(text.begin(), text.end()));
+  };
+  const std::string qt_angles = read_text(kQtAngles);
+  const auto fetch = [&](ScriptedServer& unit) {
+    return run("sensor calibration 127.0.0.1 --ptc-port " + std::to_string(unit.port()) + " --timeout 3 --out " + out);
+  };
+  {  // 1 MiB of "x", a unit that serves no inventory: fits no model, nothing written.
+    ScriptedServer unit({{0x05, calibration(std::string(1u << 20, 'x'))}});
+    const Ran r = fetch(unit);
+    EXPECT_EQ(r.status, 2) << r.err;
+    EXPECT_NE(r.err.find("1048576 bytes from 127.0.0.1:" + std::to_string(unit.port()) + " not written to " + out +
+                         ": model unknown; it fits no model we know"),
+              std::string::npos)
+        << r.err;
+    EXPECT_TRUE(folder_entries(dir).empty());
+  }
+  {  // The same over an earlier file: left as it was.
+    std::ofstream(out) << "earlier\n";
+    ScriptedServer unit({{0x05, calibration(std::string(1000, 'x'))}, {0x07, inventory_answer("S", "1", 0xEE, 7)}});
+    EXPECT_EQ(fetch(unit).status, 2);
+    EXPECT_EQ(read_text(out), "earlier\n");
+    EXPECT_EQ(folder_entries(dir), std::vector<std::string>{"angles.csv"});
+    std::remove(out.c_str());
+  }
+  {  // A QT128 file from a Pandar64 (product 2): does not fit its model, nothing written.
+    ScriptedServer unit({{0x05, calibration(qt_angles)}, {0x07, inventory_answer("S", "1", 2, 64)}});
+    const Ran r = fetch(unit);
+    EXPECT_EQ(r.status, 2);
+    EXPECT_NE(r.err.find("does not fit the Pandar64: calib_"), std::string::npos) << r.err;
+    EXPECT_TRUE(folder_entries(dir).empty());
+  }
+  {  // A QT128 file from a unit of unknown model (product 0xEE): it fits the QT128C2X, written.
+    ScriptedServer unit({{0x05, calibration(qt_angles)}, {0x07, inventory_answer("S", "1", 0xEE, 7)}});
+    const Ran r = fetch(unit);
+    EXPECT_EQ(r.status, 0) << r.err;
+    EXPECT_NE(r.err.find("model unknown; fits the QT128C2X (128 channels)"), std::string::npos) << r.err;
+    EXPECT_EQ(read_text(out), qt_angles);
+    EXPECT_EQ(folder_entries(dir), std::vector<std::string>{"angles.csv"});
+    std::remove(out.c_str());
+  }
+  {  // A channel configuration from a unit of unknown model: it has no channel count to try; it
+     // parses or it does not.
+    const std::string config = read_text(data_path("calibration/qt128c2x_channel_config.csv"));
+    ScriptedServer unit({{0xA8, answer_of(0xA8, std::vector<std::uint8_t>(config.begin(), config.end()))}});
+    const std::string at = " 127.0.0.1 --ptc-port " + std::to_string(unit.port()) + " --timeout 3 --out " + out;
+    Ran r = run("sensor channel-config" + at);
+    EXPECT_EQ(r.status, 0) << r.err;
+    EXPECT_NE(r.err.find("model unknown; a valid channel configuration"), std::string::npos) << r.err;
+    EXPECT_EQ(read_text(out), config);
+    std::remove(out.c_str());
+    ScriptedServer junk({{0xA8, answer_of(0xA8, std::vector<std::uint8_t>(100, 'x'))}});
+    r = run("sensor channel-config 127.0.0.1 --ptc-port " + std::to_string(junk.port()) + " --timeout 3 --out " + out);
+    EXPECT_EQ(r.status, 2);
+    EXPECT_NE(r.err.find("model unknown; not a channel configuration: calib_"), std::string::npos) << r.err;
+    EXPECT_TRUE(folder_entries(dir).empty());
+  }
+  remove_folder(dir);
 }
 
 }  // namespace

@@ -121,6 +121,7 @@ int cmd_decode(Args& args) {
     else return usage_error("decode", "one capture at a time ('" + a + "')");
   }
   if (capture.empty()) return usage_error("decode", "missing CAPTURE");
+  const KeyWipe key_wipe(o);  // every return below
   if (const int st = finish_key_options(o, error); st != kExitOk) return fail("decode", st, error);
 
   // The input first: an unreadable capture leaves any existing output untouched.
@@ -187,6 +188,7 @@ int cmd_stats(Args& args) {
     else return usage_error("stats", "one capture at a time ('" + a + "')");
   }
   if (capture.empty()) return usage_error("stats", "missing CAPTURE");
+  const KeyWipe key_wipe(o);  // every return below
   if (const int st = finish_key_options(o, error); st != kExitOk) return fail("stats", st, error);
   // An unreadable capture gets its error alone; one damaged part-way, the counts up to the damage.
   port::CaptureFile file;
@@ -290,7 +292,7 @@ int cmd_listen(Args& args) {
                   "  --signature-grace S     packets with no valid signature for S seconds mean the session\n"
                   "                          was lost: it is started again (default 1)\n"
                   "  --ptc-port N            the sensor's PTC port (default 9347)\n"
-                  "  --timeout S             PTC timeout of each request, connecting included (default 3)\n"
+                  "  --timeout S             the deadline of each PTC request, connecting included (default 3)\n"
                   "  --tls ...               PTCS: the PTC of --sensor over TLS (the options below)\n"
                   "  --json                  the summary as one JSON object (keys as in 'hesai stats --json',\n"
                   "                          and foreign_packets, foreign_model_packets, session_restarts)\n"
@@ -340,10 +342,12 @@ int cmd_listen(Args& args) {
   std::shared_ptr<port::TlsContext> tls_context;
   if (const int st = finish_tls_options(tls, tls_context, error); st != kExitOk) return fail("listen", st, error);
   o.session_secret_allowed = !sensor_host.empty();  // the session's randoms come from the sensor
+  std::string session_secret;
+  const KeyWipe key_wipe(o, &session_secret);  // every return below
   if (const int st = finish_key_options(o, error); st != kExitOk) return fail("listen", st, error);
+  // Resolved once: PTC talks to the address the datagrams are filtered by.
   std::uint32_t sensor_address = 0;
   if (!sensor_host.empty() && !port::resolve_ipv4(sensor_host, sensor_address, error)) return fail("listen", kExitInput, error);
-  std::string session_secret;
   session_secret.swap(o.session_secret);  // the pipeline gets no copy
 
   std::unique_ptr<OutputSink> sink;
@@ -371,8 +375,8 @@ int cmd_listen(Args& args) {
   std::unique_ptr<SensorLink> link;
   std::unique_ptr<LiveSession> session;
   if (!sensor_host.empty()) {
-    link = std::make_unique<SensorLink>(sensor_host, static_cast<std::uint16_t>(ptc_port), static_cast<int>(ptc_timeout * 1000),
-                                        tls_context);
+    link = std::make_unique<SensorLink>(sensor_host, sensor_address, static_cast<std::uint16_t>(ptc_port),
+                                        static_cast<int>(ptc_timeout * 1000), tls_context);
     int rc = link->fetch(o, pipeline, error);
     if (rc == kExitOk && link->model() != Model::unknown) pipeline.fix_model(link->model());
     if (rc == kExitOk && !session_secret.empty() && !g_stop)

@@ -12,7 +12,8 @@
 
 #include "hesai/ct.h"
 #include "hesai/hkdf.h"
-#include "hesai/hkdf.h"
+
+extern char** environ;  // POSIX: the process's environment
 
 namespace hesai::cli {
 
@@ -26,11 +27,14 @@ struct PendingKey {
 };
 PendingKey g_pending;
 
-void wipe(std::string& s) {
-  if (!s.empty()) secure_wipe(&s[0], s.size());
+void wipe(std::string& s) { wipe_secret(s); }
+}  // namespace
+
+void wipe_secret(std::string& s) {
+  s.resize(s.capacity());
+  secure_wipe(&s[0], s.size());
   s.clear();
 }
-}  // namespace
 
 const char* const kDecodeOptionsHelp =
     "  --calibration FILE      angle-correction CSV of the unit (default: the manual's design angles)\n"
@@ -268,6 +272,18 @@ int read_key_file(const std::string& option, const std::string& path, std::strin
   return status;
 }
 
+// Removes the variable `name` from the environment once its value is read, its bytes wiped in place
+// first: unsetenv alone drops the pointer, and /proc/PID/environ (the environment the process
+// started with) would still show it, as would the memory of a later crash dump.
+void scrub_env(const char* name) {
+  const std::size_t len = std::strlen(name);
+  std::vector<char*> entries;
+  for (char** e = environ; e != nullptr && *e != nullptr; ++e)
+    if (std::strncmp(*e, name, len) == 0 && (*e)[len] == '=') entries.push_back(*e);
+  unsetenv(name);
+  for (char* entry : entries) secure_wipe(entry, std::strlen(entry));
+}
+
 // Where the key came from, for messages; the option or variable that carried it.
 const char* key_source_name(KeyOption k, bool from_environment) {
   if (from_environment) return k == KeyOption::session_key ? "HESAI_SESSION_KEY" : "HESAI_SECRET";
@@ -350,6 +366,8 @@ int finish_key_options(DecodeOptions& o, std::string& error) {
       from_environment = true;
       text.assign(has_env_key ? env_key : env_secret);
     }
+    scrub_env("HESAI_SESSION_KEY");  // read: neither stays in the environment
+    scrub_env("HESAI_SECRET");
   }
   if (status == kExitOk && kind != KeyOption::none) {
     status = set_key(kind, key_source_name(kind, from_environment), text, o, error);
@@ -374,6 +392,7 @@ int read_secret(const std::string& secret_file, std::string& secret, std::string
     status = read_key_file("--secret-file", secret_file, secret, error);
   } else if (const char* env = std::getenv("HESAI_SECRET"); env != nullptr && *env != '\0') {
     secret.assign(env);
+    scrub_env("HESAI_SECRET");
   } else {
     error = "a signature session needs the shared secret: --secret-file FILE or HESAI_SECRET";
     return kExitUsage;

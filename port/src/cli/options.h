@@ -62,6 +62,25 @@ bool parse_output_option(Args& args, OutputOptions& o, std::string& error);
 int finish_key_options(DecodeOptions& o, std::string& error);
 /// Wipes the session key and the session secret of `o` (once the pipeline holds its copy).
 void wipe_key(DecodeOptions& o);
+/// Wipes all of `s`'s storage (its capacity, not only its size: a string moved from keeps its old
+/// bytes in its small-string buffer) and empties it.
+void wipe_secret(std::string& s);
+/// Wipes a command's key material (wipe_key, and a secret it holds apart) when it goes out of
+/// scope: on every return path.
+class KeyWipe {
+ public:
+  explicit KeyWipe(DecodeOptions& o, std::string* secret = nullptr) : o_(o), secret_(secret) {}
+  ~KeyWipe() {
+    wipe_key(o_);
+    if (secret_ != nullptr) wipe_secret(*secret_);
+  }
+  KeyWipe(const KeyWipe&) = delete;
+  KeyWipe& operator=(const KeyWipe&) = delete;
+
+ private:
+  DecodeOptions& o_;
+  std::string* secret_;
+};
 /// The shared secret of a signature session, from `secret_file` (its first line) when given, else
 /// from HESAI_SECRET; 8 to 32 characters. Returns an exit status, with a message that never holds
 /// the secret.

@@ -42,6 +42,29 @@ Model first_model(const std::string& capture, std::uint16_t& rpm) {
   return Model::unknown;
 }
 
+// Sleeps until `deadline_ns` (monotonic), in slices of at most 100 ms: Ctrl-C ends even a long
+// pause of a slowed-down replay within one.
+void sleep_unless_stopped(std::int64_t deadline_ns) {
+  while (!g_stop) {
+    const std::int64_t now = port::monotonic_ns();
+    if (now >= deadline_ns) return;
+    port::sleep_until_ns(deadline_ns - now < 100000000 ? deadline_ns : now + 100000000);
+  }
+}
+
+// Wipes a key buffer when it goes out of scope, on every return path.
+class WipeOnExit {
+ public:
+  WipeOnExit(void* p, std::size_t n) : p_(p), n_(n) {}
+  ~WipeOnExit() { secure_wipe(p_, n_); }
+  WipeOnExit(const WipeOnExit&) = delete;
+  WipeOnExit& operator=(const WipeOnExit&) = delete;
+
+ private:
+  void* p_;
+  std::size_t n_;
+};
+
 // The stand-in's options: --serve-ptc [ADDR:]PORT and the files it serves.
 struct StandIn {
   std::string serve;  // [ADDR:]PORT; empty: no PTC service
@@ -60,6 +83,10 @@ int open_stand_in(const StandIn& o, const std::string& capture, port::PtcServer&
   if (!parse_u64(colon == std::string::npos ? o.serve : o.serve.substr(colon + 1), port) || port > 65535)
     return usage_error("replay", "--serve-ptc takes [ADDR:]PORT, got '" + o.serve + "'");
   port::StandInContent content;
+  struct WipeContent {
+    port::StandInContent& c;
+    ~WipeContent() { wipe_secret(c.secret); }  // moved into the server, or never used: wiped either way
+  } wipe_content{content};
   std::uint16_t rpm = 0;
   content.model = first_model(capture, rpm);
   std::string error;
@@ -213,7 +240,8 @@ int cmd_replay(Args& args) {
   ServerThread ptc_thread(server, serving);
   while (stand_in.wait_for_session && server.sessions_started() == 0 && !g_stop)
     port::sleep_until_ns(port::monotonic_ns() + 10000000);
-  std::uint8_t key[32];
+  std::uint8_t key[32] = {};
+  const WipeOnExit wipe_key_on_exit(key, sizeof key);  // every return below
   std::uint64_t signed_packets = 0;
   std::uint64_t sent = 0, failed = 0;
   std::uint32_t next_sequence = 0;
@@ -236,7 +264,7 @@ int cmd_replay(Args& args) {
       if (rate > 0) {
         const std::int64_t t = static_cast<std::int64_t>(d.time_ns);
         if (first_record < 0) first_record = t;
-        port::sleep_until_ns(loop_start + static_cast<std::int64_t>(static_cast<double>(t - first_record) / rate));
+        sleep_unless_stopped(loop_start + static_cast<std::int64_t>(static_cast<double>(t - first_record) / rate));
       }
       // A running session signs every QT128 packet that has room for a signature.
       const bool sign = serving && !stand_in.never_sign && server.session_key(key);

@@ -13,6 +13,7 @@
 #include "hesai/ct.h"
 #include "hesai/hkdf.h"
 #include "hesai/ptc.h"
+#include "hesai/model.h"
 
 namespace hesai::cli {
 namespace {
@@ -37,11 +38,13 @@ constexpr const char* kSensorUsage =
     "                          start a point-cloud signature session (0x2E); the session key (HKDF\n"
     "                          of the shared secret, from --secret-file or HESAI_SECRET, and both\n"
     "                          randoms) goes to FILE, mode 0600, for 'decode --session-key-file'\n"
+    "                          (written to a new file and renamed; a link, folder or FIFO at FILE\n"
+    "                          is refused)\n"
     "  signature status        whether the unit signs its packets (0x2D)\n"
     "  signature stop          end the session (0x2F)\n"
     "\n"
     "  --ptc-port N            PTC port (default 9347)\n"
-    "  --timeout SECONDS       connect and per-request timeout (default 3)\n"
+    "  --timeout SECONDS       the deadline of each request, connecting included (default 3)\n"
     "  --json                  one JSON object (info: serial, manufacture_date, mac, software_version,\n"
     "                          hardware_version, control_firmware, sensor_firmware, model,\n"
     "                          product_model, lines; status: uptime_s, motor_speed_rpm, temperatures_c,\n"
@@ -97,23 +100,88 @@ int payload_error(const PtcClient& client, const char* what, Error e, std::size_
   return kExitInput;
 }
 
-// Writes `bytes` to `path`, created with `mode` (and set to it when it existed). Exit status.
+// Text from the unit (serial, dates, versions) for a terminal: printable ASCII as is, every other
+// byte (control bytes such as ESC, DEL, bytes of 0x80 and above) and the backslash as \xNN, so a
+// forged inventory cannot send escape sequences to the user's terminal.
+std::string terminal_text(const char* s) {
+  std::string out;
+  for (const char* p = s; *p != '\0'; ++p) {
+    const unsigned char c = static_cast<unsigned char>(*p);
+    if (c >= 0x20 && c < 0x7F && c != '\\') {
+      out += static_cast<char>(c);
+    } else {
+      char esc[8];
+      std::snprintf(esc, sizeof esc, "\\x%02x", c);
+      out += esc;
+    }
+  }
+  return out;
+}
+
+// What lstat found at a path that is not a regular file, for the refusal.
+const char* file_kind(mode_t mode) {
+  if (S_ISLNK(mode)) return "a symbolic link";
+  if (S_ISDIR(mode)) return "a folder";
+  if (S_ISFIFO(mode)) return "a FIFO";
+  if (S_ISSOCK(mode)) return "a socket";
+  if (S_ISCHR(mode) || S_ISBLK(mode)) return "a device";
+  return "not a regular file";
+}
+
+// Writes `bytes` to `path` atomically: a new file in the same folder (a random name, created with
+// O_CREAT | O_EXCL | O_NOFOLLOW and mode 0600, then set to `mode`), written, fsync'ed and renamed
+// over `path`. A reader holding the old file open keeps the old bytes; a path that exists and is
+// not a regular file (a symbolic link, by lstat, a folder, a FIFO) is refused and left as it is;
+// on any failure the temporary file is removed. Exit status (kExitInput with `error` on failure).
+// False, with a message, when `path` exists and is not a regular file (lstat: a link is not).
+bool regular_or_absent(const std::string& path, std::string& error) {
+  struct stat st {};
+  if (lstat(path.c_str(), &st) != 0 || S_ISREG(st.st_mode)) return true;
+  error = "refusing to write '" + path + "': it is " + file_kind(st.st_mode) +
+          ", not a regular file (nothing written, it is left as it is)";
+  return false;
+}
+
 int write_file(const std::string& path, const Bytes& bytes, mode_t mode, std::string& error) {
-  const int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, mode);
-  if (fd < 0 || fchmod(fd, mode) != 0) {
-    error = "cannot write '" + path + "': " + std::strerror(errno);
-    if (fd >= 0) ::close(fd);
+  if (!regular_or_absent(path, error)) return kExitInput;
+  const std::size_t slash = path.rfind('/');
+  const std::string folder = slash == std::string::npos ? "" : path.substr(0, slash + 1);
+  const std::string name = slash == std::string::npos ? path : path.substr(slash + 1);
+  std::uint8_t random[8];
+  if (name.empty() || !port::random_bytes(random, sizeof random)) {
+    error = "cannot write '" + path + "': " + (name.empty() ? "not a file name" : "no random name for the temporary file");
+    return kExitInput;
+  }
+  char suffix[24];
+  std::snprintf(suffix, sizeof suffix, ".%02x%02x%02x%02x%02x%02x%02x%02x.tmp", random[0], random[1], random[2], random[3],
+                random[4], random[5], random[6], random[7]);
+  const std::string temp = folder + "." + name + suffix;
+  const int fd = ::open(temp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0600);
+  if (fd < 0) {
+    error = "cannot write '" + path + "': cannot create '" + temp + "': " + std::strerror(errno);
     return kExitInput;
   }
   std::size_t done = 0;
-  while (done < bytes.size()) {
+  int err = fchmod(fd, mode) == 0 ? 0 : errno;
+  while (err == 0 && done < bytes.size()) {
     const ssize_t n = ::write(fd, bytes.data() + done, bytes.size() - done);
-    if (n <= 0) break;
-    done += static_cast<std::size_t>(n);
+    if (n > 0) done += static_cast<std::size_t>(n);
+    else if (n < 0 && errno != EINTR) err = errno;
   }
-  const bool ok = done == bytes.size() && ::close(fd) == 0;
-  if (!ok) error = "cannot write '" + path + "': " + std::strerror(errno);
-  return ok ? kExitOk : kExitInput;
+  if (err == 0 && fsync(fd) != 0) err = errno;
+  if (::close(fd) != 0 && err == 0) err = errno;
+  if (err == 0 && ::rename(temp.c_str(), path.c_str()) != 0) err = errno;
+  if (err != 0) {
+    ::unlink(temp.c_str());
+    error = "cannot write '" + path + "': " + std::strerror(err);
+    return kExitInput;
+  }
+  // The rename itself lasts once the folder's entry is on disk (best effort).
+  if (const int dir = ::open(folder.empty() ? "." : folder.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC); dir >= 0) {
+    (void)fsync(dir);
+    ::close(dir);
+  }
+  return kExitOk;
 }
 
 // Asks the unit its model (Model::unknown when its inventory names none we know). False after
@@ -126,26 +194,57 @@ bool ask_model(PtcClient& client, Model& model) {
   return true;
 }
 
-// Whether a downloaded file parses for `model`: "fits the QT128C2X (128 channels)", or why not.
-std::string fit_text(ptc::Command command, const Bytes& file, Model model) {
-  if (model == Model::unknown) return "model unknown: not checked";
-  const ByteView text{file.data(), file.size()};
-  const std::size_t channels = channel_count(model);
-  ParseResult r{};
-  if (command == ptc::Command::calibration) {
-    AngleCorrection a;
-    r = parse_angle_csv(text, channels, a);
-  } else if (command == ptc::Command::firetimes) {
-    FiretimeCorrection f;
-    r = parse_firetime_csv(text, channels, f);
-  } else {
+// Whether a downloaded file parses for `model`; `text` says so ("fits the QT128C2X (128
+// channels)") or why not. For an unknown model, whether it parses for some model we know (each
+// channel count is tried).
+bool file_fits(ptc::Command command, const Bytes& file, Model model, std::string& text) {
+  const ByteView view{file.data(), file.size()};
+  const auto parse = [&](std::size_t channels) {
+    if (command == ptc::Command::calibration) {
+      AngleCorrection a;
+      return parse_angle_csv(view, channels, a);
+    }
+    if (command == ptc::Command::firetimes) {
+      FiretimeCorrection f;
+      return parse_firetime_csv(view, channels, f);
+    }
     ChannelConfig c;
-    r = parse_channel_config_csv(text, c);
+    return parse_channel_config_csv(view, c);
+  };
+  if (model == Model::unknown && command == ptc::Command::channel_config) {  // no channel count to try
+    const ParseResult r = parse(0);
+    text = r.error == Error::ok ? "model unknown; a valid channel configuration"
+                                : std::string("model unknown; not a channel configuration: ") + error_name(r.error) +
+                                      " at line " + std::to_string(r.line);
+    return r.error == Error::ok;
   }
-  if (r.error == Error::ok)
-    return std::string("fits the ") + model_name(model) + " (" + std::to_string(channels) + " channels)";
-  return std::string("does not fit the ") + model_name(model) + ": " + error_name(r.error) + " at line " +
-         std::to_string(r.line);
+  if (model == Model::unknown) {
+    std::string fitting;
+    std::size_t channels = 0;
+    for (std::size_t i = 1; i < kModelCount; ++i) {
+      const Model m = static_cast<Model>(i);
+      if (parse(channel_count(m)).error != Error::ok) continue;
+      if (fitting.empty()) channels = channel_count(m);
+      if (channel_count(m) == channels) fitting += (fitting.empty() ? "" : ", ") + std::string(model_name(m));
+    }
+    text = fitting.empty() ? "model unknown; it fits no model we know"
+                           : "model unknown; fits the " + fitting + " (" + std::to_string(channels) + " channels)";
+    return !fitting.empty();
+  }
+  const std::size_t channels = channel_count(model);
+  const ParseResult r = parse(channels);
+  if (r.error == Error::ok) {
+    text = std::string("fits the ") + model_name(model) + " (" + std::to_string(channels) + " channels)";
+    return true;
+  }
+  text = std::string("does not fit the ") + model_name(model) + ": " + error_name(r.error) + " at line " + std::to_string(r.line);
+  return false;
+}
+
+std::string fit_text(ptc::Command command, const Bytes& file, Model model) {
+  std::string text;
+  (void)file_fits(command, file, model, text);
+  return text;
 }
 
 int sensor_info(PtcClient& client, bool json) {
@@ -165,8 +264,9 @@ int sensor_info(PtcClient& client, bool json) {
   } else {
     std::printf("serial            %s\nmanufacture date  %s\nMAC               %s\nsoftware          %s\n"
                 "hardware          %s\ncontrol firmware  %s\nsensor firmware   %s\nmodel             %s",
-                inv.serial, inv.manufacture_date, mac_text(inv.mac).c_str(), inv.software_version, inv.hardware_version,
-                inv.control_firmware, inv.sensor_firmware, model.c_str());
+                terminal_text(inv.serial).c_str(), terminal_text(inv.manufacture_date).c_str(), mac_text(inv.mac).c_str(),
+                terminal_text(inv.software_version).c_str(), terminal_text(inv.hardware_version).c_str(),
+                terminal_text(inv.control_firmware).c_str(), terminal_text(inv.sensor_firmware).c_str(), model.c_str());
     if (inv.has_model) std::printf(" (product model %u, %u lines)", inv.product_model, inv.lines);
     std::printf("\n");
   }
@@ -246,21 +346,29 @@ int sensor_status(PtcClient& client, bool json) {
 int sensor_file(PtcClient& client, ptc::Command command, const std::string& out_path) {
   Bytes r;
   if (!ask(client, command, {}, r)) return kExitInput;
-  std::string error;
-  if (const int st = write_file(out_path, r, 0644, error); st != kExitOk) {
-    std::fprintf(stderr, "hesai sensor: %s\n", error.c_str());
-    return st;
-  }
-  // The model, to check that the file parses for it (a failure to learn it is only a note).
+  // The model, to check that the file parses for it (a failure to learn it is only a note: the
+  // file must then parse for some model we know).
   Model model = Model::unknown;
   Bytes inv;
   ptc::Inventory parsed;
   if (client.request(ptc::Command::inventory, {}, inv).ok() &&
       ptc::parse_inventory(ByteView{inv.data(), inv.size()}, parsed) == Error::ok)
     model = parsed.model;
-  const std::string fit = fit_text(command, r, model);
+  // Checked before anything is written: a file that does not parse leaves nothing behind (and an
+  // earlier file at the path as it was).
+  std::string fit;
+  if (!file_fits(command, r, model, fit)) {
+    std::fprintf(stderr, "hesai sensor: %zu bytes from %s:%u not written to %s: %s\n", r.size(), client.host().c_str(),
+                 client.port(), out_path.c_str(), fit.c_str());
+    return kExitInput;
+  }
+  std::string error;
+  if (const int st = write_file(out_path, r, 0644, error); st != kExitOk) {
+    std::fprintf(stderr, "hesai sensor: %s\n", error.c_str());
+    return st;
+  }
   std::fprintf(stderr, "%zu bytes to %s; %s\n", r.size(), out_path.c_str(), fit.c_str());
-  return fit.rfind("does not fit", 0) == 0 ? kExitInput : kExitOk;
+  return kExitOk;
 }
 
 int sensor_signature(PtcClient& client, const std::string& action, const std::string& secret_file,
@@ -271,14 +379,21 @@ int sensor_signature(PtcClient& client, const std::string& action, const std::st
       return kExitUsage;
     }
     std::string secret, error;
+    if (!regular_or_absent(key_out, error)) {  // before a session starts that no file would hold
+      std::fprintf(stderr, "hesai sensor: %s\n", error.c_str());
+      return kExitInput;
+    }
     if (const int st = read_secret(secret_file, secret, error); st != kExitOk) {
       std::fprintf(stderr, "hesai sensor: %s\n", error.c_str());
       return st;
     }
-    std::uint8_t key[32];
+    std::uint8_t key[32] = {};
     const int st = session_start(client, secret, key);
-    secure_wipe(secret.data(), secret.size());
-    if (st != kExitOk) return st;
+    wipe_secret(secret);
+    if (st != kExitOk) {
+      secure_wipe(key, sizeof key);  // whatever a failed derivation left
+      return st;
+    }
     Bytes hex(65);
     for (std::size_t i = 0; i < 32; ++i) std::snprintf(reinterpret_cast<char*>(&hex[2 * i]), 3, "%02x", key[i]);
     hex[64] = '\n';

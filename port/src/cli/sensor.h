@@ -26,6 +26,13 @@ class SensorLink {
       : client_(host, port, timeout_ms) {
     client_.use_tls(std::move(tls));
   }
+  /// The unit at `ipv4` (in_addr.s_addr), resolved from `host` by the caller: the address its
+  /// datagrams are filtered by is the one PTC talks to.
+  SensorLink(const std::string& host, std::uint32_t ipv4, std::uint16_t port, int timeout_ms,
+             std::shared_ptr<port::TlsContext> tls = nullptr)
+      : client_(host, ipv4, port, timeout_ms) {
+    client_.use_tls(std::move(tls));
+  }
 
   /// Asks the unit its model (inventory), then downloads what the pipeline has no file for: the
   /// calibration (required), the firing times and the QT128 channel configuration (where the unit

@@ -137,7 +137,16 @@ PtcTransport::Io TcpTransport::receive_exact(std::uint8_t* data, std::size_t siz
 }
 
 PtcClient::PtcClient(std::string host, std::uint16_t port, int timeout_ms)
-    : host_(std::move(host)), port_(port), timeout_ms_(timeout_ms) {}
+    : host_(std::move(host)), connect_host_(host_), port_(port), timeout_ms_(timeout_ms) {}
+
+PtcClient::PtcClient(std::string host, std::uint32_t ipv4, std::uint16_t port, int timeout_ms)
+    : host_(std::move(host)), port_(port), timeout_ms_(timeout_ms) {
+  char text[INET_ADDRSTRLEN] = {};
+  in_addr a{};
+  a.s_addr = ipv4;
+  inet_ntop(AF_INET, &a, text, sizeof text);  // a dotted quad: connecting resolves nothing
+  connect_host_ = text;
+}
 
 PtcResult PtcClient::fail(PtcOutcome outcome, ptc::Command command, const std::string& what) {
   transport_.reset();
@@ -166,14 +175,14 @@ PtcResult PtcClient::open(ptc::Command command, std::int64_t deadline) {
   std::string error;
   if (!tls_) {
     auto tcp = std::make_unique<TcpTransport>();
-    const PtcTransport::Io io = tcp->connect(host_, port_, deadline, error);
+    const PtcTransport::Io io = tcp->connect(connect_host_, port_, deadline, error);
     if (io == PtcTransport::Io::timeout) return fail(PtcOutcome::timeout, command, error + " within " + seconds());
     if (io != PtcTransport::Io::ok) return fail(PtcOutcome::unreachable, command, error);
     transport_ = std::move(tcp);
     return PtcResult{};
   }
   auto tls = std::make_unique<TlsTransport>();
-  const PtcTransport::Io io = tls->connect(tls_, host_, port_, deadline, error);
+  const PtcTransport::Io io = tls->connect(tls_, connect_host_, port_, deadline, error);
   if (io == PtcTransport::Io::timeout) return fail(PtcOutcome::timeout, command, error + " within " + seconds());
   if (io != PtcTransport::Io::ok && !tls->tcp_connected()) return fail(PtcOutcome::unreachable, command, error);
   if (io != PtcTransport::Io::ok) return fail(PtcOutcome::tls, command, "TLS: " + error);

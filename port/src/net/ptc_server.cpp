@@ -4,6 +4,7 @@
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
+#include <memory>
 #include <fcntl.h>
 #include <netinet/in.h>
 #include <poll.h>
@@ -21,36 +22,16 @@ namespace hesai::port {
 namespace {
 
 constexpr std::uint32_t kMaxRequestBytes = 4096;
-constexpr int kIdleMs = 10000;
+constexpr int kPollMs = 100;  // the longest wait before the stop flag is looked at again
 
-// Reads exactly `size` bytes within kIdleMs per wait; false when the client closed or went silent.
-bool read_exact(int fd, std::uint8_t* data, std::size_t size, const std::atomic<bool>& stop) {
-  std::size_t done = 0;
-  while (done < size) {
-    pollfd p{fd, POLLIN, 0};
-    int waited = 0;
-    int r = 0;
-    while ((r = poll(&p, 1, 100)) == 0 && !stop && (waited += 100) < kIdleMs) {
-    }
-    if (r <= 0) return false;
-    const ssize_t n = ::recv(fd, data + done, size - done, 0);
-    if (n <= 0) return false;
-    done += static_cast<std::size_t>(n);
-  }
-  return true;
-}
+constexpr std::int64_t ms_to_ns(int ms) { return static_cast<std::int64_t>(ms) * 1000000; }
 
-bool write_all(int fd, const std::uint8_t* data, std::size_t size) {
-  std::size_t done = 0;
-  while (done < size) {
-    const ssize_t n = ::send(fd, data + done, size - done, MSG_NOSIGNAL);
-    if (n <= 0) {
-      if (n < 0 && errno == EINTR) continue;
-      return false;
-    }
-    done += static_cast<std::size_t>(n);
-  }
-  return true;
+// Wipes all of a string's storage, not only its size: a string moved from keeps its old bytes in
+// its small-string buffer.
+void wipe_string(std::string& s) {
+  s.resize(s.capacity());
+  secure_wipe(&s[0], s.size());
+  s.clear();
 }
 
 void put_text(std::vector<std::uint8_t>& out, std::size_t at, const char* text, std::size_t field) {
@@ -72,41 +53,132 @@ void put_be32(std::vector<std::uint8_t>& out, std::size_t at, std::uint32_t v) {
 PtcServer::~PtcServer() {
   if (fd_ >= 0) ::close(fd_);
   secure_wipe(key_.data(), key_.size());
-  secure_wipe(content_.secret.data(), content_.secret.size());
+  wipe_string(content_.secret);
 }
 
 bool PtcServer::open(const std::string& address, std::uint16_t port, StandInContent content, std::string& error) {
   sockaddr_in sa{};
   sa.sin_family = AF_INET;
   sa.sin_port = htons(port);
-  if (inet_pton(AF_INET, address.c_str(), &sa.sin_addr) != 1) {
-    error = "not an IPv4 address: " + address;
+  // The secret is wiped on every path: moved into content_ on success, wiped here otherwise.
+  const auto refuse = [&](const std::string& message) {
+    wipe_string(content.secret);
+    if (fd_ >= 0) ::close(fd_);
+    fd_ = -1;
+    error = message;
     return false;
-  }
+  };
+  if (inet_pton(AF_INET, address.c_str(), &sa.sin_addr) != 1) return refuse("not an IPv4 address: " + address);
   fd_ = socket(AF_INET, SOCK_STREAM | SOCK_CLOEXEC, 0);
   const int one = 1;
   if (fd_ >= 0) setsockopt(fd_, SOL_SOCKET, SO_REUSEADDR, &one, sizeof one);
-  if (fd_ < 0 || bind(fd_, reinterpret_cast<const sockaddr*>(&sa), sizeof sa) != 0 || listen(fd_, 4) != 0) {
-    error = "cannot serve PTC on " + address + ":" + std::to_string(port) + ": " + std::strerror(errno);
-    return false;
-  }
+  if (fd_ < 0 || bind(fd_, reinterpret_cast<const sockaddr*>(&sa), sizeof sa) != 0 || listen(fd_, 16) != 0)
+    return refuse("cannot serve PTC on " + address + ":" + std::to_string(port) + ": " + std::strerror(errno));
   socklen_t len = sizeof sa;
   getsockname(fd_, reinterpret_cast<sockaddr*>(&sa), &len);
   port_ = ntohs(sa.sin_port);
   content_ = std::move(content);
+  wipe_string(content.secret);
   opened_ns_ = monotonic_ns();
   return true;
 }
 
+// One client's connection: what it sent that is not answered yet, and the answer being sent.
+struct PtcServer::Connection {
+  int fd = -1;
+  std::int64_t opened_ns = 0;
+  std::int64_t last_ns = 0;          // the last request received or answer sent: the idle clock
+  std::int64_t answer_ready_ns = 0;  // when `out` was filled: the send deadline's start
+  std::vector<std::uint8_t> in;      // at most one request being received, and what followed it
+  std::vector<std::uint8_t> out;     // the answer being sent
+  std::size_t sent = 0;
+  std::uint32_t requests = 0;
+};
+
 void PtcServer::run() {
-  while (!stop_) {
-    pollfd p{fd_, POLLIN, 0};
-    if (poll(&p, 1, 100) <= 0) continue;
-    const int client = accept4(fd_, nullptr, nullptr, SOCK_CLOEXEC);
-    if (client < 0) continue;
-    serve(client);
-    ::close(client);
+  if (tls_) {
+    run_tls();
+    return;
   }
+  std::vector<Connection> connections;
+  std::vector<pollfd> fds;
+  while (!stop_) {
+    fds.clear();
+    fds.push_back(pollfd{fd_, static_cast<short>(connections.size() < kMaxConnections ? POLLIN : 0), 0});
+    for (const Connection& c : connections)
+      fds.push_back(pollfd{c.fd, static_cast<short>(c.sent < c.out.size() ? POLLOUT : POLLIN), 0});
+    if (poll(fds.data(), static_cast<nfds_t>(fds.size()), kPollMs) < 0 && errno != EINTR) break;
+    const std::int64_t now = monotonic_ns();
+    for (std::size_t i = connections.size(); i-- > 0;) {
+      Connection& c = connections[i];
+      const short events = fds[i + 1].revents;
+      bool keep = true;
+      if ((events & (POLLERR | POLLNVAL)) != 0) keep = false;
+      else if ((events & POLLOUT) != 0) keep = on_writable(c);
+      else if ((events & (POLLIN | POLLHUP)) != 0) keep = on_readable(c);
+      if (keep && c.sent < c.out.size()) keep = now - c.answer_ready_ns < ms_to_ns(kSendMs);
+      else if (keep) keep = now - c.last_ns < ms_to_ns(kIdleMs);
+      if (keep) keep = now - c.opened_ns < ms_to_ns(kConnectionMs);
+      if (!keep) {
+        ::close(c.fd);
+        connections.erase(connections.begin() + static_cast<std::ptrdiff_t>(i));
+      }
+    }
+    if ((fds[0].revents & POLLIN) != 0 && connections.size() < kMaxConnections) {
+      const int client = accept4(fd_, nullptr, nullptr, SOCK_CLOEXEC | SOCK_NONBLOCK);
+      if (client >= 0) {
+        Connection c;
+        c.fd = client;
+        c.opened_ns = c.last_ns = monotonic_ns();
+        connections.push_back(std::move(c));
+      }
+    }
+  }
+  for (const Connection& c : connections) ::close(c.fd);
+}
+
+bool PtcServer::on_readable(Connection& c) {
+  // `in` holds less than one whole request here (a whole one is answered as soon as it is in).
+  std::uint8_t buf[4096];
+  const std::size_t room = ptc::kHeaderBytes + kMaxRequestBytes - c.in.size();
+  const ssize_t n = ::recv(c.fd, buf, room < sizeof buf ? room : sizeof buf, 0);
+  if (n == 0) return false;
+  if (n < 0) return errno == EAGAIN || errno == EWOULDBLOCK || errno == EINTR;
+  c.in.insert(c.in.end(), buf, buf + n);
+  c.last_ns = monotonic_ns();
+  return answer_pending(c);
+}
+
+bool PtcServer::on_writable(Connection& c) {
+  const ssize_t n = ::send(c.fd, c.out.data() + c.sent, c.out.size() - c.sent, MSG_NOSIGNAL | MSG_DONTWAIT);
+  if (n < 0) return errno == EAGAIN || errno == EWOULDBLOCK || errno == EINTR;
+  c.sent += static_cast<std::size_t>(n);
+  if (c.sent < c.out.size()) return true;
+  c.out.clear();
+  c.sent = 0;
+  c.last_ns = monotonic_ns();
+  if (c.requests >= kMaxRequests) return false;
+  return answer_pending(c);  // a request that came with the previous one
+}
+
+bool PtcServer::answer_pending(Connection& c) {
+  if (c.in.size() < ptc::kHeaderBytes) return true;
+  ptc::Header header;
+  if (ptc::parse_header(ByteView{c.in.data(), ptc::kHeaderBytes}, header) != Error::ok || header.length > kMaxRequestBytes)
+    return false;
+  const std::size_t whole = ptc::kHeaderBytes + header.length;
+  if (c.in.size() < whole) return true;
+  const std::vector<std::uint8_t> request(c.in.begin() + ptc::kHeaderBytes, c.in.begin() + static_cast<std::ptrdiff_t>(whole));
+  c.in.erase(c.in.begin(), c.in.begin() + static_cast<std::ptrdiff_t>(whole));
+  std::uint8_t code = 0;
+  const std::vector<std::uint8_t> payload = answer(header.command, request, code);
+  c.out.assign(ptc::kHeaderBytes, 0);
+  ptc::encode_header(header.command, code, static_cast<std::uint32_t>(payload.size()), c.out.data());
+  c.out.insert(c.out.end(), payload.begin(), payload.end());
+  c.sent = 0;
+  c.answer_ready_ns = monotonic_ns();
+  ++c.requests;
+  return true;
 }
 
 bool PtcServer::session_key(std::uint8_t key[32]) const {
@@ -116,53 +188,56 @@ bool PtcServer::session_key(std::uint8_t key[32]) const {
   return true;
 }
 
-void PtcServer::serve(int fd) {
-  std::unique_ptr<TlsTransport> tls;
-  if (tls_) {
-    tls = std::make_unique<TlsTransport>();
-    std::string error;
-    if (tls->accept(tls_, fd, monotonic_ns() + static_cast<std::int64_t>(kIdleMs) * 1000000, error) != PtcTransport::Io::ok) {
-      std::fprintf(stderr, "stand-in: TLS handshake: %s\n", error.c_str());
-      tls.reset();
-      // The alert has been sent: let it reach the client before the close (a close with unread
-      // bytes would reset the connection, and the client might lose the alert).
-      shutdown(fd, SHUT_WR);
-      std::uint8_t drain[256];
-      for (int i = 0; i < 20; ++i) {
-        pollfd p{fd, POLLIN, 0};
-        if (poll(&p, 1, 10) > 0 && ::recv(fd, drain, sizeof drain, MSG_DONTWAIT) == 0) break;
-      }
-      return;
-    }
-  }
-  // A message's bytes: plain, or over TLS (waiting for a header, stop() is checked every 100 ms).
-  const auto read = [&](std::uint8_t* data, std::size_t size, bool header) {
-    if (!tls) return read_exact(fd, data, size, stop_);
-    if (header) {
-      int waited = 0;
-      pollfd p{fd, POLLIN, 0};
-      while (!tls->pending() && poll(&p, 1, 100) == 0)
-        if (stop_ || (waited += 100) >= kIdleMs) return false;
-    }
-    return tls->receive_exact(data, size, monotonic_ns() + static_cast<std::int64_t>(kIdleMs) * 1000000) == PtcTransport::Io::ok;
-  };
-  const auto write = [&](const std::uint8_t* data, std::size_t size) {
-    if (!tls) return write_all(fd, data, size);
-    return tls->send_all(data, size, monotonic_ns() + static_cast<std::int64_t>(kIdleMs) * 1000000) == PtcTransport::Io::ok;
-  };
-  std::vector<std::uint8_t> request;
+void PtcServer::run_tls() {
   while (!stop_) {
+    pollfd p{fd_, POLLIN, 0};
+    if (poll(&p, 1, kPollMs) <= 0) continue;
+    const int client = accept4(fd_, nullptr, nullptr, SOCK_CLOEXEC);
+    if (client < 0) continue;
+    serve_tls(client);
+    ::close(client);
+  }
+}
+
+void PtcServer::serve_tls(int fd) {
+  const std::int64_t opened = monotonic_ns();
+  const auto wait_deadline = [] { return monotonic_ns() + ms_to_ns(kSendMs); };
+  auto tls = std::make_unique<TlsTransport>();  // freed before the caller closes fd
+  std::string error;
+  if (tls->accept(tls_, fd, wait_deadline(), error) != PtcTransport::Io::ok) {
+    std::fprintf(stderr, "stand-in: TLS handshake: %s\n", error.c_str());
+    tls.reset();
+    // The alert has been sent: let it reach the client before the close (a close with unread
+    // bytes would reset the connection, and the client might lose the alert).
+    shutdown(fd, SHUT_WR);
+    std::uint8_t drain[256];
+    for (int i = 0; i < 20; ++i) {
+      pollfd p{fd, POLLIN, 0};
+      if (poll(&p, 1, 10) > 0 && ::recv(fd, drain, sizeof drain, MSG_DONTWAIT) == 0) break;
+    }
+    return;
+  }
+  std::vector<std::uint8_t> request;
+  for (std::uint32_t requests = 0; !stop_ && requests < kMaxRequests && monotonic_ns() - opened < ms_to_ns(kConnectionMs);
+       ++requests) {
+    // A header: the stop flag looked at every kPollMs, for at most kIdleMs.
+    int waited = 0;
+    pollfd p{fd, POLLIN, 0};
+    while (!tls->pending() && poll(&p, 1, kPollMs) == 0)
+      if (stop_ || (waited += kPollMs) >= kIdleMs) return;
     std::uint8_t h[ptc::kHeaderBytes];
-    if (!read(h, sizeof h, true)) return;
+    if (tls->receive_exact(h, sizeof h, wait_deadline()) != PtcTransport::Io::ok) return;
     ptc::Header header;
     if (ptc::parse_header(ByteView{h, sizeof h}, header) != Error::ok || header.length > kMaxRequestBytes) return;
     request.resize(header.length);
-    if (!read(request.data(), request.size(), false)) return;
+    if (tls->receive_exact(request.data(), request.size(), wait_deadline()) != PtcTransport::Io::ok) return;
     std::uint8_t code = 0;
     const std::vector<std::uint8_t> payload = answer(header.command, request, code);
     std::uint8_t out[ptc::kHeaderBytes];
     ptc::encode_header(header.command, code, static_cast<std::uint32_t>(payload.size()), out);
-    if (!write(out, sizeof out) || !write(payload.data(), payload.size())) return;
+    if (tls->send_all(out, sizeof out, wait_deadline()) != PtcTransport::Io::ok ||
+        tls->send_all(payload.data(), payload.size(), wait_deadline()) != PtcTransport::Io::ok)
+      return;
   }
 }
 

@@ -91,6 +91,10 @@ class PtcClient {
   static constexpr int kDefaultTimeoutMs = 3000;
 
   PtcClient(std::string host, std::uint16_t port = ptc::kDefaultPort, int timeout_ms = kDefaultTimeoutMs);
+  /// A client of the address `ipv4` (in_addr.s_addr, network byte order), already resolved from
+  /// `host`, which names it in messages only: a caller that also filters datagrams by the sensor's
+  /// address resolves the name once, and both use the same address.
+  PtcClient(std::string host, std::uint32_t ipv4, std::uint16_t port, int timeout_ms);
 
   /// Speaks PTCS from the next connection on (null: plain TCP again).
   void use_tls(std::shared_ptr<TlsContext> tls) {
@@ -120,7 +124,8 @@ class PtcClient {
   PtcResult exchange(ptc::Command command, ByteView payload, std::vector<std::uint8_t>& response, std::int64_t deadline);
   std::string seconds() const;
 
-  std::string host_;
+  std::string host_;          // as given, for messages
+  std::string connect_host_;  // what is connected to: host_, or the dotted quad it was resolved to
   std::uint16_t port_;
   int timeout_ms_;
   std::shared_ptr<TlsContext> tls_;          // null: plain TCP

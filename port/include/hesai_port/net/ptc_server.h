@@ -11,13 +11,22 @@
 // a secret, 'invalid input parameter' for another payload size; 0x2D the session state; 0x2F ends
 // the session. Any other command: 'unsupported command'.
 //
-// One connection is served at a time, each until its client closes it, sends a header without the
-// magic or a payload over 4 KiB, or stays silent for 10 s.
+// Limits, so that no client can hold the service (or hesai replay) for long:
+// - up to kMaxConnections (8) connections are served at once, by one thread that polls them all
+//   (a further client waits in the listen backlog until one closes); each gets its answers in
+//   order, one request at a time;
+// - a connection is closed when its client closes it, sends a header without the magic or a
+//   payload over 4 KiB, stays silent for kIdleMs (10 s) between requests, has not taken an answer
+//   within kSendMs (2 s) of its being ready (a client that sends and never reads), has been open
+//   for kConnectionMs (60 s), or after kMaxRequests (1000) answers;
+// - every wait is a poll of at most 100 ms that looks at the stop flag: run() returns within about
+//   100 ms of stop(), whatever the clients do.
 //
-// With use_tls(), PTCS: every connection starts with a TLS 1.3 handshake (within 10 s) with the
-// context's certificate, and with its client CA a client certificate is required and verified
-// (mTLS). A failed handshake is said on stderr ("stand-in: TLS handshake: ...") and the connection
-// closed.
+// With use_tls(), PTCS: connections are served one at a time, each starting with a TLS 1.3
+// handshake with the context's certificate (and, with its client CA, a client certificate required
+// and verified: mTLS). The same limits hold, but every wait on a client (the handshake, a request's
+// payload, an answer not taken) lasts at most kSendMs (2 s): run() returns within 2 s of stop().
+// A failed handshake is said on stderr ("stand-in: TLS handshake: ...") and the connection closed.
 #pragma once
 
 #include <array>
@@ -64,7 +73,22 @@ class PtcServer {
   void set_motor_speed(std::uint16_t rpm) { motor_rpm_ = rpm; }
 
  private:
-  void serve(int fd);
+  static constexpr std::size_t kMaxConnections = 8;
+  static constexpr int kIdleMs = 10000;
+  static constexpr int kSendMs = 2000;
+  static constexpr int kConnectionMs = 60000;
+  static constexpr std::uint32_t kMaxRequests = 1000;
+
+  struct Connection;
+  /// Reads what `c` sent and answers one whole request; false when the connection must close.
+  bool on_readable(Connection& c);
+  /// Sends what is pending to `c`; false when the connection must close.
+  bool on_writable(Connection& c);
+  /// Answers the first whole request in `c`'s input, if any; false on a framing error.
+  bool answer_pending(Connection& c);
+  /// PTCS: the connections one at a time (serve_tls), within the limits above.
+  void run_tls();
+  void serve_tls(int fd);
   std::vector<std::uint8_t> answer(std::uint8_t command, const std::vector<std::uint8_t>& request, std::uint8_t& code);
 
   int fd_ = -1;
