@@ -33,7 +33,7 @@ HEADERS = {  # public header (under core/include/hesai/) -> concern
     'decoder.h': 'sensors', 'point.h': 'kernels', 'gps.h': 'sensors', 'detail/pandar40_packet.h': 'sensors',
     'detail/pandar64_packet.h': 'sensors', 'detail/qt128_packet.h': 'sensors', 'detail/xt_packet.h': 'sensors',
     'detail/tables/': 'sensors', 'detail/qt64_packet.h': 'sensors',
-    'frame.h': 'streams', 'sequence.h': 'streams', 'stats.h': 'streams', 'safety.h': 'streams',
+    'frame.h': 'streams', 'sequence.h': 'streams', 'stats.h': 'streams', 'safety.h': 'streams', 'health.h': 'streams',
     'rotation.h': 'streams', 'held_packets.h': 'streams',
     'hesai.h': 'capi', 'packet_info_list.h': 'capi',
 }

@@ -1386,4 +1386,48 @@ TEST(Cli, LoadTestReportsLossHonestly) {
   std::fprintf(stderr, "load test: %lld sent, %lld received, %lld lost\n", sent_packets + 1, j["packets"], j["lost"]);
 }
 
+// Stream health (issue #32): a Pandar64 stream without its UDP sequence (the unit's default) with
+// 100 packets dropped, then dated in the year 2000, then with 9 frozen timestamps: the losses come
+// from the block azimuth and the packet time (lost_by), the clock faults are counted and named.
+TEST(Cli, StatsStreamHealthWithoutSequence) {
+  const std::string dir = temp_dir();
+  auto p = pcap_payloads("pandar64_dual.pcap");
+  const auto seq = json_numbers(run("stats " + data_path("pandar64_dual.pcap") + " --json").out);
+  EXPECT_NE(run("stats " + data_path("pandar64_dual.pcap") + " --json").out.find("\"lost_by\":\"udp_sequence\""),
+            std::string::npos);
+  EXPECT_EQ(seq.at("time_stalls"), 0);
+  EXPECT_EQ(seq.at("time_virtual"), 0);
+  EXPECT_EQ(seq.at("time_jumps"), 0);
+  for (auto& q : p) q.resize(1194);  // Pandar64 manual, Chapter 3: the UDP sequence off
+  p.erase(p.begin() + 700, p.begin() + 800);
+  write_pcap(dir + "/dropped.pcap", p);
+  CmdResult r = run("stats " + dir + "/dropped.pcap --json");
+  ASSERT_EQ(r.status, 0);
+  auto j = json_numbers(r.out);
+  EXPECT_EQ(j["lost"], 100);
+  EXPECT_NE(r.out.find("\"lost_by\":\"azimuth_time\""), std::string::npos) << r.out;
+  EXPECT_EQ(j["time_stalls"], 0);
+  EXPECT_EQ(j["time_virtual"], 0);
+  r = run("stats " + dir + "/dropped.pcap");
+  EXPECT_EQ(text_number(r.out, "lost"), 100) << r.out;
+  EXPECT_NE(r.out.find("  lost_by               azimuth_time"), std::string::npos) << r.out;
+  EXPECT_EQ(r.out.find("free-running"), std::string::npos) << r.out;
+
+  const std::size_t tail = 1172;  // Pandar64 manual 3.1.2.3: timestamp @10, date-time @16 (year first)
+  for (auto& q : p) q[tail + 16] = 0;  // 2000 + 0
+  for (std::size_t i = 301; i <= 309; ++i) {
+    for (std::size_t b = 10; b < 14; ++b) p[i][tail + b] = p[300][tail + b];
+    for (std::size_t b = 16; b < 22; ++b) p[i][tail + b] = p[300][tail + b];
+  }
+  write_pcap(dir + "/virtual.pcap", p);
+  j = json_numbers(run("stats " + dir + "/virtual.pcap --json").out);
+  EXPECT_EQ(j["time_virtual"], static_cast<long long>(p.size()));
+  EXPECT_EQ(j["time_stalls"], 9);
+  EXPECT_EQ(j["lost"], 100);
+  r = run("stats " + dir + "/virtual.pcap");
+  EXPECT_EQ(text_number(r.out, "time_virtual"), static_cast<long long>(p.size())) << r.out;
+  EXPECT_EQ(text_number(r.out, "time_stalls"), 9) << r.out;
+  EXPECT_NE(r.out.find("the unit's free-running clock, not PTP or GPS time"), std::string::npos) << r.out;
+}
+
 }  // namespace

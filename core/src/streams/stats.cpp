@@ -32,6 +32,16 @@ void count_error(Stats& stats, Error error) noexcept {
   }
 }
 
+const char* lost_by_name(LostBy by) noexcept {
+  switch (by) {
+    case LostBy::none: return "none";
+    case LostBy::udp_sequence: return "udp_sequence";
+    case LostBy::azimuth_time: return "azimuth_time";
+    case LostBy::mixed: return "mixed";
+  }
+  return "none";
+}
+
 void count_status(Stats& stats, const PacketInfo& info) noexcept {
   if (info.high_temperature != 0) ++stats.high_temperature;
 }

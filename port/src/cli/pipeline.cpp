@@ -277,8 +277,26 @@ bool Pipeline::process(Source& src, std::uint64_t index, const PacketInfo& info)
   // The sensor's own monitor finds its stalls; the run's counters sum every sensor's sections.
   count_safety(stats_.safety, info.safety, src.safety.observe(info.safety, info.time_ns));
 
+  // The health monitor watches every packet (clocks); it counts the losses of packets that carry
+  // no UDP sequence. Only this source's counters move: add their change (below).
+  src.health.set_rotation(src.decoder->rotation());
+  const HealthCounts health_before = src.health.counts();
+  const std::uint32_t health_lost_before = src.health.observe(info);
+  const HealthCounts& health = src.health.counts();
+  saturating_add(stats_.time_stalls, health.time_stalls - health_before.time_stalls);
+  saturating_add(stats_.time_virtual, health.time_virtual - health_before.time_virtual);
+  saturating_add(stats_.time_jumps, health.time_jumps - health_before.time_jumps);
+
   std::uint32_t lost_before = 0;
-  if (info.has_sequence) {
+  if (!info.has_sequence) {
+    // `lost` can fall (a late packet): unsigned arithmetic (modulo 2^64) adds a negative change as well.
+    lost_before = health_lost_before;
+    stats_.lost += health.lost - health_before.lost;
+    stats_.duplicates += health.duplicates - health_before.duplicates;
+    stats_.reordered += health.reordered - health_before.reordered;
+    stats_.lost_by = stats_.lost_by | LostBy::azimuth_time;
+  } else {
+    stats_.lost_by = stats_.lost_by | LostBy::udp_sequence;
     // Only this source's counters move: add their change. `lost` can fall (a late packet);
     // unsigned arithmetic (modulo 2^64) adds a negative change as well.
     const SequenceCounts before = src.sequence.counts();

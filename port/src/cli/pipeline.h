@@ -12,6 +12,7 @@
 
 #include "hesai/decoder.h"
 #include "hesai/frame.h"
+#include "hesai/health.h"
 #include "hesai/held_packets.h"
 #include "hesai/rotation.h"
 #include "hesai/safety.h"
@@ -61,8 +62,10 @@ class Sink {
   virtual void frame_closed(const FrameInfo& frame) = 0;
 };
 
-/// Decodes datagrams. One decoder, sequence tracker, frame assembler and functional-safety
-/// monitor per source (the sensor's address and port), created on its first packet.
+/// Decodes datagrams. One decoder, sequence tracker, stream-health monitor, frame assembler and
+/// functional-safety monitor per source (the sensor's address and port), created on its first
+/// packet. A packet with a UDP sequence counts its losses by the sequence; one without, by the
+/// health monitor's block azimuth and packet time (Stats::lost_by says which).
 ///
 /// With --rotation auto, a source's point-cloud packets are held (up to kHeldPackets) until its
 /// RotationDetector knows the direction, then decoded in it, in their order and with the indices
@@ -119,6 +122,7 @@ class Pipeline {
   struct Source {
     std::unique_ptr<Decoder> decoder;
     SequenceTracker sequence;
+    HealthMonitor health;
     FrameAssembler frames;
     SafetyMonitor safety;
     RotationDetector rotation;

@@ -40,6 +40,10 @@ std::string stats_json(const Stats& s) {
   add(out, "duplicates", s.duplicates);
   add(out, "reordered", s.reordered);
   add(out, "sequence_resyncs", s.sequence_resyncs);
+  out += "\"lost_by\":\"" + std::string(lost_by_name(s.lost_by)) + "\",";
+  add(out, "time_stalls", s.time_stalls);
+  add(out, "time_virtual", s.time_virtual);
+  add(out, "time_jumps", s.time_jumps);
   add(out, "gps_packets", s.gps_packets);
   out += "\"first_time_ns\":" + std::to_string(s.first_time_ns) + ",";
   out += "\"last_time_ns\":" + std::to_string(s.last_time_ns) + ",";
@@ -100,9 +104,21 @@ std::string stats_text(const Pipeline& p) {
   line("malformed", std::to_string(s.malformed));
   line("unsupported", std::to_string(s.unsupported));
   line("lost", std::to_string(s.lost));
+  if (s.lost_by == LostBy::azimuth_time)
+    line("lost_by", "azimuth_time (the packets carry no UDP sequence: counted from the block azimuth and the packet time)");
+  else if (s.lost_by == LostBy::mixed)
+    line("lost_by", "mixed (udp_sequence for the sensors that send one, azimuth_time for the others)");
+  else if (s.lost_by == LostBy::udp_sequence)
+    line("lost_by", "udp_sequence");
   line("duplicates", std::to_string(s.duplicates));
   line("reordered", std::to_string(s.reordered));
   if (s.sequence_resyncs) line("sequence_resyncs", std::to_string(s.sequence_resyncs));
+  line("time_stalls", std::to_string(s.time_stalls));
+  line("time_virtual", std::to_string(s.time_virtual));
+  if (s.time_jumps) line("time_jumps", std::to_string(s.time_jumps));
+  if (s.time_virtual)
+    out += "  warning: " + std::to_string(s.time_virtual) +
+           " packets are dated in the year 2000: their times are the unit's free-running clock, not PTP or GPS time\n";
   line("high_temperature", std::to_string(s.high_temperature));
   line("gps_unlocked", std::to_string(s.gps_unlocked));
   if (s.gps_position_invalid) line("gps_position_invalid", std::to_string(s.gps_position_invalid));

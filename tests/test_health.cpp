@@ -1,0 +1,344 @@
+// HealthMonitor: loss without a UDP sequence, reordering, frozen, backward, stepped and virtual
+// clocks, on streams built from the bundled captures. Every expected count is what the test did to
+// the stream (the packets it dropped, moved, froze or redated), or what the captures' own sequence
+// numbers say, read by the test; never a value printed by the monitor.
+#include <gtest/gtest.h>
+
+#include <cstdint>
+#include <vector>
+
+#include "hesai/decoder.h"
+#include "hesai/health.h"
+#include "hesai/sequence.h"
+#include "packet_builder.h"
+#include "test_support.h"
+
+namespace {
+
+using hesai::Error;
+using hesai::HealthCounts;
+using hesai::HealthMonitor;
+using hesai::Model;
+using hesai::Rotation;
+using hesai_test::pcap_payloads;
+using hesai_test::view;
+using Packets = std::vector<std::vector<std::uint8_t>>;
+
+// Pandar64 tail (manual 3.1.2.3): at 1172, motor speed u16 @8, timestamp u32 @10, date-time 6 @16
+// (year, month, day, hour, minute, second); the UDP sequence in the 4 bytes after the tail.
+constexpr std::size_t kP64Tail = 1172;
+// Pandar40P tail (Pandar40 manual 3.1.2): timestamp u32 @1250, date-time @1256.
+constexpr std::size_t kP40Timestamp = 1250;
+constexpr std::size_t kP40Date = 1256;
+
+// The packets of the bundled Pandar64 capture cut to 1194 bytes: the same packets with the UDP
+// sequence off, the unit's default (Pandar64 manual, Chapter 3).
+Packets pandar64_without_sequence() {
+  Packets out = pcap_payloads("pandar64_dual.pcap");
+  for (auto& p : out) p.resize(1194);
+  return out;
+}
+
+// Validates every packet (each must pass) and feeds the monitor in order.
+HealthCounts run(const Packets& packets, Model model, Rotation rotation = Rotation::clockwise) {
+  hesai::Decoder d(model);
+  HealthMonitor m;
+  m.set_rotation(rotation);
+  for (const auto& p : packets) {
+    hesai::PacketInfo info;
+    EXPECT_EQ(d.validate(view(p), info), Error::ok);
+    m.observe(info);
+  }
+  return m.counts();
+}
+
+// Removes packets [first, first + n).
+void drop(Packets& p, std::size_t first, std::size_t n) {
+  p.erase(p.begin() + static_cast<long>(first), p.begin() + static_cast<long>(first + n));
+}
+
+// The first index whose first block azimuth is below its predecessor's by more than half a turn
+// (a wrap through 0 clockwise), read from the bytes.
+std::size_t first_wrap(const Packets& p, Model model, std::size_t from = 1) {
+  for (std::size_t i = from; i < p.size(); ++i)
+    if (hesai_test::block_azimuths(p[i - 1], model)[0] > hesai_test::block_azimuths(p[i], model)[0] + 18000) return i;
+  ADD_FAILURE() << "no wrap";
+  return 0;
+}
+
+void expect_clean(const HealthCounts& c) {
+  EXPECT_EQ(c.reordered, 0u);
+  EXPECT_EQ(c.duplicates, 0u);
+  EXPECT_EQ(c.time_stalls, 0u);
+  EXPECT_EQ(c.time_virtual, 0u);
+  EXPECT_EQ(c.time_jumps, 0u);
+}
+
+static_assert([] {
+  std::uint64_t c = UINT64_MAX - 1;
+  hesai::saturating_add(c, 5);
+  return c == UINT64_MAX;
+}(), "a counter stops at its largest value");
+
+TEST(Health, BundledCapturesAsRecorded) {
+  // Every bundled capture unchanged: the monitor's loss is what the UDP sequence numbers say (the
+  // XT32M2X capture's three gaps; none elsewhere; the Pandar40P has no sequence and no gap by its
+  // 1439 packets over its rotations), and no clock fault.
+  const struct {
+    const char* file;
+    Model model;
+  } captures[] = {
+      {"pandar40p_dual.pcap", Model::pandar40p}, {"pandar64_dual.pcap", Model::pandar64},
+      {"qt128c2x_dual.pcap", Model::qt128c2x},   {"pandar_qt64.pcap", Model::pandar_qt64},
+      {"pandar_xt16.pcap", Model::pandar_xt16},  {"pandar_xt32.pcap", Model::pandar_xt32},
+      {"pandar_xt32m2x.pcap", Model::pandar_xt32m2x},
+  };
+  for (const auto& c : captures) {
+    SCOPED_TRACE(c.file);
+    const Packets packets = pcap_payloads(c.file);
+    std::uint64_t gaps = 0;  // numbers skipped, from the sequence field as the test reads it
+    hesai::Decoder d(c.model);
+    std::uint32_t previous = 0;
+    for (std::size_t i = 0; i < packets.size(); ++i) {
+      hesai::PacketInfo info;
+      ASSERT_EQ(d.validate(view(packets[i]), info), Error::ok);
+      if (info.has_sequence && i > 0) gaps += info.sequence - previous - 1;
+      previous = info.sequence;
+    }
+    const HealthCounts h = run(packets, c.model);
+    EXPECT_EQ(h.packets, packets.size());
+    EXPECT_EQ(h.lost, gaps);
+    expect_clean(h);
+  }
+}
+
+TEST(Health, Pandar64WithoutSequenceRunAcrossTheWrap) {
+  // 100 packets dropped across the wrap through 0 (50 before it, 50 after), 20 single packets
+  // dropped one in every 7 elsewhere, and 3 in a row at the start of the second wrap.
+  Packets p = pandar64_without_sequence();
+  const std::size_t wrap2 = first_wrap(p, Model::pandar64, first_wrap(p, Model::pandar64) + 1);
+  drop(p, wrap2, 3);
+  for (std::size_t i = 0; i < 20; ++i) drop(p, 900 + 6 * i, 1);  // after each drop the next index is 7 on
+  const std::size_t wrap = first_wrap(p, Model::pandar64);
+  ASSERT_GT(wrap, 50u);
+  drop(p, wrap - 50, 100);
+  const HealthCounts h = run(p, Model::pandar64);
+  EXPECT_EQ(h.lost, 100u + 20u + 3u);
+  expect_clean(h);
+}
+
+TEST(Health, CounterClockwisePandar64) {
+  // The same drops on the capture mirrored (a -> 36000 - a) and watched counter-clockwise.
+  Packets p = pandar64_without_sequence();
+  for (auto& q : p) q = hesai_test::counterclockwise_copy(q, Model::pandar64);
+  std::size_t wrap = 0;  // counter-clockwise, the azimuth wraps from below 90 to above 270 degrees
+  for (std::size_t i = 1; i < p.size() && wrap == 0; ++i)
+    if (hesai_test::block_azimuths(p[i], Model::pandar64)[0] > hesai_test::block_azimuths(p[i - 1], Model::pandar64)[0] + 18000)
+      wrap = i;
+  ASSERT_GT(wrap, 50u);
+  drop(p, wrap - 50, 100);
+  drop(p, 1500, 7);
+  const HealthCounts h = run(p, Model::pandar64, Rotation::counterclockwise);
+  EXPECT_EQ(h.lost, 107u);
+  expect_clean(h);
+}
+
+TEST(Health, AgreesWithTheUdpSequenceOnEveryCaptureThatHasOne) {
+  // The two methods on the same streams: packets dropped by the test (every 40th from 100, and 37
+  // in a row at 1000), plus the capture's own gaps. Both must give the count the test reads off the
+  // sequence numbers of the packets it kept.
+  const struct {
+    const char* file;
+    Model model;
+  } captures[] = {
+      {"pandar64_dual.pcap", Model::pandar64},   {"qt128c2x_dual.pcap", Model::qt128c2x},
+      {"pandar_qt64.pcap", Model::pandar_qt64},  {"pandar_xt16.pcap", Model::pandar_xt16},
+      {"pandar_xt32.pcap", Model::pandar_xt32},  {"pandar_xt32m2x.pcap", Model::pandar_xt32m2x},
+  };
+  for (const auto& c : captures) {
+    SCOPED_TRACE(c.file);
+    Packets p = pcap_payloads(c.file);
+    drop(p, 1000, 37);
+    for (std::size_t i = 100; i < 900; i += 39) drop(p, i, 1);
+    hesai::Decoder d(c.model);
+    HealthMonitor monitor;
+    hesai::SequenceTracker tracker;
+    std::uint64_t expected = 0;
+    std::uint32_t previous = 0;
+    for (std::size_t i = 0; i < p.size(); ++i) {
+      hesai::PacketInfo info;
+      ASSERT_EQ(d.validate(view(p[i]), info), Error::ok);
+      ASSERT_TRUE(info.has_sequence);
+      if (i > 0) expected += info.sequence - previous - 1;
+      previous = info.sequence;
+      const std::uint32_t by_sequence = tracker.observe(info.sequence);
+      EXPECT_EQ(monitor.observe(info), by_sequence) << "packet " << i;  // the same gap before each packet
+    }
+    EXPECT_GE(expected, 37u + 20u);
+    EXPECT_EQ(tracker.counts().lost, expected);
+    EXPECT_EQ(monitor.counts().lost, expected);
+    expect_clean(monitor.counts());
+  }
+}
+
+TEST(Health, Pandar40PGapLongerThanARotationCountsByTime) {
+  // 360 packets make a rotation at 600 rpm (1 800 firings, 5 a dual-return packet). A gap of 500
+  // (1.4 rotations) and one of 380 (the block azimuth alone would see 20 of the 380).
+  Packets p = pcap_payloads("pandar40p_dual.pcap");
+  drop(p, 900, 380);
+  drop(p, 200, 500);
+  const HealthCounts h = run(p, Model::pandar40p);
+  EXPECT_EQ(h.lost, 880u);
+  expect_clean(h);
+}
+
+TEST(Health, Pandar40PGapOfTwoAndAHalfRotations) {
+  Packets p = pcap_payloads("pandar40p_dual.pcap");
+  drop(p, 100, 900);
+  const HealthCounts h = run(p, Model::pandar40p);
+  EXPECT_EQ(h.lost, 900u);
+  expect_clean(h);
+}
+
+TEST(Health, LatePacketsAreReorderedNotLost) {
+  // Packets 500..509 taken out; 503 and 505 put back after 515 (late), 700 swapped with 701, 1200
+  // moved 5 places later, and 1500 sent twice: lost 10 - 2 = 8, reordered 4 (503, 505, 700, 1200),
+  // one duplicate, no time stall (each late packet is earlier in time and behind in azimuth).
+  const Packets original = pandar64_without_sequence();
+  Packets p;
+  for (std::size_t i = 0; i < original.size(); ++i) {
+    if (i >= 500 && i < 510) continue;
+    if (i == 700 || i == 1200) continue;
+    p.push_back(original[i]);
+    if (i == 515) {
+      p.push_back(original[503]);
+      p.push_back(original[505]);
+    }
+    if (i == 701) p.push_back(original[700]);
+    if (i == 1205) p.push_back(original[1200]);
+    if (i == 1500) p.push_back(original[1500]);
+  }
+  const HealthCounts h = run(p, Model::pandar64);
+  EXPECT_EQ(h.lost, 8u);
+  EXPECT_EQ(h.reordered, 4u);
+  EXPECT_EQ(h.duplicates, 1u);
+  EXPECT_EQ(h.time_stalls, 0u);
+  EXPECT_EQ(h.time_jumps, 0u);
+}
+
+// Copies packet `from`'s timestamp and date-time into packet `to` (Pandar64).
+void copy_time(Packets& p, std::size_t from, std::size_t to) {
+  for (std::size_t b = 10; b < 14; ++b) p[to][kP64Tail + b] = p[from][kP64Tail + b];
+  for (std::size_t b = 16; b < 22; ++b) p[to][kP64Tail + b] = p[from][kP64Tail + b];
+}
+
+TEST(Health, FrozenAndBackwardTimestampsAreStalls) {
+  // Packets 301..309 carry packet 300's time (frozen: 9 stalls); packet 800 carries packet 770's
+  // (5 ms back: 1 stall); packets 1200..1204 carry packet 1100's (5 stalls). Time resumes after each,
+  // so nothing is lost and no clock stepped; 10 packets dropped right after the first freeze still
+  // count, by the azimuth and by the time of packet 300.
+  Packets p = pandar64_without_sequence();
+  for (std::size_t i = 301; i <= 309; ++i) copy_time(p, 300, i);
+  copy_time(p, 770, 800);
+  for (std::size_t i = 1200; i <= 1204; ++i) copy_time(p, 1100, i);
+  drop(p, 310, 10);
+  const HealthCounts h = run(p, Model::pandar64);
+  EXPECT_EQ(h.time_stalls, 9u + 1u + 5u);
+  EXPECT_EQ(h.lost, 10u);
+  EXPECT_EQ(h.time_jumps, 0u);
+  EXPECT_EQ(h.reordered, 0u);
+  EXPECT_EQ(h.duplicates, 0u);
+}
+
+TEST(Health, YearTwoThousandIsTheVirtualClock) {
+  // Pandar64: year byte 0 (2000 + byte, the manual's reading); QT128C2X: tm_year byte 100 (1900 +
+  // byte), CRCs resealed. Every packet counts; nothing else changes.
+  Packets p = pandar64_without_sequence();
+  for (auto& q : p) q[kP64Tail + 16] = 0;
+  HealthCounts h = run(p, Model::pandar64);
+  EXPECT_EQ(h.time_virtual, p.size());
+  EXPECT_EQ(h.lost, 0u);
+  EXPECT_EQ(h.time_stalls, 0u);
+
+  Packets q = pcap_payloads("qt128c2x_dual.pcap");
+  for (auto& x : q) {
+    x[hesai_test::qt128_offsets(x).tail + 15] = 100;
+    hesai_test::qt128_seal(x);
+  }
+  h = run(q, Model::qt128c2x);
+  EXPECT_EQ(h.time_virtual, q.size());
+  EXPECT_EQ(h.lost, 0u);
+  EXPECT_EQ(h.time_stalls, 0u);
+
+  // One year later (byte 1, 2001) is no longer the virtual date.
+  for (auto& x : p) x[kP64Tail + 16] = 1;
+  EXPECT_EQ(run(p, Model::pandar64).time_virtual, 0u);
+}
+
+TEST(Health, ClockStepIsAJumpNotALoss) {
+  // From packet 1000 on, every packet an hour later (the hour byte + 1): one time jump, and the 6
+  // packets dropped across the step still count, by the azimuth.
+  Packets p = pandar64_without_sequence();
+  for (std::size_t i = 1000; i < p.size(); ++i) ++p[i][kP64Tail + 19];
+  drop(p, 997, 6);
+  const HealthCounts h = run(p, Model::pandar64);
+  EXPECT_EQ(h.time_jumps, 1u);
+  EXPECT_EQ(h.lost, 6u);
+  EXPECT_EQ(h.time_stalls, 0u);
+}
+
+TEST(Health, ZeroSpinRateIsNotDividedByLossesByTime) {
+  // Packets 100..120 report 0 rpm; 105..107 dropped among them: counted by time alone (3).
+  // Packet 500 reports 1200 rpm, a jump from ~600, after 497..499 dropped: by time (3).
+  Packets p = pandar64_without_sequence();
+  for (std::size_t i = 100; i <= 120; ++i) hesai::store_le16(&p[i][kP64Tail + 8], 0);
+  hesai::store_le16(&p[500][kP64Tail + 8], 1200);
+  drop(p, 497, 3);
+  drop(p, 105, 3);
+  const HealthCounts h = run(p, Model::pandar64);
+  EXPECT_EQ(h.lost, 6u);
+  expect_clean(h);
+}
+
+TEST(Health, ZeroSpinRateWithAFrozenClockCountsNoLoss) {
+  // 0 rpm and a frozen clock: neither the azimuth nor the time can say anything; the packets are
+  // stalls, one ahead each, nothing lost. Packets 200..209 report 0 rpm and packet 199's time.
+  Packets p = pandar64_without_sequence();
+  for (std::size_t i = 200; i <= 209; ++i) {
+    hesai::store_le16(&p[i][kP64Tail + 8], 0);
+    copy_time(p, 199, i);
+  }
+  const HealthCounts h = run(p, Model::pandar64);
+  EXPECT_EQ(h.time_stalls, 10u);
+  EXPECT_EQ(h.lost, 0u);
+}
+
+TEST(Health, Pandar40PFrozenTime) {
+  // Pandar40P packets 400..419 carry packet 399's timestamp and date: 20 stalls, nothing lost.
+  Packets p = pcap_payloads("pandar40p_dual.pcap");
+  for (std::size_t i = 400; i < 420; ++i) {
+    for (std::size_t b = 0; b < 4; ++b) p[i][kP40Timestamp + b] = p[399][kP40Timestamp + b];
+    for (std::size_t b = 0; b < 6; ++b) p[i][kP40Date + b] = p[399][kP40Date + b];
+  }
+  const HealthCounts h = run(p, Model::pandar40p);
+  EXPECT_EQ(h.time_stalls, 20u);
+  EXPECT_EQ(h.lost, 0u);
+  EXPECT_EQ(h.time_jumps, 0u);
+}
+
+TEST(Health, ResetForgetsEverything) {
+  const Packets p = pandar64_without_sequence();
+  hesai::Decoder d(Model::pandar64);
+  HealthMonitor m;
+  hesai::PacketInfo info;
+  ASSERT_EQ(d.validate(view(p[0]), info), Error::ok);
+  m.observe(info);
+  ASSERT_EQ(d.validate(view(p[10]), info), Error::ok);
+  EXPECT_EQ(m.observe(info), 9u);
+  m.reset();
+  EXPECT_EQ(m.counts().packets, 0u);
+  EXPECT_EQ(m.observe(info), 0u);  // a first packet again
+  EXPECT_EQ(m.counts().lost, 0u);
+}
+
+}  // namespace
