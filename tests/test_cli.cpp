@@ -1430,4 +1430,50 @@ TEST(Cli, StatsStreamHealthWithoutSequence) {
   EXPECT_NE(r.out.find("the unit's free-running clock, not PTP or GPS time"), std::string::npos) << r.out;
 }
 
+// Blockage markers by channel, repeated returns and IP fragments in stats (issue #32): QT128C2X
+// packets with distance 1 in channel 70 of both blocks of packets 10..14 and channel 100 of block 1
+// of packets 20..22 (CRCs resealed); the frame of packet 30 rewritten as an IPv4 fragment (flags
+// MF), which the capture reader skips.
+TEST(Cli, StatsBlockageDuplicatesFragments) {
+  const std::string dir = temp_dir();
+  auto p = pcap_payloads("qt128c2x_dual.pcap");
+  const auto unit = [](std::size_t block, std::size_t channel) { return 12 + 514 * block + 2 + 4 * (channel - 1); };
+  for (std::size_t i = 10; i < 15; ++i) {
+    store_le16(&p[i][unit(0, 70)], 1);
+    store_le16(&p[i][unit(1, 70)], 1);
+  }
+  for (std::size_t i = 20; i < 23; ++i) store_le16(&p[i][unit(0, 100)], 1);
+  for (std::size_t i = 10; i < 23; ++i) hesai_test::qt128_seal(p[i]);
+  write_pcap(dir + "/blocked.pcap", p);
+  // write_pcap's records: 24-byte file header, then 16 + 42 + 1127 bytes each; the IPv4 flags and
+  // fragment offset at frame byte 20.
+  std::vector<std::uint8_t> file = read_file(dir + "/blocked.pcap");
+  file[24 + 30 * (16 + 42 + 1127) + 16 + 20] = 0x20;
+  std::ofstream(dir + "/blocked.pcap", std::ios::binary).write(reinterpret_cast<const char*>(file.data()),
+                                                                static_cast<long>(file.size()));
+  CmdResult r = run("stats " + dir + "/blocked.pcap --json");
+  ASSERT_EQ(r.status, 0) << r.err;
+  auto j = json_numbers(r.out);
+  EXPECT_EQ(j["packets"], static_cast<long long>(p.size() - 1));
+  EXPECT_EQ(j["ip_fragments"], 1);
+  EXPECT_EQ(j["blockage_units"], 13);
+  std::string by = "[";
+  for (int ch = 1; ch <= 128; ++ch) by += std::string(ch > 1 ? "," : "") + (ch == 70 ? "10" : ch == 100 ? "3" : "0");
+  EXPECT_NE(r.out.find("\"blockage_by_channel\":" + by + "]"), std::string::npos) << r.out;
+  EXPECT_GT(j["duplicate_returns"], 0);  // counted from the bytes in test_health.cpp
+  EXPECT_EQ(j["beyond_rated_range"], 0);
+  EXPECT_EQ(j["lost"], 1);  // the fragment's packet, by its UDP sequence
+  r = run("stats " + dir + "/blocked.pcap");
+  EXPECT_EQ(text_number(r.out, "blockage_units"), 13) << r.out;
+  EXPECT_NE(r.out.find("  blockage_by_channel   channel 70: 10, channel 100: 3\n"), std::string::npos) << r.out;
+  EXPECT_EQ(text_number(r.out, "ip_fragments"), 1) << r.out;
+  EXPECT_NE(r.out.find("warning: 1 IP fragments were skipped"), std::string::npos) << r.out;
+  // A capture without fragments has no warning, and a Pandar64's array has its 64 channels.
+  r = run("stats " + data_path("pandar64_dual.pcap") + " --json");
+  std::string zeros = "[0";
+  for (int ch = 2; ch <= 64; ++ch) zeros += ",0";
+  EXPECT_NE(r.out.find("\"blockage_by_channel\":" + zeros + "],"), std::string::npos) << r.out;
+  EXPECT_EQ(run("stats " + data_path("pandar64_dual.pcap")).out.find("warning"), std::string::npos);
+}
+
 }  // namespace

@@ -341,4 +341,133 @@ TEST(Health, ResetForgetsEverything) {
   EXPECT_EQ(m.counts().lost, 0u);
 }
 
+// ---- From the units: blockage markers, repeated returns, distances beyond the rated range ----
+
+// The test's own reading of the layouts (offsets typed in from the manuals): where unit `u`
+// (0-based) of block `b` starts, and the unit size. Pandar40P (manual 3.1.2): blocks of 124 bytes,
+// units of 3 after a 2-byte preamble and the azimuth; Pandar64 (3.1.2): 8-byte header, blocks of
+// 194, units of 3 after the azimuth; QT128C2X with flags 0x1D (3.1.2): 12-byte header, blocks of
+// 2 + 128 x 4 bytes (a confidence byte a unit).
+struct UnitLayout {
+  std::size_t first, block, unit, units, blocks;
+  std::size_t at(std::size_t b, std::size_t u) const { return first + b * block + unit * u; }
+};
+UnitLayout unit_layout(Model m) {
+  switch (m) {
+    case Model::pandar64: return {8 + 2, 194, 3, 64, 6};
+    case Model::qt128c2x: return {12 + 2, 514, 4, 128, 2};
+    default: return {4, 124, 3, 40, 10};  // Pandar40P
+  }
+}
+
+// Decodes every packet with a UnitScan into a monitor; the points too.
+struct UnitRun {
+  HealthCounts counts;
+  std::uint64_t points = 0;
+};
+UnitRun run_units(const Packets& packets, Model model) {
+  hesai::Decoder d(model);
+  HealthMonitor m;
+  hesai::PacketPoints pts;
+  UnitRun r;
+  for (const auto& p : packets) {
+    hesai::PacketInfo info;
+    hesai::UnitScan scan;
+    EXPECT_EQ(d.decode(view(p), info, pts, scan), Error::ok);
+    m.observe(info);
+    m.observe_units(scan);
+    r.points += pts.count;
+  }
+  r.counts = m.counts();
+  return r;
+}
+
+TEST(HealthUnits, DuplicateReturnsCountedFromTheRawBytes) {
+  // Dual-return captures: the blocks of a firing are 2i and 2i + 1; a pair repeats when both
+  // distances are equal and at least the smallest kept (1; 2 on the QT128C2X, whose 1 is a marker)
+  // and the reflectivities are equal. Counted here from the bytes.
+  const struct {
+    const char* file;
+    Model model;
+    std::uint16_t smallest;
+  } captures[] = {{"pandar40p_dual.pcap", Model::pandar40p, 1},
+                  {"pandar64_dual.pcap", Model::pandar64, 1},
+                  {"qt128c2x_dual.pcap", Model::qt128c2x, 2}};
+  for (const auto& c : captures) {
+    SCOPED_TRACE(c.file);
+    const Packets p = pcap_payloads(c.file);
+    const UnitLayout l = unit_layout(c.model);
+    std::uint64_t expected = 0;
+    for (const auto& q : p)
+      for (std::size_t b = 0; b + 1 < l.blocks; b += 2)
+        for (std::size_t u = 0; u < l.units; ++u) {
+          const std::size_t a0 = l.at(b, u), a1 = l.at(b + 1, u);
+          const std::uint16_t d0 = hesai::load_le16(&q[a0]);
+          expected += d0 >= c.smallest && d0 == hesai::load_le16(&q[a1]) && q[a0 + 2] == q[a1 + 2];
+        }
+    EXPECT_GT(expected, 0u);
+    const UnitRun r = run_units(p, c.model);
+    EXPECT_EQ(r.counts.duplicate_returns, expected);
+    EXPECT_EQ(r.counts.blockage_units, 0u);      // no capture holds a 1
+    EXPECT_EQ(r.counts.beyond_rated_range, 0u);  // nor a distance beyond the rated range (below)
+  }
+}
+
+TEST(HealthUnits, Qt128BlockageMarkersByChannel) {
+  // Distance 1 written into units of channels that fire in both sequences (65..128: the manual's
+  // banks rest 1..64), CRCs resealed: channel 70 in both blocks of packets 10..14 (10 units) and
+  // channel 100 in block 1 of packets 20..22 (3 units). Each was a point or not before: the points
+  // fall by exactly those that were.
+  Packets p = pcap_payloads("qt128c2x_dual.pcap");
+  const UnitLayout l = unit_layout(Model::qt128c2x);
+  std::uint64_t were_points = 0;
+  auto mark = [&](std::size_t packet, std::size_t block, std::size_t channel) {
+    const std::size_t at = l.at(block, channel - 1);
+    were_points += hesai::load_le16(&p[packet][at]) >= 2;
+    hesai::store_le16(&p[packet][at], 1);
+  };
+  for (std::size_t i = 10; i < 15; ++i) {
+    mark(i, 0, 70);
+    mark(i, 1, 70);
+  }
+  for (std::size_t i = 20; i < 23; ++i) mark(i, 0, 100);
+  for (std::size_t i = 10; i < 23; ++i) hesai_test::qt128_seal(p[i]);
+  const UnitRun before = run_units(pcap_payloads("qt128c2x_dual.pcap"), Model::qt128c2x);
+  const UnitRun r = run_units(p, Model::qt128c2x);
+  EXPECT_EQ(r.counts.blockage_units, 13u);
+  for (std::size_t ch = 0; ch < hesai::kMaxChannels; ++ch)
+    EXPECT_EQ(r.counts.blockage_by_channel[ch], ch == 69 ? 10u : ch == 99 ? 3u : 0u) << "channel " << ch + 1;
+  EXPECT_EQ(r.points, before.points - were_points);
+}
+
+TEST(HealthUnits, BeyondTheRatedRange) {
+  // Pandar64 (rated 200 m, distance unit 4 mm, header byte 5): raw 50 001 (200.004 m) in 5 units,
+  // 50 000 (200 m exactly, not beyond) in 3. QT128C2X (50 m): raw 12 501 in 4 units of channels
+  // 65..128, 12 500 in 2; resealed. The Pandar40P (200 m, unit 4 mm): 50 001 in 2 units.
+  Packets p64 = pandar64_without_sequence();
+  ASSERT_EQ(p64[0][5], 4);
+  const UnitLayout l64 = unit_layout(Model::pandar64);
+  for (std::size_t i = 0; i < 5; ++i) hesai::store_le16(&p64[100 + i][l64.at(i, 10)], 50001);
+  for (std::size_t i = 0; i < 3; ++i) hesai::store_le16(&p64[200 + i][l64.at(i, 20)], 50000);
+  EXPECT_EQ(run_units(p64, Model::pandar64).counts.beyond_rated_range, 5u);
+
+  Packets qt = pcap_payloads("qt128c2x_dual.pcap");
+  ASSERT_EQ(qt[0][9], 4);
+  const UnitLayout lqt = unit_layout(Model::qt128c2x);
+  for (std::size_t i = 0; i < 4; ++i) hesai::store_le16(&qt[50 + i][lqt.at(i % 2, 80 + i)], 12501);
+  for (std::size_t i = 0; i < 2; ++i) hesai::store_le16(&qt[60 + i][lqt.at(0, 90)], 12500);
+  for (std::size_t i = 50; i < 62; ++i) hesai_test::qt128_seal(qt[i]);
+  EXPECT_EQ(run_units(qt, Model::qt128c2x).counts.beyond_rated_range, 4u);
+
+  Packets p40 = pcap_payloads("pandar40p_dual.pcap");
+  const UnitLayout l40 = unit_layout(Model::pandar40p);
+  hesai::store_le16(&p40[7][l40.at(3, 5)], 50001);
+  hesai::store_le16(&p40[8][l40.at(9, 39)], 50001);
+  EXPECT_EQ(run_units(p40, Model::pandar40p).counts.beyond_rated_range, 2u);
+
+  // The models without a manual here are rated 0: nothing counted.
+  EXPECT_EQ(hesai::rated_range_m(Model::pandar_xt32), 0);
+  EXPECT_EQ(hesai::rated_range_m(Model::pandar_qt64), 0);
+}
+
 }  // namespace

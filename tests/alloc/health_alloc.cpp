@@ -1,4 +1,4 @@
-// The stream-health monitor allocates nothing: the Pandar64 capture cut to its sequence-less
+// The stream-health monitor and the decode with a unit scan allocate nothing: the Pandar64 capture cut to its sequence-less
 // length, with packets dropped (a gap), one late, one frozen and one redated to 2000.
 #include <gtest/gtest.h>
 
@@ -17,16 +17,19 @@ TEST(ZeroAllocation, HealthMonitor) {
   std::swap(p[150], p[151]);
   for (std::size_t b = 10; b < 14; ++b) p[160][1172 + b] = p[159][1172 + b];  // the timestamp (same second)
   p[170][1172 + 16] = 0;
-  hesai::HealthCounts counts;
+  static hesai::HealthCounts counts;
+  static hesai::PacketPoints points;
   hesai::Error worst = hesai::Error::ok;
   const std::size_t n = hesai_test::allocations_during([&] {
     hesai::Decoder dec(hesai::Model::pandar64);
     hesai::HealthMonitor monitor;
     hesai::PacketInfo info;
+    hesai::UnitScan scan;
     for (const auto& q : p) {
-      const hesai::Error e = dec.validate(hesai::ByteView{q.data(), q.size()}, info);
+      const hesai::Error e = dec.decode(hesai::ByteView{q.data(), q.size()}, info, points, scan);
       if (e != hesai::Error::ok) worst = e;
       (void)monitor.observe(info);
+      monitor.observe_units(scan);
     }
     counts = monitor.counts();
     monitor.reset();
@@ -39,4 +42,5 @@ TEST(ZeroAllocation, HealthMonitor) {
   EXPECT_EQ(counts.time_virtual, 1u);
   EXPECT_EQ(counts.time_stalls, 2u);  // 160 (its predecessor's time) and 170 (20 years back)
   EXPECT_EQ(counts.time_jumps, 1u);   // 171, 20 years on from 170
+  EXPECT_GT(counts.duplicate_returns, 0u);
 }

@@ -8,8 +8,8 @@
 // UTC (such as 2000-01-01 00:00:00)". Model facts (firings per rotation at 600 rpm, blocks per
 // packet): model_list.h.
 //
-// Cost: HealthMonitor is about 130 bytes of fixed state (its counters, a 256-packet window, the
-// previous packet's azimuth, time and spin rate), no heap; observe() is O(1) but for a forward gap
+// Cost: HealthMonitor is about 670 bytes of fixed state (its counters, 512 of them the blockage
+// units per channel; a 256-packet window; the previous packet's azimuth, time and spin rate), no heap; observe() is O(1) but for a forward gap
 // of k packets, which clears min(k, 256) bits. Not thread-safe: one monitor per sensor, fed from
 // one thread, in arrival order.
 #pragma once
@@ -44,7 +44,17 @@ struct HealthCounts {
   std::uint64_t time_virtual = 0;  ///< packets dated in the year 2000 (UTC): the unit's free-running clock
   std::uint64_t time_jumps = 0;    ///< packet time ahead by more than kHealthMaxGapNs, or by more than the
                                    ///< block azimuth allows: a clock step (not counted as loss)
+  // From the units (observe_units(), UnitScan of decoder.h).
+  std::uint64_t blockage_units = 0;      ///< QT128C2X units with the blockage marker (distance 1)
+  std::uint64_t duplicate_returns = 0;   ///< dual-return pairs whose two returns are the same echo
+  std::uint64_t beyond_rated_range = 0;  ///< points farther than rated_range_m(model)
+  std::array<std::uint32_t, kMaxChannels> blockage_by_channel{};  ///< blockage units per channel - 1
 };
+
+/// Adds `n` to a 32-bit `counter`, stopping at its largest value.
+constexpr void saturating_add(std::uint32_t& counter, std::uint32_t n) noexcept {
+  counter = counter > UINT32_MAX - n ? UINT32_MAX : counter + n;
+}
 
 /// Adds `n` to `counter`, stopping at the largest value.
 constexpr void saturating_add(std::uint64_t& counter, std::uint64_t n) noexcept {
@@ -92,6 +102,10 @@ class HealthMonitor {
   /// One packet, in arrival order. Returns the packets newly found missing just before it (the
   /// FrameAssembler's lost_before): k - 1 for a packet k ahead, 0 otherwise.
   std::uint32_t observe(const PacketInfo& info) noexcept;
+  /// The units of a decoded packet (Decoder::decode with a UnitScan): adds its blockage units (and
+  /// per channel), repeated dual returns and points beyond the rated range. O(1), but a pass over
+  /// the 128 channels when the packet has a blockage unit.
+  void observe_units(const UnitScan& scan) noexcept;
   const HealthCounts& counts() const noexcept { return counts_; }
   /// Forgets everything, counters included (the rotation too).
   void reset() noexcept { *this = HealthMonitor{}; }
@@ -119,6 +133,6 @@ class HealthMonitor {
   bool started_ = false;
 };
 
-static_assert(sizeof(HealthMonitor) <= 160, "the monitor's fixed state: counters, a 256-packet window and a few fields");
+static_assert(sizeof(HealthMonitor) <= 704, "the monitor's fixed state: counters (512 bytes per channel), a 256-packet window and a few fields");
 
 }  // namespace hesai

@@ -51,6 +51,11 @@ struct Stats {
   std::uint64_t time_stalls = 0;           ///< HealthCounts::time_stalls, every sensor summed
   std::uint64_t time_virtual = 0;          ///< HealthCounts::time_virtual: packets dated in 2000, the free-run clock
   std::uint64_t time_jumps = 0;            ///< HealthCounts::time_jumps: clock steps
+  std::uint64_t blockage_units = 0;        ///< UnitScan::blockage_units summed: QT128C2X distance-1 markers
+  std::array<std::uint32_t, kMaxChannels> blockage_by_channel{};  ///< the same per channel - 1 (saturating)
+  std::uint64_t duplicate_returns = 0;     ///< UnitScan::duplicate_returns summed: one echo sent as both returns
+  std::uint64_t beyond_rated_range = 0;    ///< UnitScan::beyond_rated_range summed: points beyond rated_range_m()
+  std::uint64_t ip_fragments = 0;          ///< IP fragments a capture reader skipped (set by the port: not reassembled)
   std::uint64_t gps_packets = 0;           ///< GPS packets (512 bytes)
   std::int64_t first_time_ns = 0;          ///< packet time of the first packet, ns (0: none yet)
   std::int64_t last_time_ns = 0;           ///< packet time of the last packet, ns (0: none yet)

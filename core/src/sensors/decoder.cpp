@@ -216,6 +216,11 @@ Error Decoder::decode(ByteView payload, PacketInfo& info, PacketPoints& out, Dec
   return decode(payload, info, out.points.data(), out.points.size(), out.count, path);
 }
 
+Error Decoder::decode(ByteView payload, PacketInfo& info, PacketPoints& out, UnitScan& scan, DecodePath path) noexcept {
+  scan = UnitScan{};
+  return decode_into(payload, info, out.points.data(), nullptr, out.points.size(), out.count, path, &scan);
+}
+
 Error Decoder::decode(ByteView payload, PacketInfo& info, Point* points, std::size_t capacity, std::size_t& count,
                       DecodePath path) noexcept {
   return decode_into(payload, info, points, nullptr, capacity, count, path);
@@ -238,7 +243,7 @@ bool decode_simd_available() noexcept {
 const char* decode_simd_name() noexcept { return kernels::vector_isa_name(kernels::vector_isa(DecodePath::best)); }
 
 Error Decoder::decode_into(ByteView payload, PacketInfo& info, Point* points, const PointColumns* columns,
-                           std::size_t capacity, std::size_t& count, DecodePath path) noexcept {
+                           std::size_t capacity, std::size_t& count, DecodePath path, UnitScan* scan) noexcept {
   count = 0;
   if (capacity < max_points(model_)) return Error::buffer_too_small;
   const Error e = validate(payload, info);
@@ -247,6 +252,7 @@ Error Decoder::decode_into(ByteView payload, PacketInfo& info, Point* points, co
   out.points = points;
   if (columns != nullptr) out.columns = *columns;
   out.path = path;
+  out.scan = scan;
   sensor_of(model_)->walk(*this, payload.data, info, out);  // validate() found model_'s packet
   count = out.count;
   return Error::ok;

@@ -1,5 +1,7 @@
 #include "hesai/health.h"
 
+#include <cstddef>
+
 #include "hesai/model.h"
 
 namespace hesai {
@@ -108,6 +110,14 @@ void HealthMonitor::late(std::uint32_t k_back) noexcept {
   }
   set(slot);
   if (k_back < span_) take_back(counts_.lost);  // counted lost when it was skipped
+}
+
+void HealthMonitor::observe_units(const UnitScan& scan) noexcept {
+  saturating_add(counts_.duplicate_returns, scan.duplicate_returns);
+  saturating_add(counts_.beyond_rated_range, scan.beyond_rated_range);
+  if (scan.blockage_units == 0) return;
+  saturating_add(counts_.blockage_units, scan.blockage_units);
+  for (std::size_t ch = 0; ch < kMaxChannels; ++ch) saturating_add(counts_.blockage_by_channel[ch], scan.blockage_by_channel[ch]);
 }
 
 void HealthMonitor::restart(const PacketInfo& info) noexcept {

@@ -164,7 +164,9 @@ int cmd_stats(Args& args) {
                   "                          signature_valid, signature_invalid, signature_missing,\n"
                   "                          signature_unverified, malformed, unsupported, lost, duplicates,\n"
                   "                          reordered, sequence_resyncs, lost_by, time_stalls,\n"
-                  "                          time_virtual, time_jumps, gps_packets, first_time_ns,\n"
+                  "                          time_virtual, time_jumps, blockage_units,\n"
+                  "                          blockage_by_channel, duplicate_returns, beyond_rated_range,\n"
+                  "                          ip_fragments, gps_packets, first_time_ns,\n"
                   "                          last_time_ns, high_temperature, gps_unlocked,\n"
                   "                          gps_position_invalid, fs_packets, fs_states (per lidar state),\n"
                   "                          fs_current_fault, fs_past_fault, fs_reserved_fault_type,\n"
@@ -198,6 +200,7 @@ int cmd_stats(Args& args) {
   }
   const int rc = run_capture(file, pipeline, quiet);
   if (rc == kExitUsage) return rc;
+  pipeline.set_ip_fragments(file.stats().fragments);
   if (json) std::printf("%s\n", stats_json(pipeline.stats()).c_str());
   else std::printf("%s\n%s", capture.c_str(), stats_text(pipeline).c_str());
   return rc;

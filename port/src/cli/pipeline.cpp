@@ -202,7 +202,7 @@ bool Pipeline::feed(ByteView payload, std::uint64_t source_key) {
   if (src == nullptr) return false;
 
   PacketInfo info;
-  e = src->decoder->decode(payload, info, points_);
+  e = src->decoder->decode(payload, info, points_, scan_);
   if (e != Error::ok) {
     count_error(stats_, e);
     ++rejections_[e];
@@ -225,7 +225,7 @@ bool Pipeline::feed(ByteView payload, std::uint64_t source_key) {
         src->decoder->set_rotation(r);
         while (!src->held.empty())
           if (!release_held(*src)) return false;
-        e = src->decoder->decode(payload, info, points_);
+        e = src->decoder->decode(payload, info, points_, scan_);
         if (e != Error::ok) {  // the packet decoded once: a fault of ours, but counted as bad input
           count_error(stats_, e);
           ++rejections_[e];
@@ -241,7 +241,7 @@ bool Pipeline::release_held(Source& src) {
   const ByteView payload = src.held.front();
   const std::uint64_t index = src.held.front_tag();
   PacketInfo info;
-  const Error e = src.decoder->decode(payload, info, points_);
+  const Error e = src.decoder->decode(payload, info, points_, scan_);
   src.held.pop_front();
   if (e != Error::ok) {  // it decoded when it came: a fault of ours, but counted as bad input
     count_error(stats_, e);
@@ -286,6 +286,13 @@ bool Pipeline::process(Source& src, std::uint64_t index, const PacketInfo& info)
   saturating_add(stats_.time_stalls, health.time_stalls - health_before.time_stalls);
   saturating_add(stats_.time_virtual, health.time_virtual - health_before.time_virtual);
   saturating_add(stats_.time_jumps, health.time_jumps - health_before.time_jumps);
+
+  src.health.observe_units(scan_);
+  saturating_add(stats_.blockage_units, scan_.blockage_units);
+  saturating_add(stats_.duplicate_returns, scan_.duplicate_returns);
+  saturating_add(stats_.beyond_rated_range, scan_.beyond_rated_range);
+  if (scan_.blockage_units != 0)
+    for (std::size_t ch = 0; ch < kMaxChannels; ++ch) saturating_add(stats_.blockage_by_channel[ch], scan_.blockage_by_channel[ch]);
 
   std::uint32_t lost_before = 0;
   if (!info.has_sequence) {

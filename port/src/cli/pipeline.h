@@ -106,6 +106,8 @@ class Pipeline {
   void finish();
 
   const Stats& stats() const { return stats_; }
+  /// The IP fragments the capture reader skipped (they are not reassembled), for the report.
+  void set_ip_fragments(std::uint64_t n) { stats_.ip_fragments = n; }
   const std::string& error() const { return error_; }
   /// Packets per Error code that rejected them (for the text summary).
   const std::map<Error, std::uint64_t>& rejections() const { return rejections_; }
@@ -153,6 +155,7 @@ class Pipeline {
   std::uint64_t point_packet_index_ = 0;
   std::string error_;
   PacketPoints points_;  // one packet's points (reused)
+  UnitScan scan_;        // and what its units say beyond them
 };
 
 /// The source a captured datagram comes from, for Pipeline::feed: its sender's address and port.

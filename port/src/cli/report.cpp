@@ -13,6 +13,13 @@ void add(std::string& out, const char* key, std::uint64_t v, bool comma = true) 
   out += key;
   out += "\":" + std::to_string(v) + (comma ? "," : "");
 }
+// The most channels of the models the run saw (the length of blockage_by_channel).
+std::size_t channels_seen(const Stats& s) {
+  std::size_t n = 0;
+  for (std::size_t m = 1; m < kModelCount; ++m)
+    if (s.models[m] != 0 && channel_count(static_cast<Model>(m)) > n) n = channel_count(static_cast<Model>(m));
+  return n;
+}
 }  // namespace
 
 std::string stats_json(const Stats& s) {
@@ -44,6 +51,14 @@ std::string stats_json(const Stats& s) {
   add(out, "time_stalls", s.time_stalls);
   add(out, "time_virtual", s.time_virtual);
   add(out, "time_jumps", s.time_jumps);
+  add(out, "blockage_units", s.blockage_units);
+  out += "\"blockage_by_channel\":[";
+  const std::size_t channels = channels_seen(s);
+  for (std::size_t ch = 0; ch < channels; ++ch) out += (ch ? "," : "") + std::to_string(s.blockage_by_channel[ch]);
+  out += "],";
+  add(out, "duplicate_returns", s.duplicate_returns);
+  add(out, "beyond_rated_range", s.beyond_rated_range);
+  add(out, "ip_fragments", s.ip_fragments);
   add(out, "gps_packets", s.gps_packets);
   out += "\"first_time_ns\":" + std::to_string(s.first_time_ns) + ",";
   out += "\"last_time_ns\":" + std::to_string(s.last_time_ns) + ",";
@@ -116,6 +131,19 @@ std::string stats_text(const Pipeline& p) {
   line("time_stalls", std::to_string(s.time_stalls));
   line("time_virtual", std::to_string(s.time_virtual));
   if (s.time_jumps) line("time_jumps", std::to_string(s.time_jumps));
+  line("blockage_units", std::to_string(s.blockage_units));
+  if (s.blockage_units) {
+    std::string by;
+    for (std::size_t ch = 0; ch < kMaxChannels; ++ch)
+      if (s.blockage_by_channel[ch]) by += (by.empty() ? "" : ", ") + ("channel " + std::to_string(ch + 1)) + ": " + std::to_string(s.blockage_by_channel[ch]);
+    line("blockage_by_channel", by);
+  }
+  line("duplicate_returns", std::to_string(s.duplicate_returns));
+  line("beyond_rated_range", std::to_string(s.beyond_rated_range));
+  line("ip_fragments", std::to_string(s.ip_fragments));
+  if (s.ip_fragments)
+    out += "  warning: " + std::to_string(s.ip_fragments) +
+           " IP fragments were skipped (not reassembled): the datagrams they carried are missing from every count\n";
   if (s.time_virtual)
     out += "  warning: " + std::to_string(s.time_virtual) +
            " packets are dated in the year 2000: their times are the unit's free-running clock, not PTP or GPS time\n";

@@ -11,7 +11,9 @@ namespace hesai::cli {
 /// One JSON object with exactly the keys packets, models, points, frames, crc_errors,
 /// signature_valid, signature_invalid, signature_missing, signature_unverified, malformed,
 /// unsupported, lost, duplicates, reordered, sequence_resyncs, lost_by ("udp_sequence",
-/// "azimuth_time", "mixed" or "none"), time_stalls, time_virtual, time_jumps, gps_packets, first_time_ns,
+/// "azimuth_time", "mixed" or "none"), time_stalls, time_virtual, time_jumps, blockage_units,
+/// blockage_by_channel (an array, channel - 1, as long as the most channels of the models seen),
+/// duplicate_returns, beyond_rated_range, ip_fragments, gps_packets, first_time_ns,
 /// last_time_ns, high_temperature, gps_unlocked, gps_position_invalid, fs_packets, fs_states (an
 /// object keyed by lidar_state_name(), all eight states), fs_current_fault, fs_past_fault,
 /// fs_reserved_fault_type, fs_last_fault_code, fs_last_fault_id, fs_last_fault_total,
