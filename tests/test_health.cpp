@@ -470,4 +470,46 @@ TEST(HealthUnits, BeyondTheRatedRange) {
   EXPECT_EQ(hesai::rated_range_m(Model::pandar_qt64), 0);
 }
 
+TEST(HealthUnits, ReturnsDistinctLeavesOutExactlyTheRepeatedSecondReturns) {
+  // Every packet of the three dual-return captures decoded both ways: the distinct points are the
+  // Returns::all points, in order, less each second-return point (odd block) whose first return
+  // (the even block before, same channel) has the same distance and intensity; their number is
+  // the scan's duplicate_returns.
+  for (const auto& [file, model] : {std::pair<const char*, Model>{"pandar40p_dual.pcap", Model::pandar40p},
+                                    {"pandar64_dual.pcap", Model::pandar64},
+                                    {"qt128c2x_dual.pcap", Model::qt128c2x}}) {
+    SCOPED_TRACE(file);
+    hesai::Decoder d(model);
+    static hesai::PacketPoints all, distinct;
+    std::uint64_t left_out = 0;
+    for (const auto& p : pcap_payloads(file)) {
+      hesai::PacketInfo info;
+      hesai::UnitScan scan_all, scan;
+      ASSERT_EQ(d.decode(view(p), info, all, scan_all, hesai::Returns::all), Error::ok);
+      ASSERT_EQ(d.decode(view(p), info, distinct, scan, hesai::Returns::distinct), Error::ok);
+      std::vector<const hesai::Point*> expected;
+      for (std::size_t i = 0; i < all.count; ++i) {
+        const hesai::Point& q = all.points[i];
+        bool repeated = false;
+        if (q.block % 2 == 1)
+          for (std::size_t j = 0; j < all.count; ++j) {
+            const hesai::Point& f = all.points[j];
+            if (f.block + 1 == q.block && f.channel == q.channel && f.distance_m == q.distance_m && f.intensity == q.intensity)
+              repeated = true;
+          }
+        if (!repeated) expected.push_back(&q);
+      }
+      ASSERT_EQ(distinct.count, expected.size());
+      EXPECT_EQ(all.count - distinct.count, scan.duplicate_returns);
+      for (std::size_t i = 0; i < distinct.count; ++i) {
+        EXPECT_EQ(distinct.points[i].block, expected[i]->block);
+        EXPECT_EQ(distinct.points[i].channel, expected[i]->channel);
+        EXPECT_EQ(distinct.points[i].x, expected[i]->x);
+      }
+      left_out += all.count - distinct.count;
+    }
+    EXPECT_GT(left_out, 0u);
+  }
+}
+
 }  // namespace

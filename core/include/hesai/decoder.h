@@ -205,6 +205,15 @@ constexpr std::uint16_t rated_range_m(Model m) {
   }
 }
 
+/// The most dual-return firings a packet holds (the Pandar40's 10 blocks in pairs).
+inline constexpr std::size_t kMaxDualFirings = 5;
+
+/// Which returns of a dual-return firing decode() makes points of.
+enum class Returns : std::uint8_t {
+  all,       ///< both blocks' units, as sent (default)
+  distinct,  ///< a second return that repeats its first (UnitScan::duplicate_returns) is left out: the echo once
+};
+
 /// What a packet's units say beyond its points, filled by the decode() forms that take one.
 /// Channels are 0-based (unit j of a block, or the QT128 channel configuration's channel).
 struct UnitScan {
@@ -219,6 +228,9 @@ struct UnitScan {
   std::uint16_t beyond_rated_range = 0;
   /// Blockage units per channel.
   std::array<std::uint8_t, kMaxChannels> blockage_by_channel{};
+  /// The repeated second returns: bit (c % 8) of byte c / 8 for 0-based channel c, per firing
+  /// (blocks 2f and 2f + 1).
+  std::array<std::array<std::uint8_t, kMaxChannels / 8>, kMaxDualFirings> repeated{};
 };
 
 /// What Point::intensity holds (Decoder::set_reflectivity).
@@ -308,8 +320,10 @@ class Decoder {
                              DecodePath path = DecodePath::best) noexcept;
   /// decode(), and the packet's units scanned into `scan` (blockage markers, repeated returns, distances
   /// beyond the rated range): a read of each unit's distance more. `scan` is reset first; left reset on error.
+  /// With Returns::distinct the repeated second returns make no point (out.count is less by
+  /// scan.duplicate_returns); the others keep their order.
   [[nodiscard]] Error decode(ByteView payload, PacketInfo& info, PacketPoints& out, UnitScan& scan,
-                             DecodePath path = DecodePath::best) noexcept;
+                             Returns returns = Returns::all, DecodePath path = DecodePath::best) noexcept;
   /// decode() into caller-owned storage for `capacity` points, sized for this decoder's model
   /// (max_points(model()): 400, 384 or 256). Error::buffer_too_small, before the packet is read,
   /// when capacity is below that. `count` gets the number of points, 0 on error; the entries from

@@ -73,7 +73,11 @@ HESAI_NOINLINE_FOR_SIZE void scan_units(const kernels::BlockRef* blocks, std::si
       const std::uint8_t* u1 = blocks[b + 1].units;
       for (std::size_t j = 0; j < unit_count; ++j, u0 += kUnitBytes, u1 += kUnitBytes) {
         const std::uint16_t d0 = load_le16(u0);
-        if (d0 >= min_distance && d0 == load_le16(u1) && u0[2] == u1[2]) ++duplicates;
+        if (d0 >= min_distance && d0 == load_le16(u1) && u0[2] == u1[2]) {
+          ++duplicates;
+          const std::uint8_t ch = blocks[b + 1].channel_of != nullptr ? blocks[b + 1].channel_of[j] : static_cast<std::uint8_t>(j);
+          if (b / 2 < kMaxDualFirings) scan.repeated[b / 2][(ch % kMaxChannels) / 8] |= static_cast<std::uint8_t>(1u << (ch % 8));
+        }
       }
     }
   }

@@ -216,9 +216,22 @@ Error Decoder::decode(ByteView payload, PacketInfo& info, PacketPoints& out, Dec
   return decode(payload, info, out.points.data(), out.points.size(), out.count, path);
 }
 
-Error Decoder::decode(ByteView payload, PacketInfo& info, PacketPoints& out, UnitScan& scan, DecodePath path) noexcept {
+Error Decoder::decode(ByteView payload, PacketInfo& info, PacketPoints& out, UnitScan& scan, Returns returns,
+                      DecodePath path) noexcept {
   scan = UnitScan{};
-  return decode_into(payload, info, out.points.data(), nullptr, out.points.size(), out.count, path, &scan);
+  const Error e = decode_into(payload, info, out.points.data(), nullptr, out.points.size(), out.count, path, &scan);
+  if (e != Error::ok || returns != Returns::distinct || scan.duplicate_returns == 0) return e;
+  // Leave out the second returns the scan found repeated, keeping the order of the rest.
+  std::size_t kept = 0;
+  for (std::size_t i = 0; i < out.count; ++i) {
+    const Point& p = out.points[i];
+    const std::size_t firing = p.block / 2u, ch = static_cast<std::size_t>(p.channel - 1u) % kMaxChannels;
+    const bool repeated = p.block % 2u == 1u && firing < kMaxDualFirings &&
+                          (scan.repeated[firing][ch / 8] >> (ch % 8) & 1u) != 0;
+    if (!repeated) out.points[kept++] = p;
+  }
+  out.count = kept;
+  return e;
 }
 
 Error Decoder::decode(ByteView payload, PacketInfo& info, Point* points, std::size_t capacity, std::size_t& count,

@@ -202,7 +202,7 @@ bool Pipeline::feed(ByteView payload, std::uint64_t source_key) {
   if (src == nullptr) return false;
 
   PacketInfo info;
-  e = src->decoder->decode(payload, info, points_, scan_);
+  e = src->decoder->decode(payload, info, points_, scan_, options_.returns);
   if (e != Error::ok) {
     count_error(stats_, e);
     ++rejections_[e];
@@ -225,7 +225,7 @@ bool Pipeline::feed(ByteView payload, std::uint64_t source_key) {
         src->decoder->set_rotation(r);
         while (!src->held.empty())
           if (!release_held(*src)) return false;
-        e = src->decoder->decode(payload, info, points_, scan_);
+        e = src->decoder->decode(payload, info, points_, scan_, options_.returns);
         if (e != Error::ok) {  // the packet decoded once: a fault of ours, but counted as bad input
           count_error(stats_, e);
           ++rejections_[e];
@@ -241,7 +241,7 @@ bool Pipeline::release_held(Source& src) {
   const ByteView payload = src.held.front();
   const std::uint64_t index = src.held.front_tag();
   PacketInfo info;
-  const Error e = src.decoder->decode(payload, info, points_, scan_);
+  const Error e = src.decoder->decode(payload, info, points_, scan_, options_.returns);
   src.held.pop_front();
   if (e != Error::ok) {  // it decoded when it came: a fault of ours, but counted as bad input
     count_error(stats_, e);
@@ -317,6 +317,8 @@ bool Pipeline::process(Source& src, std::uint64_t index, const PacketInfo& info)
 
   // Each point goes to the frame of its own azimuth; frames close when the blocks have moved
   // far enough past their end that no later point can reach them.
+  // `points` counts every point decoded: with --returns distinct, the repeated ones left out too.
+  if (options_.returns == Returns::distinct) saturating_add(stats_.points, scan_.duplicate_returns);
   const bool keep = index >= options_.first_packet && index < options_.end_packet;
   FrameAssembler& frames = src.frames;
   frames.begin_packet(index, lost_before);

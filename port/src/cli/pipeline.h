@@ -28,6 +28,7 @@ struct DecodeOptions {
   std::string firetimes_path;       ///< --firetimes
   std::string channel_config_path;  ///< --channel-config (QT128)
   Reflectivity reflectivity = Reflectivity::raw;  ///< --reflectivity (nonlinear: Pandar64 only)
+  Returns returns = Returns::all;   ///< --returns: distinct leaves out the repeated second returns
   bool firetime_azimuth = true;     ///< off with --no-firetime-azimuth
   bool detect_rotation = true;      ///< --rotation auto (default): per sensor, by a RotationDetector
   Rotation rotation = Rotation::clockwise;  ///< --rotation cw|ccw; with auto, the direction assumed for packets released undecided
