@@ -1476,4 +1476,92 @@ TEST(Cli, StatsBlockageDuplicatesFragments) {
   EXPECT_EQ(run("stats " + data_path("pandar64_dual.pcap")).out.find("warning"), std::string::npos);
 }
 
+// An azimuth FOV on a sequence-less Pandar64 (issue #32): the packets whose first block azimuth
+// lies in [90, 150) degrees missing on every rotation: lost 0, and fov_gap_deg the block azimuths
+// either side of the last such gap, as the test reads them.
+TEST(Cli, StatsFovGapIsNotLoss) {
+  const std::string dir = temp_dir();
+  std::vector<std::vector<std::uint8_t>> p;
+  std::uint16_t before = 0, after = 0;
+  bool in_gap = false;
+  for (auto q : pcap_payloads("pandar64_dual.pcap")) {
+    q.resize(1194);
+    const std::uint16_t az = load_le16(&q[8]);  // Pandar64 manual 3.1.2: block 1's azimuth after the 8-byte header
+    if (az >= 9000 && az < 15000) {
+      if (!in_gap && !p.empty()) before = load_le16(&p.back()[8]);
+      in_gap = true;
+      continue;
+    }
+    if (in_gap) after = az;
+    in_gap = false;
+    p.push_back(q);
+  }
+  write_pcap(dir + "/fov.pcap", p);
+  const CmdResult r = run("stats " + dir + "/fov.pcap --json");
+  ASSERT_EQ(r.status, 0);
+  EXPECT_EQ(json_numbers(r.out)["lost"], 0) << r.out;
+  char want[64];
+  std::snprintf(want, sizeof want, "\"fov_gap_deg\":[%u.%02u,%u.%02u]", before / 100u, before % 100u, after / 100u,
+                after % 100u);
+  EXPECT_NE(r.out.find(want), std::string::npos) << want << "\n" << r.out;
+  EXPECT_NE(run("stats " + data_path("pandar64_dual.pcap") + " --json").out.find("\"fov_gap_deg\":null"), std::string::npos);
+  EXPECT_NE(run("stats " + dir + "/fov.pcap").out.find("  fov_gap_deg"), std::string::npos);
+}
+
+// Two sensors in one capture (issue #32): a sequence-less Pandar64 from 192.168.1.201 with 100
+// packets dropped and 9 frozen timestamps, interleaved with the QT128C2X capture (sequence on) from
+// 192.168.1.202, both to port 2368 from 10000: the run's lost is the Pandar64's 100, lost_by "mixed",
+// and `sensors` holds one object per address with its own counts.
+TEST(Cli, StatsPerSensorObjects) {
+  const std::string dir = temp_dir();
+  auto p64 = pcap_payloads("pandar64_dual.pcap");
+  const std::size_t tail = 1172;
+  for (std::size_t i = 301; i <= 309; ++i) {
+    for (std::size_t b = 10; b < 14; ++b) p64[i][tail + b] = p64[300][tail + b];
+    for (std::size_t b = 16; b < 22; ++b) p64[i][tail + b] = p64[300][tail + b];
+  }
+  for (auto& q : p64) q.resize(1194);
+  p64.erase(p64.begin() + 700, p64.begin() + 800);
+  const auto qt = pcap_payloads("qt128c2x_dual.pcap");
+  std::vector<std::vector<std::uint8_t>> all;
+  std::vector<bool> from_qt;
+  for (std::size_t i = 0; i < std::max(p64.size(), qt.size()); ++i) {
+    if (i < p64.size()) { all.push_back(p64[i]); from_qt.push_back(false); }
+    if (i < qt.size()) { all.push_back(qt[i]); from_qt.push_back(true); }
+  }
+  write_pcap(dir + "/two.pcap", all);
+  // write_pcap's records: 16-byte header, then the frame; the IPv4 source's last byte at frame byte 29.
+  std::vector<std::uint8_t> file = read_file(dir + "/two.pcap");
+  std::size_t at = 24;
+  for (std::size_t i = 0; i < all.size(); ++i) {
+    if (from_qt[i]) file[at + 16 + 29] = 202;
+    at += 16 + load_le32(&file[at + 8]);
+  }
+  std::ofstream(dir + "/two.pcap", std::ios::binary).write(reinterpret_cast<const char*>(file.data()),
+                                                            static_cast<long>(file.size()));
+  const CmdResult r = run("stats " + dir + "/two.pcap --json");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const std::size_t sensors = r.out.find("\"sensors\":[");
+  ASSERT_NE(sensors, std::string::npos) << r.out;
+  EXPECT_EQ(json_numbers(r.out.substr(0, sensors))["lost"], 100);  // the run's (json_numbers keeps a key's last value)
+  EXPECT_NE(r.out.find("\"lost_by\":\"mixed\""), std::string::npos) << r.out;
+  const std::size_t a = r.out.find("{\"source\":\"192.168.1.201:10000\",\"model\":\"Pandar64\",", sensors);
+  const std::size_t b = r.out.find("{\"source\":\"192.168.1.202:10000\",\"model\":\"QT128C2X\",", sensors);
+  ASSERT_NE(a, std::string::npos) << r.out;
+  ASSERT_NE(b, std::string::npos) << r.out;
+  EXPECT_LT(a, b);  // in the order they first sent
+  const auto one = json_numbers(r.out.substr(a, b - a));
+  EXPECT_EQ(one.at("packets"), static_cast<long long>(p64.size()));
+  EXPECT_EQ(one.at("lost"), 100);
+  EXPECT_EQ(one.at("time_stalls"), 9);
+  EXPECT_NE(r.out.substr(a, b - a).find("\"lost_by\":\"azimuth_time\""), std::string::npos);
+  const auto two = json_numbers(r.out.substr(b));
+  EXPECT_EQ(two.at("packets"), static_cast<long long>(qt.size()));
+  EXPECT_EQ(two.at("lost"), 0);
+  EXPECT_EQ(two.at("time_stalls"), 0);
+  EXPECT_NE(r.out.substr(b).find("\"lost_by\":\"udp_sequence\""), std::string::npos);
+  // One sensor: no `sensors` key.
+  EXPECT_EQ(run("stats " + data_path("qt128c2x_dual.pcap") + " --json").out.find("\"sensors\""), std::string::npos);
+}
+
 }  // namespace

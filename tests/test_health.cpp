@@ -341,6 +341,61 @@ TEST(Health, ResetForgetsEverything) {
   EXPECT_EQ(m.counts().lost, 0u);
 }
 
+TEST(Health, AzimuthFovIsNotLoss) {
+  // A sequence-less Pandar64 whose packets with a first block azimuth in [90, 150) degrees are
+  // missing on every rotation (an FOV set on the unit), and 5 packets dropped near 270 degrees once:
+  // lost 5, and the FOV from the last azimuth before 90 to the first at or after 150.
+  const Packets original = pandar64_without_sequence();
+  Packets p;
+  std::uint16_t before = 0, after = 0;  // the edges as the test reads them, at the last occurrence
+  bool in_gap = false;
+  std::size_t dropped_near_270 = 0;
+  for (std::size_t i = 0; i < original.size(); ++i) {
+    const std::uint16_t az = hesai_test::block_azimuths(original[i], Model::pandar64)[0];
+    if (az >= 9000 && az < 15000) {
+      if (!in_gap && !p.empty()) before = hesai_test::block_azimuths(p.back(), Model::pandar64)[0];
+      in_gap = true;
+      continue;
+    }
+    if (in_gap) after = az;
+    in_gap = false;
+    if (i > 1200 && az >= 27000 && dropped_near_270 < 5) {
+      ++dropped_near_270;
+      continue;
+    }
+    p.push_back(original[i]);
+  }
+  ASSERT_EQ(dropped_near_270, 5u);
+  hesai::Decoder d(Model::pandar64);
+  HealthMonitor m;
+  for (const auto& q : p) {
+    hesai::PacketInfo info;
+    ASSERT_EQ(d.validate(view(q), info), Error::ok);
+    m.observe(info);
+  }
+  const HealthCounts& h = m.counts();
+  EXPECT_EQ(h.lost, 5u);
+  ASSERT_TRUE(h.fov_gap);
+  EXPECT_EQ(h.fov_gap_from, before);
+  EXPECT_EQ(h.fov_gap_to, after);
+  EXPECT_LT(before, 9000);
+  EXPECT_GE(after, 15000);
+  expect_clean(h);
+
+  // The same gap once only (the first rotation's packets): counted as lost, no FOV.
+  Packets once;
+  std::uint64_t missing = 0;
+  for (std::size_t i = 0; i < 600; ++i) {
+    const std::uint16_t az = hesai_test::block_azimuths(original[i], Model::pandar64)[0];
+    if (az >= 9000 && az < 15000) ++missing;
+    else once.push_back(original[i]);
+  }
+  ASSERT_GT(missing, 90u);
+  const HealthCounts h1 = run(once, Model::pandar64);
+  EXPECT_EQ(h1.lost, missing);
+  EXPECT_FALSE(h1.fov_gap);
+}
+
 // ---- From the units: blockage markers, repeated returns, distances beyond the rated range ----
 
 // The test's own reading of the layouts (offsets typed in from the manuals): where unit `u`

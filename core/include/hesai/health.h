@@ -8,13 +8,15 @@
 // UTC (such as 2000-01-01 00:00:00)". Model facts (firings per rotation at 600 rpm, blocks per
 // packet): model_list.h.
 //
-// Cost: HealthMonitor is about 670 bytes of fixed state (its counters, 512 of them the blockage
-// units per channel; a 256-packet window; the previous packet's azimuth, time and spin rate), no heap; observe() is O(1) but for a forward gap
+// Cost: HealthMonitor is about 720 bytes of fixed state (its counters, 512 of them the blockage
+// units per channel; a 256-packet window; the last 4 gaps; the previous packet's azimuth, time and
+// spin rate), no heap; observe() is O(1) but for a forward gap
 // of k packets, which clears min(k, 256) bits. Not thread-safe: one monitor per sensor, fed from
 // one thread, in arrival order.
 #pragma once
 
 #include <array>
+#include <cstddef>
 #include <cstdint>
 
 #include "hesai/decoder.h"
@@ -29,6 +31,9 @@ static_assert((kHealthWindow & (kHealthWindow - 1)) == 0 && kHealthWindow % 32 =
 /// (a free-running unit locking to PTP or GPS) cannot be told from a pause of the stream. Such a
 /// packet counts as a time jump; only the block azimuth (less than a rotation) counts losses across it.
 inline constexpr std::int64_t kHealthMaxGapNs = 1000000000;
+
+/// Gaps remembered for the FOV rule (HealthMonitor).
+inline constexpr std::size_t kHealthGaps = 4;
 
 /// Packets dated in [2000-01-01, 2001-01-01) UTC are on the free-run virtual clock, ns since the Unix epoch.
 inline constexpr std::int64_t kVirtualClockStartNs = 946684800LL * 1000000000;
@@ -49,6 +54,12 @@ struct HealthCounts {
   std::uint64_t duplicate_returns = 0;   ///< dual-return pairs whose two returns are the same echo
   std::uint64_t beyond_rated_range = 0;  ///< points farther than rated_range_m(model)
   std::array<std::uint32_t, kMaxChannels> blockage_by_channel{};  ///< blockage units per channel - 1
+  /// A gap that recurred at the same azimuths: the unit's azimuth FOV, not loss (see HealthMonitor).
+  /// Its edges are the first block azimuths on either side of the missing packets at its last
+  /// occurrence, 0.01 degree, from `fov_gap_from` forward (in the direction of rotation) to `fov_gap_to`.
+  bool fov_gap = false;
+  std::uint16_t fov_gap_from = 0;
+  std::uint16_t fov_gap_to = 0;
 };
 
 /// Adds `n` to a 32-bit `counter`, stopping at its largest value.
@@ -95,6 +106,11 @@ constexpr void saturating_add(std::uint64_t& counter, std::uint64_t n) noexcept 
 ///   hour. Across a change of time reference, of model or of firings per packet (a return-mode
 ///   switch) nothing is compared: the packet is 1 ahead.
 /// - A packet dated in the year 2000 counts as time_virtual, whatever else it shows.
+/// - Azimuth FOV (Pandar64 manual 4.3: a unit with an FOV set sends no packet outside it): a gap
+///   whose first block azimuths on either side lie within 3 azimuth steps (3 degrees without a
+///   usable rate) of those of one of the last kHealthGaps gaps is the FOV, not loss: both gaps'
+///   packets are taken back from `lost`, and every later gap there is not counted. A first gap
+///   stays counted until it recurs, so the count is final at the end of the stream.
 class HealthMonitor {
  public:
   /// The direction the unit spins (default clockwise), as Decoder::set_rotation.
@@ -116,6 +132,15 @@ class HealthMonitor {
   std::uint32_t advance(std::uint32_t k) noexcept;
   void late(std::uint32_t k_back) noexcept;
   void restart(const PacketInfo& info) noexcept;
+  std::uint32_t fov_rule(std::uint32_t lost, std::uint16_t from, std::uint16_t to, std::uint32_t tolerance) noexcept;
+  void take_back_lost(std::uint64_t n) noexcept;
+
+  struct Gap {
+    std::uint16_t from, to;  // first block azimuths either side, 0.01 degree
+    std::uint32_t lost;      // packets it counted (0: the slot is free)
+  };
+  std::array<Gap, kHealthGaps> gaps_{};
+  std::uint8_t next_gap_ = 0;
 
   HealthCounts counts_;
   std::int64_t time_ns_ = 0;      // time of the newest packet that was not late
@@ -133,6 +158,6 @@ class HealthMonitor {
   bool started_ = false;
 };
 
-static_assert(sizeof(HealthMonitor) <= 704, "the monitor's fixed state: counters (512 bytes per channel), a 256-packet window and a few fields");
+static_assert(sizeof(HealthMonitor) <= 752, "the monitor's fixed state: counters (512 bytes per channel), a 256-packet window and a few fields");
 
 }  // namespace hesai

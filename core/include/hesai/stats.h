@@ -55,6 +55,9 @@ struct Stats {
   std::array<std::uint32_t, kMaxChannels> blockage_by_channel{};  ///< the same per channel - 1 (saturating)
   std::uint64_t duplicate_returns = 0;     ///< UnitScan::duplicate_returns summed: one echo sent as both returns
   std::uint64_t beyond_rated_range = 0;    ///< UnitScan::beyond_rated_range summed: points beyond rated_range_m()
+  bool fov_gap = false;                    ///< HealthCounts::fov_gap of the first sensor that showed one
+  std::uint16_t fov_gap_from = 0;          ///< its edges, 0.01 degree, in the direction of rotation
+  std::uint16_t fov_gap_to = 0;
   std::uint64_t ip_fragments = 0;          ///< IP fragments a capture reader skipped (set by the port: not reassembled)
   std::uint64_t gps_packets = 0;           ///< GPS packets (512 bytes)
   std::int64_t first_time_ns = 0;          ///< packet time of the first packet, ns (0: none yet)

@@ -120,6 +120,38 @@ void HealthMonitor::observe_units(const UnitScan& scan) noexcept {
   for (std::size_t ch = 0; ch < kMaxChannels; ++ch) saturating_add(counts_.blockage_by_channel[ch], scan.blockage_by_channel[ch]);
 }
 
+void HealthMonitor::take_back_lost(std::uint64_t n) noexcept {
+  if (counts_.lost == UINT64_MAX) return;  // saturated: no longer exact
+  counts_.lost = counts_.lost > n ? counts_.lost - n : 0;
+}
+
+std::uint32_t HealthMonitor::fov_rule(std::uint32_t lost, std::uint16_t from, std::uint16_t to,
+                                      std::uint32_t tolerance) noexcept {
+  const auto near = [tolerance](std::uint16_t a, std::uint16_t b) {
+    std::int32_t d = static_cast<std::int32_t>(a) - b;
+    if (d < 0) d = -d;
+    if (d > kTurn / 2) d = static_cast<std::int32_t>(kTurn) - d;
+    return static_cast<std::uint32_t>(d) <= tolerance;
+  };
+  bool fov = counts_.fov_gap && near(from, counts_.fov_gap_from) && near(to, counts_.fov_gap_to);
+  for (Gap& g : gaps_) {
+    if (fov || g.lost == 0 || !near(from, g.from) || !near(to, g.to)) continue;
+    take_back_lost(g.lost);  // its first occurrence, counted then
+    g.lost = 0;
+    fov = true;
+  }
+  if (fov) {
+    take_back_lost(lost);
+    counts_.fov_gap = true;
+    counts_.fov_gap_from = from;
+    counts_.fov_gap_to = to;
+    return 0;
+  }
+  gaps_[next_gap_] = Gap{from, to, lost};
+  next_gap_ = static_cast<std::uint8_t>((next_gap_ + 1) % kHealthGaps);
+  return lost;
+}
+
 void HealthMonitor::restart(const PacketInfo& info) noexcept {
   model_ = info.model;
   firings_ = firings_per_packet(info);
@@ -206,7 +238,15 @@ std::uint32_t HealthMonitor::observe(const PacketInfo& info) noexcept {
       }
     }
   }
-  const std::uint32_t lost = advance(k);
+  std::uint32_t lost = advance(k);
+  if (lost != 0) {
+    // The FOV rule's tolerance: 3 azimuth steps at the packet's rate, else 3 degrees.
+    const std::uint8_t f = firings_per_packet(info);
+    const std::uint32_t n = model_facts::of(info.model).firings;
+    const std::uint32_t tolerance =
+        f != 0 && n != 0 && rate_usable(info.motor_rpm, rpm_) ? 3u * f * 60u * info.motor_rpm / n : 300u;
+    lost = fov_rule(lost, azimuth_, azimuth, tolerance);
+  }
   time_ns_ = info.time_ns;
   azimuth_ = azimuth;
   rpm_ = info.motor_rpm;

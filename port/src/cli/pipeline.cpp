@@ -110,6 +110,8 @@ Pipeline::Source* Pipeline::source_for(std::uint64_t key, Model model) {
     sources_.erase(it);  // another sensor now sends from this address: start over
   }
   Source s;
+  s.key = key;
+  s.order = sources_made_++;
   s.decoder = std::make_unique<Decoder>(model);
   Decoder& d = *s.decoder;
   const std::size_t channels = channel_count(model);
@@ -258,6 +260,7 @@ bool Pipeline::process(Source& src, std::uint64_t index, const PacketInfo& info)
     return false;
   }
   last_source_ = &src;
+  ++src.packets;
   count_model(stats_, info.model);
   if (session_ && !src.signed_seen && info.signature == SignatureStatus::valid) {
     src.signed_seen = true;
@@ -287,6 +290,12 @@ bool Pipeline::process(Source& src, std::uint64_t index, const PacketInfo& info)
   saturating_add(stats_.time_virtual, health.time_virtual - health_before.time_virtual);
   saturating_add(stats_.time_jumps, health.time_jumps - health_before.time_jumps);
 
+  if (health.fov_gap && (!stats_.fov_gap || fov_source_ == &src)) {
+    fov_source_ = &src;
+    stats_.fov_gap = true;
+    stats_.fov_gap_from = health.fov_gap_from;
+    stats_.fov_gap_to = health.fov_gap_to;
+  }
   src.health.observe_units(scan_);
   saturating_add(stats_.blockage_units, scan_.blockage_units);
   saturating_add(stats_.duplicate_returns, scan_.duplicate_returns);
@@ -302,8 +311,10 @@ bool Pipeline::process(Source& src, std::uint64_t index, const PacketInfo& info)
     stats_.duplicates += health.duplicates - health_before.duplicates;
     stats_.reordered += health.reordered - health_before.reordered;
     stats_.lost_by = stats_.lost_by | LostBy::azimuth_time;
+    src.lost_by = src.lost_by | LostBy::azimuth_time;
   } else {
     stats_.lost_by = stats_.lost_by | LostBy::udp_sequence;
+    src.lost_by = src.lost_by | LostBy::udp_sequence;
     // Only this source's counters move: add their change. `lost` can fall (a late packet);
     // unsigned arithmetic (modulo 2^64) adds a negative change as well.
     const SequenceCounts before = src.sequence.counts();
@@ -335,6 +346,27 @@ bool Pipeline::process(Source& src, std::uint64_t index, const PacketInfo& info)
     }
   }
   return true;
+}
+
+std::vector<SensorReport> Pipeline::sensors() const {
+  std::vector<std::pair<std::uint64_t, SensorReport>> ordered;
+  for (const auto& [key, s] : sources_) {
+    if (s.packets == 0) continue;
+    SensorReport r;
+    const auto label = labels_.find(key);
+    r.source = label != labels_.end() ? label->second : "source " + std::to_string(s.order + 1);
+    r.model = s.decoder->model();
+    r.packets = s.packets;
+    r.lost_by = s.lost_by;
+    r.health = s.health.counts();
+    // A sensor whose packets carry no sequence counts by its monitor; one whose packets do, by the sequence.
+    r.lost = s.lost_by == LostBy::azimuth_time ? r.health.lost : s.sequence.counts().lost;
+    ordered.emplace_back(s.order, std::move(r));
+  }
+  std::sort(ordered.begin(), ordered.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+  std::vector<SensorReport> out;
+  for (auto& [order, r] : ordered) out.push_back(std::move(r));
+  return out;
 }
 
 std::string Pipeline::rotation_text() const {

@@ -63,6 +63,16 @@ class Sink {
   virtual void frame_closed(const FrameInfo& frame) = 0;
 };
 
+/// One sensor's stream health, for the per-sensor report (`sensors` in stats --json).
+struct SensorReport {
+  std::string source;             ///< "192.168.1.201:10000" (label_source), or "source N"
+  Model model = Model::unknown;
+  std::uint64_t packets = 0;      ///< its point-cloud packets decoded
+  std::uint64_t lost = 0;         ///< by its UDP sequence, or by azimuth and time when its packets carry none
+  LostBy lost_by = LostBy::none;
+  HealthCounts health;            ///< its monitor's counters (its lost, reordered, duplicates: by azimuth and time)
+};
+
 /// Decodes datagrams. One decoder, sequence tracker, stream-health monitor, frame assembler and
 /// functional-safety monitor per source (the sensor's address and port), created on its first
 /// packet. A packet with a UDP sequence counts its losses by the sequence; one without, by the
@@ -107,6 +117,11 @@ class Pipeline {
   void finish();
 
   const Stats& stats() const { return stats_; }
+  /// Names the sender `key` in the per-sensor report (once; later calls for the key change nothing).
+  void label_source(std::uint64_t key, const std::string& label) { labels_.emplace(key, label); }
+  bool has_label(std::uint64_t key) const { return labels_.count(key) != 0; }
+  /// Every sensor that sent point-cloud packets, in the order they first did.
+  std::vector<SensorReport> sensors() const;
   /// The IP fragments the capture reader skipped (they are not reassembled), for the report.
   void set_ip_fragments(std::uint64_t n) { stats_.ip_fragments = n; }
   const std::string& error() const { return error_; }
@@ -131,6 +146,10 @@ class Pipeline {
     RotationDetector rotation;
     HeldPackets<kHeldPackets> held;  // decoded, not yet processed: the direction is not known
     bool signed_seen = false;        // a valid signature arrived (start_session)
+    std::uint64_t key = 0;           // the sender (feed's source)
+    std::uint64_t order = 0;         // when it first sent (for the report's order)
+    std::uint64_t packets = 0;       // point-cloud packets processed
+    LostBy lost_by = LostBy::none;
   };
   Source* source_for(std::uint64_t key, Model model);
   // Parses a channel configuration (named options_.channel_config_path in messages) into
@@ -147,7 +166,10 @@ class Pipeline {
   std::string angles_text_, firetimes_text_;
   std::unique_ptr<ChannelConfig> channel_config_;  // --channel-config, parsed once
   std::map<std::uint64_t, Source> sources_;
+  std::map<std::uint64_t, std::string> labels_;
+  std::uint64_t sources_made_ = 0;
   const Source* last_source_ = nullptr;  // of the last decoded point-cloud packet
+  const Source* fov_source_ = nullptr;   // the sensor whose FOV gap Stats reports (compared, never read)
   bool session_ = false;  // start_session() was called
   GpsPacket last_gps_{};
   bool have_gps_ = false;

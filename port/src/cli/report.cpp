@@ -13,6 +13,17 @@ void add(std::string& out, const char* key, std::uint64_t v, bool comma = true) 
   out += key;
   out += "\":" + std::to_string(v) + (comma ? "," : "");
 }
+// 0.01 degree as degrees with two decimals.
+std::string degrees(std::uint16_t cdeg) {
+  char buf[16];
+  std::snprintf(buf, sizeof buf, "%u.%02u", static_cast<unsigned>(cdeg / 100), static_cast<unsigned>(cdeg % 100));
+  return buf;
+}
+// [start, end] in degrees, or null.
+std::string fov_json(bool has, std::uint16_t from, std::uint16_t to) {
+  return has ? "[" + degrees(from) + "," + degrees(to) + "]" : "null";
+}
+
 // The most channels of the models the run saw (the length of blockage_by_channel).
 std::size_t channels_seen(const Stats& s) {
   std::size_t n = 0;
@@ -22,7 +33,27 @@ std::size_t channels_seen(const Stats& s) {
 }
 }  // namespace
 
-std::string stats_json(const Stats& s) {
+namespace {
+std::string sensor_json(const SensorReport& r) {
+  const HealthCounts& h = r.health;
+  std::string out = "{\"source\":\"" + r.source + "\",\"model\":\"" + model_name(r.model) + "\",";
+  add(out, "packets", r.packets);
+  add(out, "lost", r.lost);
+  out += "\"lost_by\":\"" + std::string(lost_by_name(r.lost_by)) + "\",";
+  add(out, "time_stalls", h.time_stalls);
+  add(out, "time_virtual", h.time_virtual);
+  add(out, "time_jumps", h.time_jumps);
+  add(out, "blockage_units", h.blockage_units);
+  out += "\"blockage_by_channel\":[";
+  for (std::size_t ch = 0; ch < channel_count(r.model); ++ch) out += (ch ? "," : "") + std::to_string(h.blockage_by_channel[ch]);
+  out += "],";
+  add(out, "duplicate_returns", h.duplicate_returns);
+  add(out, "beyond_rated_range", h.beyond_rated_range);
+  return out + "\"fov_gap_deg\":" + fov_json(h.fov_gap, h.fov_gap_from, h.fov_gap_to) + "}";
+}
+}  // namespace
+
+std::string stats_json(const Stats& s, const std::vector<SensorReport>& sensors) {
   std::string out = "{";
   add(out, "packets", s.packets);
   out += "\"models\":{";
@@ -58,6 +89,7 @@ std::string stats_json(const Stats& s) {
   out += "],";
   add(out, "duplicate_returns", s.duplicate_returns);
   add(out, "beyond_rated_range", s.beyond_rated_range);
+  out += "\"fov_gap_deg\":" + fov_json(s.fov_gap, s.fov_gap_from, s.fov_gap_to) + ",";
   add(out, "ip_fragments", s.ip_fragments);
   add(out, "gps_packets", s.gps_packets);
   out += "\"first_time_ns\":" + std::to_string(s.first_time_ns) + ",";
@@ -78,6 +110,11 @@ std::string stats_json(const Stats& s) {
   add(out, "fs_last_fault_id", fs.last_fault_id);
   add(out, "fs_last_fault_total", fs.last_fault_total);
   add(out, "fs_counter_stalls", fs.counter_stalls, false);
+  if (sensors.size() > 1) {
+    out += ",\"sensors\":[";
+    for (std::size_t i = 0; i < sensors.size(); ++i) out += (i ? "," : "") + sensor_json(sensors[i]);
+    out += "]";
+  }
   return out + "}";
 }
 
@@ -140,6 +177,9 @@ std::string stats_text(const Pipeline& p) {
   }
   line("duplicate_returns", std::to_string(s.duplicate_returns));
   line("beyond_rated_range", std::to_string(s.beyond_rated_range));
+  if (s.fov_gap)
+    line("fov_gap_deg", degrees(s.fov_gap_from) + " to " + degrees(s.fov_gap_to) +
+                            " (no packets there on every rotation: an azimuth FOV, not counted as lost)");
   line("ip_fragments", std::to_string(s.ip_fragments));
   if (s.ip_fragments)
     out += "  warning: " + std::to_string(s.ip_fragments) +
