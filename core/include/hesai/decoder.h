@@ -324,6 +324,10 @@ class Decoder {
   /// scan.duplicate_returns); the others keep their order.
   [[nodiscard]] Error decode(ByteView payload, PacketInfo& info, PacketPoints& out, UnitScan& scan,
                              Returns returns = Returns::all, DecodePath path = DecodePath::best) noexcept;
+  /// The same into caller-owned storage for `capacity` points (as the Point* form of decode()).
+  [[nodiscard]] Error decode(ByteView payload, PacketInfo& info, Point* points, std::size_t capacity, std::size_t& count,
+                             UnitScan& scan, Returns returns = Returns::all,
+                             DecodePath path = DecodePath::best) noexcept;
   /// decode() into caller-owned storage for `capacity` points, sized for this decoder's model
   /// (max_points(model()): 400, 384 or 256). Error::buffer_too_small, before the packet is read,
   /// when capacity is below that. `count` gets the number of points, 0 on error; the entries from

@@ -12,6 +12,7 @@
 #include "hesai/calibration.h"
 #include "hesai/decoder.h"
 #include "hesai/gps.h"
+#include "hesai/health.h"
 #include "hesai/hkdf.h"
 #include "hesai/model.h"
 #include "hesai/point.h"
@@ -33,6 +34,11 @@ constexpr bool fits() {
 // There is no release call: the storage may be dropped without running ~Decoder(), whose only
 // effect is wiping the key (hesai_decoder_clear_session_key() does that).
 static_assert(fits<Decoder, hesai_decoder>(), "hesai::Decoder must fit in HESAI_DECODER_SIZE aligned bytes");
+static_assert(fits<hesai::HealthMonitor, hesai_health>(), "hesai::HealthMonitor must fit in HESAI_HEALTH_SIZE aligned bytes");
+static_assert(std::is_trivially_destructible_v<hesai::HealthMonitor>);
+static_assert(HESAI_RETURNS_all == static_cast<int>(hesai::Returns::all) &&
+              HESAI_RETURNS_distinct == static_cast<int>(hesai::Returns::distinct));
+static_assert(sizeof(hesai_health_counts::blockage_by_channel) / sizeof(std::uint32_t) == hesai::kMaxChannels);
 static_assert(fits<hesai::AngleCorrection, hesai_calibration_scratch>() &&
                   fits<hesai::FiretimeCorrection, hesai_calibration_scratch>() &&
                   fits<hesai::ChannelConfig, hesai_calibration_scratch>(),
@@ -153,6 +159,14 @@ const Decoder& decoder_in(const hesai_decoder* d) noexcept {
 }
 
 hesai_error c_error(Error e) noexcept { return static_cast<hesai_error>(e); }
+
+// The monitor hesai_health_init() built in the storage.
+hesai::HealthMonitor& health_in(hesai_health* h) noexcept {
+  return *std::launder(static_cast<hesai::HealthMonitor*>(static_cast<void*>(h)));
+}
+const hesai::HealthMonitor& health_in(const hesai_health* h) noexcept {
+  return *std::launder(static_cast<const hesai::HealthMonitor*>(static_cast<const void*>(h)));
+}
 
 // A byte range the caller passed: NULL only when empty.
 bool bytes_ok(const std::uint8_t* p, std::size_t size) noexcept { return p != nullptr || size == 0; }
@@ -401,6 +415,57 @@ hesai_error hesai_decoder_decode_columns(hesai_decoder* decoder, const std::uint
   const Error e = decoder_in(decoder).decode(ByteView{payload, size}, i, c, *count);
   if (info != nullptr) copy_info(i, *info);
   return c_error(e);
+}
+
+hesai_error hesai_health_init(hesai_health* health, int rotation) noexcept {
+  if (health == nullptr || (rotation != HESAI_ROTATION_clockwise && rotation != HESAI_ROTATION_counterclockwise))
+    return HESAI_ERROR_invalid_argument;
+  hesai::HealthMonitor* m = ::new (static_cast<void*>(health)) hesai::HealthMonitor{};
+  m->set_rotation(static_cast<hesai::Rotation>(rotation));
+  return HESAI_ERROR_ok;
+}
+
+hesai_error hesai_decoder_decode_health(hesai_decoder* decoder, const std::uint8_t* payload, std::size_t size,
+                                        hesai_packet_info* info, hesai_point* points, std::size_t capacity,
+                                        std::size_t* count, int returns, hesai_health* health,
+                                        std::uint32_t* lost_before) noexcept {
+  if (count != nullptr) *count = 0;
+  if (lost_before != nullptr) *lost_before = 0;
+  if (decoder == nullptr || points == nullptr || count == nullptr || !bytes_ok(payload, size) ||
+      (returns != HESAI_RETURNS_all && returns != HESAI_RETURNS_distinct))
+    return HESAI_ERROR_invalid_argument;
+  hesai::PacketInfo i;
+  hesai::UnitScan scan;
+  const Error e = decoder_in(decoder).decode(ByteView{payload, size}, i, reinterpret_cast<hesai::Point*>(points),
+                                             capacity, *count, scan, static_cast<hesai::Returns>(returns));
+  if (info != nullptr) copy_info(i, *info);
+  if (e == Error::ok && health != nullptr) {
+    hesai::HealthMonitor& m = health_in(health);
+    const std::uint32_t lost = m.observe(i);
+    m.observe_units(scan);
+    if (lost_before != nullptr) *lost_before = lost;
+  }
+  return c_error(e);
+}
+
+hesai_error hesai_health_counts_get(const hesai_health* health, hesai_health_counts* counts) noexcept {
+  if (health == nullptr || counts == nullptr) return HESAI_ERROR_invalid_argument;
+  const hesai::HealthCounts& h = health_in(health).counts();
+  counts->packets = h.packets;
+  counts->lost = h.lost;
+  counts->reordered = h.reordered;
+  counts->duplicates = h.duplicates;
+  counts->time_stalls = h.time_stalls;
+  counts->time_virtual = h.time_virtual;
+  counts->time_jumps = h.time_jumps;
+  counts->blockage_units = h.blockage_units;
+  counts->duplicate_returns = h.duplicate_returns;
+  counts->beyond_rated_range = h.beyond_rated_range;
+  for (std::size_t ch = 0; ch < hesai::kMaxChannels; ++ch) counts->blockage_by_channel[ch] = h.blockage_by_channel[ch];
+  counts->fov_gap = h.fov_gap ? 1 : 0;
+  counts->fov_gap_from = h.fov_gap_from;
+  counts->fov_gap_to = h.fov_gap_to;
+  return HESAI_ERROR_ok;
 }
 
 }  // extern "C"

@@ -218,19 +218,28 @@ Error Decoder::decode(ByteView payload, PacketInfo& info, PacketPoints& out, Dec
 
 Error Decoder::decode(ByteView payload, PacketInfo& info, PacketPoints& out, UnitScan& scan, Returns returns,
                       DecodePath path) noexcept {
+  return decode(payload, info, out.points.data(), out.points.size(), out.count, scan, returns, path);
+}
+
+Error Decoder::decode(ByteView payload, PacketInfo& info, Point* points, std::size_t capacity, std::size_t& count,
+                      UnitScan& scan, Returns returns, DecodePath path) noexcept {
   scan = UnitScan{};
-  const Error e = decode_into(payload, info, out.points.data(), nullptr, out.points.size(), out.count, path, &scan);
+  if (points == nullptr) {
+    count = 0;
+    return Error::invalid_argument;
+  }
+  const Error e = decode_into(payload, info, points, nullptr, capacity, count, path, &scan);
   if (e != Error::ok || returns != Returns::distinct || scan.duplicate_returns == 0) return e;
   // Leave out the second returns the scan found repeated, keeping the order of the rest.
   std::size_t kept = 0;
-  for (std::size_t i = 0; i < out.count; ++i) {
-    const Point& p = out.points[i];
+  for (std::size_t i = 0; i < count; ++i) {
+    const Point& p = points[i];
     const std::size_t firing = p.block / 2u, ch = static_cast<std::size_t>(p.channel - 1u) % kMaxChannels;
     const bool repeated = p.block % 2u == 1u && firing < kMaxDualFirings &&
                           (scan.repeated[firing][ch / 8] >> (ch % 8) & 1u) != 0;
-    if (!repeated) out.points[kept++] = p;
+    if (!repeated) points[kept++] = p;
   }
-  out.count = kept;
+  count = kept;
   return e;
 }
 
