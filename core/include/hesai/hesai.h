@@ -285,7 +285,7 @@ hesai_error hesai_decoder_decode_columns(hesai_decoder* decoder, const uint8_t* 
 
 /* ---- Stream health (hesai/health.h) ------------------------------------------------------- */
 
-/* A sensor's stream-health monitor in HESAI_HEALTH_SIZE aligned bytes (about 720 are used; the
+/* A sensor's stream-health monitor in HESAI_HEALTH_SIZE aligned bytes (about 940 are used; the
  * library checks at compile time that it fits): loss from the block azimuth and the packet time,
  * clock stalls, jumps and the year-2000 virtual clock, the azimuth FOV, and from the units:
  * QT128C2X blockage markers per channel, repeated dual returns, points beyond the rated range.
@@ -328,9 +328,10 @@ enum {
  * monitor or another rotation value. */
 hesai_error hesai_health_init(hesai_health* health, int rotation) HESAI_NOEXCEPT;
 /* hesai_decoder_decode, with `returns` (HESAI_RETURNS_*), then the packet and its units fed to
- * `health` (when not NULL; not on error). *lost_before (when not NULL): the packets the monitor
- * found missing just before this one (0 on error). invalid_argument for a `returns` value that is
- * neither. */
+ * `health` (when not NULL; not on error; the units' scan is kept in `health`'s bytes, so the call
+ * stays within the stack budget). *lost_before (when not NULL): the packets the monitor found
+ * missing just before this one (0 on error). invalid_argument for a `returns` value that is
+ * neither, or HESAI_RETURNS_distinct without a monitor. */
 hesai_error hesai_decoder_decode_health(hesai_decoder* decoder, const uint8_t* payload, size_t size,
                                         hesai_packet_info* info, hesai_point* points, size_t capacity, size_t* count,
                                         int returns, hesai_health* health, uint32_t* lost_before) HESAI_NOEXCEPT;
