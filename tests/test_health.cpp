@@ -567,4 +567,36 @@ TEST(HealthUnits, ReturnsDistinctLeavesOutExactlyTheRepeatedSecondReturns) {
   }
 }
 
+TEST(HealthUnits, ColumnsScanEqualsThePointsScan) {
+  // The columns form with a UnitScan scans the same units: every field equal on every packet of
+  // every capture (and the QT128C2X with blockage markers), and the same points as without a scan.
+  Packets qt = pcap_payloads("qt128c2x_dual.pcap");
+  hesai::store_le16(&qt[3][12 + 2 + 4 * 100], 1);
+  hesai_test::qt128_seal(qt[3]);
+  const std::pair<Packets, Model> streams[] = {
+      {pcap_payloads("pandar40p_dual.pcap"), Model::pandar40p}, {pandar64_without_sequence(), Model::pandar64},
+      {qt, Model::qt128c2x}, {pcap_payloads("pandar_xt32m2x.pcap"), Model::pandar_xt32m2x}};
+  for (const auto& [packets, model] : streams) {
+    SCOPED_TRACE(hesai::model_name(model));
+    hesai::Decoder d(model);
+    static hesai::PacketPoints pts;
+    static hesai::PacketColumns<hesai::kMaxPointsPerPacket> cols;
+    std::uint64_t blockage = 0;
+    for (const auto& p : packets) {
+      hesai::PacketInfo info;
+      hesai::UnitScan a, b;
+      ASSERT_EQ(d.decode(view(p), info, pts, a), Error::ok);
+      ASSERT_EQ(d.decode(view(p), info, cols.columns(), cols.count, b), Error::ok);
+      EXPECT_EQ(cols.count, pts.count);
+      EXPECT_EQ(a.blockage_units, b.blockage_units);
+      EXPECT_EQ(a.duplicate_returns, b.duplicate_returns);
+      EXPECT_EQ(a.beyond_rated_range, b.beyond_rated_range);
+      EXPECT_TRUE(a.blockage_by_channel == b.blockage_by_channel);
+      EXPECT_TRUE(a.repeated == b.repeated);
+      blockage += b.blockage_units;
+    }
+    EXPECT_EQ(blockage, model == Model::qt128c2x ? 1u : 0u);
+  }
+}
+
 }  // namespace

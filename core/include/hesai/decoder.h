@@ -340,6 +340,10 @@ class Decoder {
   /// error. `path`: the vector code the CPU has, or the portable scalar code (see DecodePath).
   [[nodiscard]] Error decode(ByteView payload, PacketInfo& info, const PointColumns& out, std::size_t& count,
                              DecodePath path = DecodePath::best) noexcept;
+  /// decode() into columns, and the packet's units scanned into `scan` (as the Points form with a
+  /// UnitScan; Returns::distinct is not offered for columns: every unit's point is written).
+  [[nodiscard]] Error decode(ByteView payload, PacketInfo& info, const PointColumns& out, std::size_t& count,
+                             UnitScan& scan, DecodePath path = DecodePath::best) noexcept;
   /// decode() into columns with their own storage (N >= max_points(model())).
   template <std::size_t N>
   [[nodiscard]] Error decode(ByteView payload, PacketInfo& info, PacketColumns<N>& out,

@@ -258,6 +258,17 @@ Error Decoder::decode(ByteView payload, PacketInfo& info, const PointColumns& co
   return decode_into(payload, info, nullptr, &columns, columns.capacity, count, path);
 }
 
+Error Decoder::decode(ByteView payload, PacketInfo& info, const PointColumns& columns, std::size_t& count,
+                      UnitScan& scan, DecodePath path) noexcept {
+  scan = UnitScan{};
+  if (columns.x == nullptr || columns.y == nullptr || columns.z == nullptr || columns.time_ns == nullptr ||
+      columns.intensity == nullptr || columns.channel == nullptr || columns.return_index == nullptr) {
+    count = 0;
+    return Error::invalid_argument;
+  }
+  return decode_into(payload, info, nullptr, &columns, columns.capacity, count, path, &scan);
+}
+
 bool decode_simd_available() noexcept {
   const kernels::VectorIsa isa = kernels::vector_isa(DecodePath::best);
   return isa != kernels::VectorIsa::none && isa != kernels::VectorIsa::armv7m;  // the ARMv7E-M loops are scalar
