@@ -236,7 +236,7 @@ Error Decoder::decode(ByteView payload, PacketInfo& info, Point* points, std::si
     const Point& p = points[i];
     const std::size_t firing = p.block / 2u, ch = static_cast<std::size_t>(p.channel - 1u) % kMaxChannels;
     const bool repeated = p.block % 2u == 1u && firing < kMaxDualFirings &&
-                          (scan.repeated[firing][ch / 8] >> (ch % 8) & 1u) != 0;
+                          (static_cast<unsigned>(scan.repeated[firing][ch / 8]) >> (ch % 8) & 1u) != 0;
     if (!repeated) points[kept++] = p;
   }
   count = kept;
