@@ -1,8 +1,10 @@
 // Stream health of one sensor: packets lost where the packets carry no UDP sequence, and clocks
 // that freeze, run backwards or count from the free-run virtual date.
 //
-// Sources. Pandar64 manual, Chapter 3 (notes under the data structure): the UDP sequence is off by
-// default; 3.1.2.3 and Section 6: loss is to be judged from the packets. Pandar40P packet document,
+// Sources. Pandar64 manual, Chapter 3 (note 1 under the data structure): "UDP sequence is OFF by
+// default"; its settings table: "ON #1: UDP sequence only increments within the user-specified
+// azimuth FOV ... ON #2: Increments at all times"; its troubleshooting table names the azimuth FOV
+// first among the causes of "missing packets". Pandar40P packet document,
 // "Quality Indicators": sequence gaps and repeated timestamps. Pandar64 manual, Appendix B (PTP
 // table), and QT128C2X manual, the same table: a unit never locked "starts counting from a virtual
 // UTC (such as 2000-01-01 00:00:00)". Model facts (firings per rotation at 600 rpm, blocks per
@@ -10,9 +12,10 @@
 //
 // Cost: HealthMonitor is about 720 bytes of fixed state (its counters, 512 of them the blockage
 // units per channel; a 256-packet window; the last 4 gaps; the previous packet's azimuth, time and
-// spin rate), no heap; observe() is O(1) but for a forward gap
-// of k packets, which clears min(k, 256) bits. Not thread-safe: one monitor per sensor, fed from
-// one thread, in arrival order.
+// spin rate), no heap. observe() is O(1) but for a forward gap of k packets, which clears min(k, 256)
+// bits; observe_units() is O(1) but for a packet with blockage units (a pass over the 128 channels).
+// Cortex-M4F: about 620 instructions a packet for both (docs/FIRMWARE.md). Not thread-safe: one
+// monitor per sensor, fed from one thread, in arrival order.
 #pragma once
 
 #include <array>
