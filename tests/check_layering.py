@@ -25,7 +25,7 @@ BELOW = {  # concern -> the concerns it may include
 }
 HEADERS = {  # public header (under core/include/hesai/) -> concern
     'config.h': 'base', 'bytes.h': 'base', 'error.h': 'base', 'error_list.h': 'base', 'model.h': 'base', 'model_list.h': 'base',
-    'civil_time.h': 'base', 'detail/math.h': 'base',
+    'civil_time.h': 'base', 'detail/math.h': 'base', 'saturating.h': 'base',
     'crc32.h': 'crc',
     'sha256.h': 'crypto', 'hmac.h': 'crypto', 'hkdf.h': 'crypto', 'ct.h': 'crypto',
     'calibration.h': 'calibration', 'detail/decimal.h': 'calibration',

@@ -23,6 +23,7 @@
 #include <cstdint>
 
 #include "hesai/decoder.h"
+#include "hesai/saturating.h"
 
 namespace hesai {
 
@@ -64,16 +65,6 @@ struct HealthCounts {
   std::uint16_t fov_gap_from = 0;
   std::uint16_t fov_gap_to = 0;
 };
-
-/// Adds `n` to a 32-bit `counter`, stopping at its largest value.
-constexpr void saturating_add(std::uint32_t& counter, std::uint32_t n) noexcept {
-  counter = counter > UINT32_MAX - n ? UINT32_MAX : counter + n;
-}
-
-/// Adds `n` to `counter`, stopping at the largest value.
-constexpr void saturating_add(std::uint64_t& counter, std::uint64_t n) noexcept {
-  counter = counter > UINT64_MAX - n ? UINT64_MAX : counter + n;
-}
 
 /// Watches one sensor's point-cloud packets (PacketInfo from validate() or decode()) for loss,
 /// reordering and clock faults, without the UDP sequence.

@@ -29,6 +29,7 @@ constexpr LostBy operator|(LostBy a, LostBy b) {
 const char* lost_by_name(LostBy by) noexcept;
 
 /// Counters of a run. Each rejected packet counts under the first check it failed (count_error).
+/// Every counter saturates at its largest value (hesai/saturating.h); none wraps.
 struct Stats {
   std::uint64_t packets = 0;               ///< UDP payloads examined
   std::uint64_t points = 0;                ///< points decoded

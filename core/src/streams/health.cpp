@@ -11,11 +11,8 @@ constexpr std::uint32_t kMask = kHealthWindow - 1;
 constexpr std::int64_t kHourNs = 3600LL * 1000000000;
 constexpr std::int64_t kTurn = 36000;  // 0.01 degree
 
-void bump(std::uint64_t& counter) { saturating_add(counter, 1); }
-// One less, except from 0 or from a saturated value (which no longer counts exactly).
-void take_back(std::uint64_t& counter) {
-  if (counter != 0 && counter != UINT64_MAX) --counter;
-}
+void bump(std::uint64_t& counter) { saturating_increment(counter); }
+void take_back(std::uint64_t& counter) { saturating_subtract(counter, 1); }
 
 // round(a / b) for a >= 0, b > 0.
 constexpr std::int64_t div_round(std::int64_t a, std::int64_t b) { return (a + b / 2) / b; }
@@ -120,10 +117,7 @@ void HealthMonitor::observe_units(const UnitScan& scan) noexcept {
   for (std::size_t ch = 0; ch < kMaxChannels; ++ch) saturating_add(counts_.blockage_by_channel[ch], scan.blockage_by_channel[ch]);
 }
 
-void HealthMonitor::take_back_lost(std::uint64_t n) noexcept {
-  if (counts_.lost == UINT64_MAX) return;  // saturated: no longer exact
-  counts_.lost = counts_.lost > n ? counts_.lost - n : 0;
-}
+void HealthMonitor::take_back_lost(std::uint64_t n) noexcept { saturating_subtract(counts_.lost, n); }
 
 std::uint32_t HealthMonitor::fov_rule(std::uint32_t lost, std::uint16_t from, std::uint16_t to,
                                       std::uint32_t tolerance) noexcept {

@@ -171,13 +171,13 @@ Pipeline::Source* Pipeline::source_for(std::uint64_t key, Model model) {
 void Pipeline::close_frames(FrameAssembler& frames) {
   FrameInfo f;
   while (frames.pop_closed(f)) {
-    ++stats_.frames;
+    saturating_increment(stats_.frames);
     if (sink_) sink_->frame_closed(f);
   }
 }
 
 bool Pipeline::feed(ByteView payload, std::uint64_t source_key) {
-  ++stats_.packets;
+  saturating_increment(stats_.packets);
   Model model = Model::unknown;
   PacketKind kind = PacketKind::point_cloud;
   Error e = identify(payload, model, kind);
@@ -267,9 +267,9 @@ bool Pipeline::process(Source& src, std::uint64_t index, const PacketInfo& info)
     src.decoder->set_allow_unsigned(options_.allow_unsigned);
   }
   switch (info.signature) {
-    case SignatureStatus::valid: ++stats_.signature_valid; break;
-    case SignatureStatus::unverified: ++stats_.signature_unverified; break;
-    case SignatureStatus::accepted_unsigned: ++stats_.signature_missing; break;
+    case SignatureStatus::valid: saturating_increment(stats_.signature_valid); break;
+    case SignatureStatus::unverified: saturating_increment(stats_.signature_unverified); break;
+    case SignatureStatus::accepted_unsigned: saturating_increment(stats_.signature_missing); break;
     case SignatureStatus::not_signed: break;
   }
   if (stats_.first_time_ns == 0) stats_.first_time_ns = info.time_ns;
@@ -305,25 +305,25 @@ bool Pipeline::process(Source& src, std::uint64_t index, const PacketInfo& info)
 
   std::uint32_t lost_before = 0;
   if (!info.has_sequence) {
-    // `lost` can fall (a late packet): unsigned arithmetic (modulo 2^64) adds a negative change as well.
+    // `lost` can fall (a late packet, an FOV gap taken back): the change either way, saturating.
     lost_before = health_lost_before;
-    stats_.lost += health.lost - health_before.lost;
-    stats_.duplicates += health.duplicates - health_before.duplicates;
-    stats_.reordered += health.reordered - health_before.reordered;
+    saturating_follow(stats_.lost, health_before.lost, health.lost);
+    saturating_follow(stats_.duplicates, health_before.duplicates, health.duplicates);
+    saturating_follow(stats_.reordered, health_before.reordered, health.reordered);
     stats_.lost_by = stats_.lost_by | LostBy::azimuth_time;
     src.lost_by = src.lost_by | LostBy::azimuth_time;
   } else {
     stats_.lost_by = stats_.lost_by | LostBy::udp_sequence;
     src.lost_by = src.lost_by | LostBy::udp_sequence;
-    // Only this source's counters move: add their change. `lost` can fall (a late packet);
-    // unsigned arithmetic (modulo 2^64) adds a negative change as well.
+    // Only this source's counters move: add their change. `lost` can fall (a late packet): the
+    // change either way, saturating.
     const SequenceCounts before = src.sequence.counts();
     lost_before = src.sequence.observe(info.sequence);
     const SequenceCounts& after = src.sequence.counts();
-    stats_.lost += after.lost - before.lost;
-    stats_.duplicates += after.duplicates - before.duplicates;
-    stats_.reordered += after.reordered - before.reordered;
-    stats_.sequence_resyncs += after.resyncs - before.resyncs;
+    saturating_follow(stats_.lost, before.lost, after.lost);
+    saturating_follow(stats_.duplicates, before.duplicates, after.duplicates);
+    saturating_follow(stats_.reordered, before.reordered, after.reordered);
+    saturating_follow(stats_.sequence_resyncs, before.resyncs, after.resyncs);
   }
 
   // Each point goes to the frame of its own azimuth; frames close when the blocks have moved
@@ -338,7 +338,7 @@ bool Pipeline::process(Source& src, std::uint64_t index, const PacketInfo& info)
     if (frames.block(info.block_azimuth[b])) close_frames(frames);
     for (; next < points_.count && points_.points[next].block == b; ++next) {
       const Point& p = points_.points[next];
-      ++stats_.points;
+      saturating_increment(stats_.points);
       if (!keep || p.distance_m < options_.min_range || p.distance_m > options_.max_range) continue;
       if (!frames.in_fov(p.azimuth_deg)) continue;
       const std::uint64_t frame_id = frames.point(p.azimuth_deg);
