@@ -31,7 +31,7 @@ CORE_BELOW = {  # concern -> the concerns it may include
 }
 CORE_HEADERS = {  # public header (under core/include/hesai/) -> concern
     'config.h': 'base', 'bytes.h': 'base', 'error.h': 'base', 'error_list.h': 'base', 'model.h': 'base', 'model_list.h': 'base',
-    'civil_time.h': 'base', 'detail/math.h': 'base',
+    'civil_time.h': 'base', 'detail/math.h': 'base', 'saturating.h': 'base',
     'crc32.h': 'crc',
     'sha256.h': 'crypto', 'hmac.h': 'crypto', 'hkdf.h': 'crypto', 'ct.h': 'crypto',
     'calibration.h': 'calibration', 'detail/decimal.h': 'calibration',
@@ -39,7 +39,7 @@ CORE_HEADERS = {  # public header (under core/include/hesai/) -> concern
     'decoder.h': 'sensors', 'point.h': 'kernels', 'gps.h': 'sensors', 'detail/pandar40_packet.h': 'sensors',
     'detail/pandar64_packet.h': 'sensors', 'detail/qt128_packet.h': 'sensors', 'detail/xt_packet.h': 'sensors',
     'detail/tables/': 'sensors', 'detail/qt64_packet.h': 'sensors',
-    'frame.h': 'streams', 'sequence.h': 'streams', 'stats.h': 'streams', 'safety.h': 'streams',
+    'frame.h': 'streams', 'sequence.h': 'streams', 'stats.h': 'streams', 'safety.h': 'streams', 'health.h': 'streams',
     'rotation.h': 'streams', 'held_packets.h': 'streams',
     'hesai.h': 'capi', 'packet_info_list.h': 'capi',
 }

@@ -1391,4 +1391,182 @@ TEST(Cli, LoadTestReportsLossHonestly) {
   std::fprintf(stderr, "load test: %lld sent, %lld received, %lld lost\n", sent_packets + 1, j["packets"], j["lost"]);
 }
 
+// Stream health (issue #32): a Pandar64 stream without its UDP sequence (the unit's default) with
+// 100 packets dropped, then dated in the year 2000, then with 9 frozen timestamps: the losses come
+// from the block azimuth and the packet time (lost_by), the clock faults are counted and named.
+TEST(Cli, StatsStreamHealthWithoutSequence) {
+  const std::string dir = temp_dir();
+  auto p = pcap_payloads("pandar64_dual.pcap");
+  const auto seq = json_numbers(run("stats " + data_path("pandar64_dual.pcap") + " --json").out);
+  EXPECT_NE(run("stats " + data_path("pandar64_dual.pcap") + " --json").out.find("\"lost_by\":\"udp_sequence\""),
+            std::string::npos);
+  EXPECT_EQ(seq.at("time_stalls"), 0);
+  EXPECT_EQ(seq.at("time_virtual"), 0);
+  EXPECT_EQ(seq.at("time_jumps"), 0);
+  for (auto& q : p) q.resize(1194);  // Pandar64 manual, Chapter 3: the UDP sequence off
+  p.erase(p.begin() + 700, p.begin() + 800);
+  write_pcap(dir + "/dropped.pcap", p);
+  CmdResult r = run("stats " + dir + "/dropped.pcap --json");
+  ASSERT_EQ(r.status, 0);
+  auto j = json_numbers(r.out);
+  EXPECT_EQ(j["lost"], 100);
+  EXPECT_NE(r.out.find("\"lost_by\":\"azimuth_time\""), std::string::npos) << r.out;
+  EXPECT_EQ(j["time_stalls"], 0);
+  EXPECT_EQ(j["time_virtual"], 0);
+  r = run("stats " + dir + "/dropped.pcap");
+  EXPECT_EQ(text_number(r.out, "lost"), 100) << r.out;
+  EXPECT_NE(r.out.find("  lost_by               azimuth_time"), std::string::npos) << r.out;
+  EXPECT_EQ(r.out.find("free-running"), std::string::npos) << r.out;
+
+  const std::size_t tail = 1172;  // Pandar64 manual 3.1.2.3: timestamp @10, date-time @16 (year first)
+  for (auto& q : p) q[tail + 16] = 0;  // 2000 + 0
+  for (std::size_t i = 301; i <= 309; ++i) {
+    for (std::size_t b = 10; b < 14; ++b) p[i][tail + b] = p[300][tail + b];
+    for (std::size_t b = 16; b < 22; ++b) p[i][tail + b] = p[300][tail + b];
+  }
+  write_pcap(dir + "/virtual.pcap", p);
+  j = json_numbers(run("stats " + dir + "/virtual.pcap --json").out);
+  EXPECT_EQ(j["time_virtual"], static_cast<long long>(p.size()));
+  EXPECT_EQ(j["time_stalls"], 9);
+  EXPECT_EQ(j["lost"], 100);
+  r = run("stats " + dir + "/virtual.pcap");
+  EXPECT_EQ(text_number(r.out, "time_virtual"), static_cast<long long>(p.size())) << r.out;
+  EXPECT_EQ(text_number(r.out, "time_stalls"), 9) << r.out;
+  EXPECT_NE(r.out.find("the unit's free-running clock, not PTP or GPS time"), std::string::npos) << r.out;
+}
+
+// Blockage markers by channel, repeated returns and IP fragments in stats (issue #32): QT128C2X
+// packets with distance 1 in channel 70 of both blocks of packets 10..14 and channel 100 of block 1
+// of packets 20..22 (CRCs resealed); the frame of packet 30 rewritten as an IPv4 fragment (flags
+// MF), which the capture reader skips.
+TEST(Cli, StatsBlockageDuplicatesFragments) {
+  const std::string dir = temp_dir();
+  auto p = pcap_payloads("qt128c2x_dual.pcap");
+  const auto unit = [](std::size_t block, std::size_t channel) { return 12 + 514 * block + 2 + 4 * (channel - 1); };
+  for (std::size_t i = 10; i < 15; ++i) {
+    store_le16(&p[i][unit(0, 70)], 1);
+    store_le16(&p[i][unit(1, 70)], 1);
+  }
+  for (std::size_t i = 20; i < 23; ++i) store_le16(&p[i][unit(0, 100)], 1);
+  for (std::size_t i = 10; i < 23; ++i) hesai_test::qt128_seal(p[i]);
+  write_pcap(dir + "/blocked.pcap", p);
+  // write_pcap's records: 24-byte file header, then 16 + 42 + 1127 bytes each; the IPv4 flags and
+  // fragment offset at frame byte 20.
+  std::vector<std::uint8_t> file = read_file(dir + "/blocked.pcap");
+  file[24 + 30 * (16 + 42 + 1127) + 16 + 20] = 0x20;
+  std::ofstream(dir + "/blocked.pcap", std::ios::binary).write(reinterpret_cast<const char*>(file.data()),
+                                                                static_cast<long>(file.size()));
+  CmdResult r = run("stats " + dir + "/blocked.pcap --json");
+  ASSERT_EQ(r.status, 0) << r.err;
+  auto j = json_numbers(r.out);
+  EXPECT_EQ(j["packets"], static_cast<long long>(p.size() - 1));
+  EXPECT_EQ(j["ip_fragments"], 1);
+  EXPECT_EQ(j["blockage_units"], 13);
+  std::string by = "[";
+  for (int ch = 1; ch <= 128; ++ch) by += std::string(ch > 1 ? "," : "") + (ch == 70 ? "10" : ch == 100 ? "3" : "0");
+  EXPECT_NE(r.out.find("\"blockage_by_channel\":" + by + "]"), std::string::npos) << r.out;
+  EXPECT_GT(j["duplicate_returns"], 0);  // counted from the bytes in test_health.cpp
+  EXPECT_EQ(j["beyond_rated_range"], 0);
+  EXPECT_EQ(j["lost"], 1);  // the fragment's packet, by its UDP sequence
+  r = run("stats " + dir + "/blocked.pcap");
+  EXPECT_EQ(text_number(r.out, "blockage_units"), 13) << r.out;
+  EXPECT_NE(r.out.find("  blockage_by_channel   channel 70: 10, channel 100: 3\n"), std::string::npos) << r.out;
+  EXPECT_EQ(text_number(r.out, "ip_fragments"), 1) << r.out;
+  EXPECT_NE(r.out.find("warning: 1 IP fragments were skipped"), std::string::npos) << r.out;
+  // A capture without fragments has no warning, and a Pandar64's array has its 64 channels.
+  r = run("stats " + data_path("pandar64_dual.pcap") + " --json");
+  std::string zeros = "[0";
+  for (int ch = 2; ch <= 64; ++ch) zeros += ",0";
+  EXPECT_NE(r.out.find("\"blockage_by_channel\":" + zeros + "],"), std::string::npos) << r.out;
+  EXPECT_EQ(run("stats " + data_path("pandar64_dual.pcap")).out.find("warning"), std::string::npos);
+}
+
+// An azimuth FOV on a sequence-less Pandar64 (issue #32): the packets whose first block azimuth
+// lies in [90, 150) degrees missing on every rotation: lost 0, and fov_gap_deg the block azimuths
+// either side of the last such gap, as the test reads them.
+TEST(Cli, StatsFovGapIsNotLoss) {
+  const std::string dir = temp_dir();
+  std::vector<std::vector<std::uint8_t>> p;
+  std::uint16_t before = 0, after = 0;
+  bool in_gap = false;
+  for (auto q : pcap_payloads("pandar64_dual.pcap")) {
+    q.resize(1194);
+    const std::uint16_t az = load_le16(&q[8]);  // Pandar64 manual 3.1.2: block 1's azimuth after the 8-byte header
+    if (az >= 9000 && az < 15000) {
+      if (!in_gap && !p.empty()) before = load_le16(&p.back()[8]);
+      in_gap = true;
+      continue;
+    }
+    if (in_gap) after = az;
+    in_gap = false;
+    p.push_back(q);
+  }
+  write_pcap(dir + "/fov.pcap", p);
+  const CmdResult r = run("stats " + dir + "/fov.pcap --json");
+  ASSERT_EQ(r.status, 0);
+  EXPECT_EQ(json_numbers(r.out)["lost"], 0) << r.out;
+  char want[64];
+  std::snprintf(want, sizeof want, "\"fov_gap_deg\":[%u.%02u,%u.%02u]", before / 100u, before % 100u, after / 100u,
+                after % 100u);
+  EXPECT_NE(r.out.find(want), std::string::npos) << want << "\n" << r.out;
+  EXPECT_NE(run("stats " + data_path("pandar64_dual.pcap") + " --json").out.find("\"fov_gap_deg\":null"), std::string::npos);
+  EXPECT_NE(run("stats " + dir + "/fov.pcap").out.find("  fov_gap_deg"), std::string::npos);
+}
+
+// Two sensors in one capture (issue #32): a sequence-less Pandar64 from 192.168.1.201 with 100
+// packets dropped and 9 frozen timestamps, interleaved with the QT128C2X capture (sequence on) from
+// 192.168.1.202, both to port 2368 from 10000: the run's lost is the Pandar64's 100, lost_by "mixed",
+// and `sensors` holds one object per address with its own counts.
+TEST(Cli, StatsPerSensorObjects) {
+  const std::string dir = temp_dir();
+  auto p64 = pcap_payloads("pandar64_dual.pcap");
+  const std::size_t tail = 1172;
+  for (std::size_t i = 301; i <= 309; ++i) {
+    for (std::size_t b = 10; b < 14; ++b) p64[i][tail + b] = p64[300][tail + b];
+    for (std::size_t b = 16; b < 22; ++b) p64[i][tail + b] = p64[300][tail + b];
+  }
+  for (auto& q : p64) q.resize(1194);
+  p64.erase(p64.begin() + 700, p64.begin() + 800);
+  const auto qt = pcap_payloads("qt128c2x_dual.pcap");
+  std::vector<std::vector<std::uint8_t>> all;
+  std::vector<bool> from_qt;
+  for (std::size_t i = 0; i < std::max(p64.size(), qt.size()); ++i) {
+    if (i < p64.size()) { all.push_back(p64[i]); from_qt.push_back(false); }
+    if (i < qt.size()) { all.push_back(qt[i]); from_qt.push_back(true); }
+  }
+  write_pcap(dir + "/two.pcap", all);
+  // write_pcap's records: 16-byte header, then the frame; the IPv4 source's last byte at frame byte 29.
+  std::vector<std::uint8_t> file = read_file(dir + "/two.pcap");
+  std::size_t at = 24;
+  for (std::size_t i = 0; i < all.size(); ++i) {
+    if (from_qt[i]) file[at + 16 + 29] = 202;
+    at += 16 + load_le32(&file[at + 8]);
+  }
+  std::ofstream(dir + "/two.pcap", std::ios::binary).write(reinterpret_cast<const char*>(file.data()),
+                                                            static_cast<long>(file.size()));
+  const CmdResult r = run("stats " + dir + "/two.pcap --json");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const std::size_t sensors = r.out.find("\"sensors\":[");
+  ASSERT_NE(sensors, std::string::npos) << r.out;
+  EXPECT_EQ(json_numbers(r.out.substr(0, sensors))["lost"], 100);  // the run's (json_numbers keeps a key's last value)
+  EXPECT_NE(r.out.find("\"lost_by\":\"mixed\""), std::string::npos) << r.out;
+  const std::size_t a = r.out.find("{\"source\":\"192.168.1.201:10000\",\"model\":\"Pandar64\",", sensors);
+  const std::size_t b = r.out.find("{\"source\":\"192.168.1.202:10000\",\"model\":\"QT128C2X\",", sensors);
+  ASSERT_NE(a, std::string::npos) << r.out;
+  ASSERT_NE(b, std::string::npos) << r.out;
+  EXPECT_LT(a, b);  // in the order they first sent
+  const auto one = json_numbers(r.out.substr(a, b - a));
+  EXPECT_EQ(one.at("packets"), static_cast<long long>(p64.size()));
+  EXPECT_EQ(one.at("lost"), 100);
+  EXPECT_EQ(one.at("time_stalls"), 9);
+  EXPECT_NE(r.out.substr(a, b - a).find("\"lost_by\":\"azimuth_time\""), std::string::npos);
+  const auto two = json_numbers(r.out.substr(b));
+  EXPECT_EQ(two.at("packets"), static_cast<long long>(qt.size()));
+  EXPECT_EQ(two.at("lost"), 0);
+  EXPECT_EQ(two.at("time_stalls"), 0);
+  EXPECT_NE(r.out.substr(b).find("\"lost_by\":\"udp_sequence\""), std::string::npos);
+  // One sensor: no `sensors` key.
+  EXPECT_EQ(run("stats " + data_path("qt128c2x_dual.pcap") + " --json").out.find("\"sensors\""), std::string::npos);
+}
+
 }  // namespace

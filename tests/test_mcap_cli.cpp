@@ -125,4 +125,73 @@ TEST(McapCli, ListenWritesWhatDecodeWrites) {
   std::remove(live.c_str());
 }
 
+// --returns distinct (issue #32): in every output the points number exactly `points` -
+// `duplicate_returns`, both counted here from the capture's bytes: the units with a distance of at
+// least the smallest kept (1; 2 on the QT128C2X), and the dual-return pairs (blocks 2i, 2i + 1)
+// whose two units carry the same distance (>= that) and reflectivity. Layouts typed in from the
+// manuals: Pandar40P blocks of 124 bytes, units of 3 from byte 4 of a block; Pandar64 blocks of 194
+// from byte 8, units of 3 after the azimuth; QT128C2X (flags 0x1D) blocks of 514 from byte 12,
+// units of 4 after the azimuth.
+TEST(McapCli, ReturnsDistinctInEveryFormat) {
+  const struct {
+    const char* file;
+    std::size_t first, block, unit, units, blocks;
+    std::uint16_t smallest;
+  } captures[] = {{"pandar40p_dual.pcap", 4, 124, 3, 40, 10, 1},
+                  {"pandar64_dual.pcap", 10, 194, 3, 64, 6, 1},
+                  {"qt128c2x_dual.pcap", 14, 514, 4, 128, 2, 2}};
+  for (const auto& c : captures) {
+    SCOPED_TRACE(c.file);
+    std::uint64_t points = 0, repeated = 0;
+    for (const auto& q : pcap_payloads(c.file)) {
+      for (std::size_t b = 0; b < c.blocks; ++b)
+        for (std::size_t u = 0; u < c.units; ++u) {
+          const std::size_t a0 = c.first + b * c.block + u * c.unit;
+          const std::uint16_t d0 = static_cast<std::uint16_t>(q[a0] | q[a0 + 1] << 8);
+          points += d0 >= c.smallest;
+          if (b % 2 == 1) continue;
+          const std::size_t a1 = a0 + c.block;
+          repeated += d0 >= c.smallest && q[a1] == q[a0] && q[a1 + 1] == q[a0 + 1] && q[a1 + 2] == q[a0 + 2];
+        }
+    }
+    ASSERT_GT(repeated, 0u);
+    const std::uint64_t distinct = points - repeated;
+    const std::string capture = hesai_test::data_path(c.file);
+    const std::string base = temp_path("hesai_test_distinct");
+    // stats: points counts every point, duplicate_returns the repeated ones, with either switch.
+    for (const char* returns : {"all", "distinct"}) {
+      std::FILE* f = popen((cli() + " stats " + capture + " --json --returns " + returns).c_str(), "r");
+      ASSERT_NE(f, nullptr);
+      std::string out;
+      char buf[4096];
+      for (std::size_t n; (n = std::fread(buf, 1, sizeof buf, f)) > 0;) out.append(buf, n);
+      pclose(f);
+      EXPECT_NE(out.find("\"points\":" + std::to_string(points) + ","), std::string::npos) << out;
+      EXPECT_NE(out.find("\"duplicate_returns\":" + std::to_string(repeated) + ","), std::string::npos) << out;
+    }
+    ASSERT_EQ(run_status("decode " + capture + " --quiet --returns distinct --format csv --out " + base + ".csv"), 0);
+    std::uint64_t rows = 0;
+    for (std::uint8_t ch : hesai_test::read_file(base + ".csv")) rows += ch == '\n';
+    EXPECT_EQ(rows - 1, distinct) << "csv";
+    for (const char* format : {"pcd", "ply"}) {
+      const std::string out = base + "." + format;
+      ASSERT_EQ(run_status("decode " + capture + " --quiet --returns distinct --format " + format + " --out " + out), 0);
+      const std::string text = read_text(out);
+      const std::string key = std::string(format) == "pcd" ? "\nPOINTS " : "\nelement vertex ";
+      const std::size_t at = text.find(key);
+      ASSERT_NE(at, std::string::npos) << format;
+      EXPECT_EQ(std::stoull(text.substr(at + key.size(), 20)), distinct) << format;
+      std::remove(out.c_str());
+    }
+    ASSERT_EQ(run_status("decode " + capture + " --quiet --returns distinct --format mcap --topic /lidar --frame-id xt32 --out " +
+                         base + ".mcap"), 0);
+    const Parsed p = check_mcap(hesai_test::read_file(base + ".mcap"));
+    std::uint64_t total = 0;
+    for (const auto& [t, data] : p.messages) total += le(data, 4 + 24, 4);  // width, after "xt32" + NUL (as above)
+    EXPECT_EQ(total, distinct) << "mcap";
+    std::remove((base + ".csv").c_str());
+    std::remove((base + ".mcap").c_str());
+  }
+}
+
 }  // namespace

@@ -109,3 +109,40 @@ TEST(Stats, CountModel) {
 }
 
 }  // namespace
+
+// Issue #32: every counter saturates; none wraps. Counters set one below and at their largest
+// value: one more reaches it, then stays there.
+TEST(Stats, CountersSaturate) {
+  hesai::Stats s{};
+  s.crc_errors = UINT64_MAX - 1;
+  s.malformed = UINT64_MAX;
+  s.high_temperature = UINT64_MAX;
+  s.models[static_cast<std::size_t>(hesai::Model::pandar64)] = UINT64_MAX;
+  s.safety.packets = UINT64_MAX;
+  s.safety.states[1] = UINT64_MAX;
+  hesai::count_error(s, hesai::Error::crc_body);
+  EXPECT_EQ(s.crc_errors, UINT64_MAX);
+  hesai::count_error(s, hesai::Error::crc_body);
+  EXPECT_EQ(s.crc_errors, UINT64_MAX);
+  hesai::count_error(s, hesai::Error::bad_magic);
+  EXPECT_EQ(s.malformed, UINT64_MAX);
+  hesai::PacketInfo info;
+  info.high_temperature = 1;
+  hesai::count_status(s, info);
+  EXPECT_EQ(s.high_temperature, UINT64_MAX);
+  hesai::count_model(s, hesai::Model::pandar64);
+  EXPECT_EQ(s.models[static_cast<std::size_t>(hesai::Model::pandar64)], UINT64_MAX);
+  hesai::FunctionalSafety fs;
+  fs.present = true;
+  fs.lidar_state = 1;
+  hesai::count_safety(s.safety, fs, false);
+  EXPECT_EQ(s.safety.packets, UINT64_MAX);
+  EXPECT_EQ(s.safety.states[1], UINT64_MAX);
+  // A saturated total no longer falls: it is no longer exact.
+  std::uint64_t total = UINT64_MAX;
+  hesai::saturating_follow(total, 5, 2);
+  EXPECT_EQ(total, UINT64_MAX);
+  total = 10;
+  hesai::saturating_follow(total, 5, 2);
+  EXPECT_EQ(total, 7u);
+}

@@ -43,6 +43,7 @@ _BATCH = 1 << 16  # rows per call into the library
 _RAW = np.dtype((np.void, ROW_DTYPE.itemsize))
 _ROTATIONS = {"auto": -1, "cw": 0, "ccw": 1}
 _REFLECTIVITY = {"raw": 0, "nonlinear": 1}
+_RETURNS = {"all": 0, "distinct": 1}
 
 
 class HesaiError(Exception):
@@ -61,7 +62,7 @@ def _path_bytes(p):
 
 
 def _options(calibration, firetimes, channel_config, rotation, cut_angle, fov, packets, min_range, max_range,
-             reflectivity, firetime_azimuth, session_key, allow_unsigned):
+             reflectivity, firetime_azimuth, session_key, allow_unsigned, returns="all"):
     o = _lib.CaptureOptions()
     _lib.lib.hesai_capture_default_options(ctypes.byref(o))
     o.calibration = _path_bytes(calibration)
@@ -89,6 +90,9 @@ def _options(calibration, firetimes, channel_config, rotation, cut_angle, fov, p
         keep = ctypes.create_string_buffer(bytes(session_key), 32)
         o.session_key = ctypes.cast(keep, ctypes.c_void_p)
     o.allow_unsigned = 1 if allow_unsigned else 0
+    if returns not in _RETURNS:
+        raise ValueError("returns takes 'all' or 'distinct'")
+    o.returns = _RETURNS[returns]
     return o, keep
 
 
@@ -146,18 +150,18 @@ _DOC_OPTIONS = """
     the CSV files); rotation ('auto', 'cw', 'ccw'); cut_angle (degrees); fov ((start, end) degrees);
     packets ((first, end) point-cloud packet indices); min_range, max_range (metres); reflectivity
     ('raw', 'nonlinear'); firetime_azimuth (False: --no-firetime-azimuth); session_key (32 bytes)
-    and allow_unsigned. Raises HesaiError where the program fails."""
+    and allow_unsigned; returns ('all', 'distinct': a repeated second return once). Raises HesaiError where the program fails."""
 
 
 def decode_file(path, calibration=None, firetimes=None, channel_config=None, *, rotation="auto", cut_angle=0.0,
                 fov=None, packets=None, min_range=0.0, max_range=1e9, reflectivity="raw", firetime_azimuth=True,
-                session_key=None, allow_unsigned=False):
+                session_key=None, allow_unsigned=False, returns="all"):
     """Every point of a pcap or pcapng capture: a structured array of ROW_DTYPE whose rows are those
     of `hesai decode CAPTURE --format csv`, in the same order."""
     cap = _Capture(path, calibration=calibration, firetimes=firetimes, channel_config=channel_config,
                    rotation=rotation, cut_angle=cut_angle, fov=fov, packets=packets, min_range=min_range,
                    max_range=max_range, reflectivity=reflectivity, firetime_azimuth=firetime_azimuth,
-                   session_key=session_key, allow_unsigned=allow_unsigned)
+                   session_key=session_key, allow_unsigned=allow_unsigned, returns=returns)
     try:
         # The library writes straight into the result, which grows in place (realloc: the pages
         # are remapped, not copied), so each row is written once.
@@ -178,7 +182,7 @@ def decode_file(path, calibration=None, firetimes=None, channel_config=None, *, 
 
 def frames(path, calibration=None, firetimes=None, channel_config=None, *, rotation="auto", cut_angle=0.0,
            fov=None, packets=None, min_range=0.0, max_range=1e9, reflectivity="raw", firetime_azimuth=True,
-           session_key=None, allow_unsigned=False):
+           session_key=None, allow_unsigned=False, returns="all"):
     """Yields one structured array of ROW_DTYPE per frame, as each frame closes (in id order), with
     its rows in the CSV's order; a frame that kept no point gives an empty array. The frames'
     rows together are decode_file's rows, each frame's in their order (near a cut the CSV
@@ -186,7 +190,7 @@ def frames(path, calibration=None, firetimes=None, channel_config=None, *, rotat
     cap = _Capture(path, calibration=calibration, firetimes=firetimes, channel_config=channel_config,
                    rotation=rotation, cut_angle=cut_angle, fov=fov, packets=packets, min_range=min_range,
                    max_range=max_range, reflectivity=reflectivity, firetime_azimuth=firetime_azimuth,
-                   session_key=session_key, allow_unsigned=allow_unsigned)
+                   session_key=session_key, allow_unsigned=allow_unsigned, returns=returns)
     try:
         pending = []  # rows given whose frame has not closed yet
         while True:

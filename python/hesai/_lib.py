@@ -71,6 +71,7 @@ class CaptureOptions(ctypes.Structure):
         ("max_range_m", ctypes.c_float),
         ("session_key", ctypes.c_void_p),
         ("allow_unsigned", ctypes.c_int),
+        ("returns", ctypes.c_int),
     ]
 
 

@@ -53,6 +53,13 @@ int c_check_calibration_errors(void);
 int c_check_sensor_settings(const uint8_t* qt128_custom, size_t size, const uint8_t* config, size_t config_size,
                             size_t points, const uint8_t* pandar64, size_t pandar64_size);
 
+/* Stream health: `n` packets (their bytes one after another in `bytes`, their sizes in `sizes`) of
+ * `model` through hesai_decoder_decode_health with `returns` into a fresh monitor (clockwise);
+ * writes its counters and the points the calls gave. Returns the first error (and checks the
+ * invalid arguments the header names, counted in *failures). */
+hesai_error c_health_run(hesai_model model, const uint8_t* bytes, const size_t* sizes, size_t n, int returns,
+                         hesai_health_counts* counts, uint64_t* points_given, int* failures_out);
+
 #ifdef __cplusplus
 }
 #endif

@@ -15,6 +15,7 @@
 #include "hesai/calibration.h"
 #include "hesai/decoder.h"
 #include "hesai/gps.h"
+#include "hesai/health.h"
 
 using namespace hesai;
 using namespace hesai_test;
@@ -346,6 +347,76 @@ TEST(CApi, SensorSettings) {
   EXPECT_EQ(c_check_sensor_settings(custom.data(), custom.size(), config.data(), config.size(), points, p64.data(),
                                     p64.size()),
             0);
+}
+
+
+// Stream health from C: the C monitor's counters equal the C++ HealthMonitor's on the same bytes
+// (a sequence-less Pandar64 with 100 packets dropped and 9 frozen timestamps; the QT128C2X capture
+// with distance-1 units in channels 70 and 100, resealed), and the counts the test built in.
+TEST(CApi, StreamHealth) {
+  auto p64 = pcap_payloads("pandar64_dual.pcap");
+  for (std::size_t i = 301; i <= 309; ++i) {
+    for (std::size_t b = 1182; b < 1186; ++b) p64[i][b] = p64[300][b];  // timestamp (tail 1172 + 10)
+    for (std::size_t b = 1188; b < 1194; ++b) p64[i][b] = p64[300][b];  // date-time (tail + 16)
+  }
+  for (auto& q : p64) q.resize(1194);
+  p64.erase(p64.begin() + 700, p64.begin() + 800);
+  auto qt = pcap_payloads("qt128c2x_dual.pcap");
+  for (std::size_t i = 10; i < 15; ++i) {
+    store_le16(&qt[i][12 + 2 + 4 * 69], 1);
+    store_le16(&qt[i][12 + 514 + 2 + 4 * 69], 1);
+  }
+  for (std::size_t i = 20; i < 23; ++i) store_le16(&qt[i][12 + 2 + 4 * 99], 1);
+  for (std::size_t i = 10; i < 23; ++i) qt128_seal(qt[i]);
+  for (const auto& [packets, model] : {std::pair{p64, Model::pandar64}, std::pair{qt, Model::qt128c2x}}) {
+    for (const Returns returns : {Returns::all, Returns::distinct}) {
+      std::vector<std::uint8_t> bytes;
+      std::vector<std::size_t> sizes;
+      for (const auto& q : packets) {
+        bytes.insert(bytes.end(), q.begin(), q.end());
+        sizes.push_back(q.size());
+      }
+      hesai_health_counts c{};
+      std::uint64_t c_points = 0;
+      int failures = 0;
+      EXPECT_EQ(c_health_run(static_cast<hesai_model>(model), bytes.data(), sizes.data(), sizes.size(),
+                             static_cast<int>(returns), &c, &c_points, &failures),
+                HESAI_ERROR_ok);
+      EXPECT_EQ(failures, 0);
+      Decoder d(model);
+      HealthMonitor m;
+      static PacketPoints pts;
+      std::uint64_t cpp_points = 0;
+      for (const auto& q : packets) {
+        PacketInfo info;
+        UnitScan scan;
+        ASSERT_EQ(d.decode(view(q), info, pts, scan, returns), Error::ok);
+        m.observe(info);
+        m.observe_units(scan);
+        cpp_points += pts.count;
+      }
+      const HealthCounts& h = m.counts();
+      EXPECT_EQ(c_points, cpp_points);
+      EXPECT_EQ(c.packets, h.packets);
+      EXPECT_EQ(c.lost, h.lost);
+      EXPECT_EQ(c.time_stalls, h.time_stalls);
+      EXPECT_EQ(c.time_virtual, h.time_virtual);
+      EXPECT_EQ(c.time_jumps, h.time_jumps);
+      EXPECT_EQ(c.reordered, h.reordered);
+      EXPECT_EQ(c.duplicates, h.duplicates);
+      EXPECT_EQ(c.blockage_units, h.blockage_units);
+      EXPECT_EQ(c.duplicate_returns, h.duplicate_returns);
+      EXPECT_EQ(c.beyond_rated_range, h.beyond_rated_range);
+      for (std::size_t ch = 0; ch < kMaxChannels; ++ch) EXPECT_EQ(c.blockage_by_channel[ch], h.blockage_by_channel[ch]);
+      EXPECT_EQ(c.fov_gap, h.fov_gap ? 1 : 0);
+      // What the test built in.
+      EXPECT_EQ(c.lost, model == Model::pandar64 ? 100u : 0u);
+      EXPECT_EQ(c.time_stalls, model == Model::pandar64 ? 9u : 0u);
+      EXPECT_EQ(c.blockage_units, model == Model::qt128c2x ? 13u : 0u);
+      EXPECT_EQ(c.blockage_by_channel[69], model == Model::qt128c2x ? 10u : 0u);
+      EXPECT_EQ(c.blockage_by_channel[99], model == Model::qt128c2x ? 3u : 0u);
+    }
+  }
 }
 
 }  // namespace

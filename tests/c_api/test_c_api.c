@@ -457,3 +457,34 @@ int c_check_columns(const uint8_t* qt128, size_t size) {
   EXPECT_ERROR(hesai_decoder_decode_columns(&decoder, qt128, size, NULL, &columns, &count), "ok"); /* info optional */
   return take_failures();
 }
+
+/* ---- Stream health ---------------------------------------------------------------------------- */
+
+static hesai_health health;
+
+hesai_error c_health_run(hesai_model model, const uint8_t* bytes, const size_t* sizes, size_t n, int returns,
+                         hesai_health_counts* counts, uint64_t* points_given, int* failures_out) {
+  hesai_error first = HESAI_ERROR_ok;
+  size_t i, at = 0, count = 0;
+  uint32_t lost = 0;
+  hesai_packet_info info;
+  EXPECT_ERROR(hesai_health_init(NULL, HESAI_ROTATION_clockwise), "invalid_argument");
+  EXPECT_ERROR(hesai_health_init(&health, 2), "invalid_argument");
+  EXPECT_ERROR(hesai_health_counts_get(NULL, counts), "invalid_argument");
+  EXPECT_ERROR(hesai_health_init(&health, HESAI_ROTATION_clockwise), "ok");
+  EXPECT_ERROR(hesai_decoder_init(&decoder, model), "ok");
+  EXPECT_ERROR(hesai_decoder_decode_health(&decoder, bytes, sizes[0], &info, points, HESAI_MAX_POINTS_PER_PACKET, &count,
+                                           2, &health, &lost),
+               "invalid_argument");
+  *points_given = 0;
+  for (i = 0; i < n; ++i) {
+    const hesai_error e = hesai_decoder_decode_health(&decoder, bytes + at, sizes[i], &info, points,
+                                                      HESAI_MAX_POINTS_PER_PACKET, &count, returns, &health, &lost);
+    if (e != HESAI_ERROR_ok && first == HESAI_ERROR_ok) first = e;
+    *points_given += count;
+    at += sizes[i];
+  }
+  EXPECT_ERROR(hesai_health_counts_get(&health, counts), "ok");
+  *failures_out = take_failures();
+  return first;
+}

@@ -22,6 +22,7 @@
 #include "hesai/crc32.h"
 #include "hesai/decoder.h"
 #include "hesai/detail/kernel_calls.h"
+#include "hesai/health.h"
 #include "hesai/hkdf.h"
 #include "hesai/hmac.h"
 #include "hesai/detail/pandar40_packet.h"
@@ -529,6 +530,12 @@ ByteView packet;
 hesai::PacketInfo subject_info;
 Error subject_error = Error::ok;
 
+// Stream health (issue #32): the monitor primed with a packet, the next packet in order (one
+// packet's time and azimuth step on), and the unit scan of the packet's decode.
+hesai::HealthMonitor health_monitor;
+hesai::PacketInfo next_info;
+hesai::UnitScan subject_scan;
+
 void count(const char* sensor, const char* what, void (*f)()) {
   subject_error = Error::ok;
   const std::uint32_t n = instructions(f);
@@ -775,6 +782,25 @@ void instruction_counts() {
     count(s.name, "decode", [] { subject_error = subject->decode(packet, subject_info, points); });
     count(s.name, "decode_columns",
           [] { subject_error = subject->decode(packet, subject_info, columns, column_count); });
+    // Stream health: the decode with the unit scan, then the monitor's work on the packet that
+    // follows in order (HealthMonitor::observe and observe_units).
+    count(s.name, "decode_scan", [] { subject_error = subject->decode(packet, subject_info, points, subject_scan); });
+    health_monitor.reset();
+    (void)health_monitor.observe(subject_info);
+    next_info = subject_info;
+    {
+      const std::uint32_t firings = hesai::model_facts::of(subject_info.model).firings;
+      const std::uint32_t per = static_cast<std::uint32_t>(subject_info.blocks) /
+                                (subject_info.returns != 0 ? static_cast<std::uint32_t>(subject_info.returns) : 1u);
+      next_info.time_ns += static_cast<std::int64_t>(per) * 100000000 / firings;
+      next_info.block_azimuth[0] =
+          static_cast<std::uint16_t>((subject_info.block_azimuth[0] + per * 60u * subject_info.motor_rpm / firings) % 36000u);
+    }
+    count(s.name, "health", [] {
+      (void)health_monitor.observe(next_info);
+      health_monitor.observe_units(subject_scan);
+    });
+    check(health_monitor.counts().lost == 0 && health_monitor.counts().time_stalls == 0, "health: the next packet in order");
     // The worst case: a packet at another spin rate, so the decode rebuilds the cache first.
     packet = with_rpm(subject->model(), s.packet.data, s.packet.size, static_cast<std::uint16_t>(info.motor_rpm + 2), shifted);
     count(s.name, "decode_rpm_change", [] { subject_error = subject->decode(packet, subject_info, points); });

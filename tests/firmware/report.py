@@ -56,6 +56,32 @@ INSTRUCTION_BUDGETS = {
         'PandarXT32M2X': {'validate': 3000, 'decode': 312000, 'decode_columns': 278000, 'decode_rpm_change': 390000},
     },
 }
+# Issue #32's stream health, by the same rule (measured + 25%, rounded up): the
+# decode with the unit scan (Decoder::decode with a UnitScan: blockage markers, repeated returns,
+# points beyond the rated range) and the monitor's work on the next packet in order
+# (HealthMonitor::observe + observe_units). Checked only where a core has them.
+HEALTH_BUDGETS = {
+    'cortex-m4': {
+        'Pandar40': {'decode_scan': 37000, 'health': 900},
+        'Pandar40P': {'decode_scan': 38000, 'health': 800},
+        'Pandar64': {'decode_scan': 33000, 'health': 800},
+        'QT128C2X': {'decode_scan': 32000, 'health': 800},
+        'PandarQT64': {'decode_scan': 24000, 'health': 800},
+        'PandarXT16': {'decode_scan': 15000, 'health': 800},
+        'PandarXT32': {'decode_scan': 26000, 'health': 800},
+        'PandarXT32M2X': {'decode_scan': 19000, 'health': 800},
+    },
+    'cortex-m0plus': {
+        'Pandar40': {'decode_scan': 745000, 'health': 2600},
+        'Pandar40P': {'decode_scan': 746000, 'health': 2300},
+        'Pandar64': {'decode_scan': 651000, 'health': 2200},
+        'QT128C2X': {'decode_scan': 468000, 'health': 2200},
+        'PandarQT64': {'decode_scan': 459000, 'health': 2300},
+        'PandarXT16': {'decode_scan': 251000, 'health': 2300},
+        'PandarXT32': {'decode_scan': 465000, 'health': 2300},
+        'PandarXT32M2X': {'decode_scan': 322000, 'health': 2200},
+    },
+}
 # Issue #25's targets on the Cortex-M4F, every sensor: instructions per unit less validate (the
 # ARMv7E-M assembly loops, kernels/armv7m_loops.h), and validate + columns decode at the sensor's
 # dual-return packet rate within a 168 MHz core at one instruction a cycle.
@@ -95,8 +121,8 @@ COMPONENTS = [
     ('crypto/: HKDF', 'crypto', ['hkdf']),
     ('calibration/: calibration files', 'calibration', ['decimal', 'csv_rows', 'angles_csv', 'firetimes_csv', 'channel_config_csv']),
     ('sensors/: GPS packets', 'sensors', ['gps']),
-    ('streams/: frames, rotation, sequence, safety monitor, stats', 'streams',
-     ['frame', 'rotation', 'sequence', 'safety', 'stats']),
+    ('streams/: frames, rotation, sequence, stream health, safety monitor, stats', 'streams',
+     ['frame', 'rotation', 'sequence', 'health', 'safety', 'stats']),
     ('capi/: the C interface (hesai.h)', 'capi', ['hesai_c']),
     ('ptc/: PTC framing and payloads (hesai/ptc.h)', 'ptc', ['ptc']),
 ]
@@ -299,7 +325,8 @@ def instructions_json(counts, path):
             continue
         out[sensor] = {'units': UNITS[sensor], 'packets_per_second': round(RPM / 60 * PACKETS_PER_ROTATION[sensor], 1),
                        'validate': c.get('validate'), 'decode_points': c.get('decode'),
-                       'decode_columns': c.get('decode_columns'), 'decode_points_rate_change': c.get('decode_rpm_change')}
+                       'decode_columns': c.get('decode_columns'), 'decode_points_rate_change': c.get('decode_rpm_change'),
+                       'decode_points_scan': c.get('decode_scan'), 'health': c.get('health')}
     with open(path, 'w') as f:
         json.dump(out, f, indent=2)
         f.write('\n')
@@ -341,12 +368,26 @@ def instruction_counts(emulator, image, over, json_path=None):
         for what in ('validate', 'decode', 'decode_columns', 'decode_rpm_change'):
             if what not in budget or c.get(what, 0) > budget[what]:
                 over.append('instructions %s %s %d > budget %s' % (sensor, what, c.get(what, 0), budget.get(what)))
+        health_budget = HEALTH_BUDGETS.get(core, {}).get(sensor, {})
+        for what, limit in health_budget.items():
+            if what not in c or c[what] > limit:
+                over.append('instructions %s %s %s > budget %d' % (sensor, what, c.get(what), limit))
         for what, target in PER_UNIT_TARGETS.get(core, {}).items():
             if per_unit(what) > target:
                 over.append('instructions %s %s %.1f a unit > target %d' % (sensor, what, per_unit(what), target))
         if core in COLUMNS_CLOCK_TARGET and c.get('decode_columns', 0) * rate > COLUMNS_CLOCK_TARGET[core]:
             over.append('instructions %s columns at %d packets/s: %.0f M/s > %.0f M/s' % (
                 sensor, rate, c.get('decode_columns', 0) * rate / 1e6, COLUMNS_CLOCK_TARGET[core] / 1e6))
+    if any('health' in c for c in counts.values()):
+        lines += ['', 'Stream health (issue #32): `decode_scan` is the decode with the unit scan (`Decoder::decode` with a '
+                  '`UnitScan`), `health` the monitor on the next packet in order (`HealthMonitor::observe` + '
+                  '`observe_units`); budget in brackets where the core has one.', '',
+                  '| sensor | decode | decode_scan | health |', '| --- | ---: | ---: | ---: |']
+        for sensor, c in counts.items():
+            hb = HEALTH_BUDGETS.get(core, {}).get(sensor, {})
+            lines.append('| %s | %d | %d (%s) | %d (%s) |' % (sensor, c.get('decode', 0), c.get('decode_scan', 0),
+                                                             hb.get('decode_scan', 'no budget'), c.get('health', 0),
+                                                             hb.get('health', 'no budget')))
     qt = counts.get('QT128C2X', {})
     if 'validate_signed' in qt:
         signature = qt['validate_signed'] - qt['validate']

@@ -122,6 +122,8 @@ OPTION_CASES = [
     ("pandar40p_dual", ["--rotation", "ccw", "--no-firetime-azimuth"], {"rotation": "ccw", "firetime_azimuth": False}),
     ("qt128c2x_dual", ["--channel-config", str(CAL / "qt128c2x_channel_config.csv")],
      {"channel_config": CAL / "qt128c2x_channel_config.csv"}),
+    ("pandar64_dual", ["--returns", "distinct"], {"returns": "distinct"}),
+    ("qt128c2x_dual", ["--returns", "distinct"], {"returns": "distinct"}),
 ]
 
 

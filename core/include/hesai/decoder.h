@@ -187,6 +187,52 @@ struct PacketInfo {
   FunctionalSafety safety;        ///< QT128 only
 };
 
+/// The farthest distance a model is rated for, metres, by its manual's specifications; 0 where no
+/// manual here gives one (PandarQT64, the PandarXT family). Points farther are suspect
+/// (UnitScan::beyond_rated_range). Pandar40/40P: "Measurement Range 0.3 m to 200 m (at 20%
+/// reflectivity)" (Pandar40 manual 1.2; the Pandar40P packet document, "Quality Indicators":
+/// "distance values beyond 200m flagged as suspect"); Pandar64: "Ranging capability 0.3 to 200 m
+/// (at 10% reflectivity)" (manual 1.5); QT128C2X: "Instrument Range 0.05 to 50 m" (manual 1.4: the
+/// range it measures at all; its "Range Capability" at 10% reflectivity is 20 m, 15 m on
+/// channels 1-8 and 121-128).
+constexpr std::uint16_t rated_range_m(Model m) {
+  switch (m) {
+    case Model::pandar40:
+    case Model::pandar40p:
+    case Model::pandar64: return 200;
+    case Model::qt128c2x: return 50;
+    default: return 0;
+  }
+}
+
+/// The most dual-return firings a packet holds (the Pandar40's 10 blocks in pairs).
+inline constexpr std::size_t kMaxDualFirings = 5;
+
+/// Which returns of a dual-return firing decode() makes points of.
+enum class Returns : std::uint8_t {
+  all,       ///< both blocks' units, as sent (default)
+  distinct,  ///< a second return that repeats its first (UnitScan::duplicate_returns) is left out: the echo once
+};
+
+/// What a packet's units say beyond its points, filled by the decode() forms that take one.
+/// Channels are 0-based (unit j of a block, or the QT128 channel configuration's channel).
+struct UnitScan {
+  /// Units that carry the QT128C2X's blockage marker, distance 1 (QT128C2X manual, Chinese edition,
+  /// 3.1.2: the value 1 marks a target too close to measure; no point is made of it). 0 on other models.
+  std::uint16_t blockage_units = 0;
+  /// Dual-return unit pairs (the blocks of one firing) whose two returns carry the same distance and
+  /// reflectivity, both at or above the model's smallest kept distance: one echo sent twice (QT128C2X
+  /// manual 3.1.2.2, the return-mode notes). Both are points.
+  std::uint16_t duplicate_returns = 0;
+  /// Units made points whose distance is beyond rated_range_m(model) (none where it is 0).
+  std::uint16_t beyond_rated_range = 0;
+  /// Blockage units per channel.
+  std::array<std::uint8_t, kMaxChannels> blockage_by_channel{};
+  /// The repeated second returns: bit (c % 8) of byte c / 8 for 0-based channel c, per firing
+  /// (blocks 2f and 2f + 1).
+  std::array<std::array<std::uint8_t, kMaxChannels / 8>, kMaxDualFirings> repeated{};
+};
+
 /// What Point::intensity holds (Decoder::set_reflectivity).
 enum class Reflectivity : std::uint8_t {
   raw,        ///< the reflectivity byte as sent (default; with the sensors' default linear mapping it is the percentage)
@@ -272,6 +318,16 @@ class Decoder {
   /// vector code the CPU has, or the portable scalar code (see DecodePath).
   [[nodiscard]] Error decode(ByteView payload, PacketInfo& info, PacketPoints& out,
                              DecodePath path = DecodePath::best) noexcept;
+  /// decode(), and the packet's units scanned into `scan` (blockage markers, repeated returns, distances
+  /// beyond the rated range): a read of each unit's distance more. `scan` is reset first; left reset on error.
+  /// With Returns::distinct the repeated second returns make no point (out.count is less by
+  /// scan.duplicate_returns); the others keep their order.
+  [[nodiscard]] Error decode(ByteView payload, PacketInfo& info, PacketPoints& out, UnitScan& scan,
+                             Returns returns = Returns::all, DecodePath path = DecodePath::best) noexcept;
+  /// The same into caller-owned storage for `capacity` points (as the Point* form of decode()).
+  [[nodiscard]] Error decode(ByteView payload, PacketInfo& info, Point* points, std::size_t capacity, std::size_t& count,
+                             UnitScan& scan, Returns returns = Returns::all,
+                             DecodePath path = DecodePath::best) noexcept;
   /// decode() into caller-owned storage for `capacity` points, sized for this decoder's model
   /// (max_points(model()): 400, 384 or 256). Error::buffer_too_small, before the packet is read,
   /// when capacity is below that. `count` gets the number of points, 0 on error; the entries from
@@ -284,6 +340,10 @@ class Decoder {
   /// error. `path`: the vector code the CPU has, or the portable scalar code (see DecodePath).
   [[nodiscard]] Error decode(ByteView payload, PacketInfo& info, const PointColumns& out, std::size_t& count,
                              DecodePath path = DecodePath::best) noexcept;
+  /// decode() into columns, and the packet's units scanned into `scan` (as the Points form with a
+  /// UnitScan; Returns::distinct is not offered for columns: every unit's point is written).
+  [[nodiscard]] Error decode(ByteView payload, PacketInfo& info, const PointColumns& out, std::size_t& count,
+                             UnitScan& scan, DecodePath path = DecodePath::best) noexcept;
   /// decode() into columns with their own storage (N >= max_points(model())).
   template <std::size_t N>
   [[nodiscard]] Error decode(ByteView payload, PacketInfo& info, PacketColumns<N>& out,
@@ -339,7 +399,8 @@ class Decoder {
   // Every decode() form: the capacity check, validate(), the sensor's walk into `points` (when not
   // null) or `columns`; count 0 on error.
   [[nodiscard]] Error decode_into(ByteView payload, PacketInfo& info, Point* points, const PointColumns* columns,
-                                  std::size_t capacity, std::size_t& count, DecodePath path) noexcept;
+                                  std::size_t capacity, std::size_t& count, DecodePath path,
+                                  UnitScan* scan = nullptr) noexcept;
 
   Model model_;
   bool firetime_correction_ = true;

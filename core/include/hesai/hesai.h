@@ -283,6 +283,61 @@ hesai_error hesai_decoder_decode_columns(hesai_decoder* decoder, const uint8_t* 
                                          hesai_packet_info* info, const hesai_point_columns* columns,
                                          size_t* count) HESAI_NOEXCEPT;
 
+/* ---- Stream health (hesai/health.h) ------------------------------------------------------- */
+
+/* A sensor's stream-health monitor in HESAI_HEALTH_SIZE aligned bytes (about 940 are used; the
+ * library checks at compile time that it fits): loss from the block azimuth and the packet time,
+ * clock stalls, jumps and the year-2000 virtual clock, the azimuth FOV, and from the units:
+ * QT128C2X blockage markers per channel, repeated dual returns, points beyond the rated range.
+ * One per sensor, fed its packets in arrival order by hesai_decoder_decode_health. */
+#define HESAI_HEALTH_SIZE 1024
+typedef struct hesai_health {
+  union {
+    unsigned char bytes[HESAI_HEALTH_SIZE];
+    long long align_ll;
+    double align_d;
+    void* align_p;
+  } opaque;
+} hesai_health;
+
+/* hesai::HealthCounts: every counter saturates. */
+typedef struct hesai_health_counts {
+  uint64_t packets;            /* packets observed */
+  uint64_t lost;               /* missing by block azimuth and packet time, not (yet) arrived */
+  uint64_t reordered;          /* arrived after a later one */
+  uint64_t duplicates;         /* at the azimuth and time of one already seen */
+  uint64_t time_stalls;        /* time not after the previous packet's, not a late packet */
+  uint64_t time_virtual;       /* dated in the year 2000: the unit's free-running clock */
+  uint64_t time_jumps;         /* time ahead by more than 1 s or than the azimuth allows: a clock step */
+  uint64_t blockage_units;     /* QT128C2X units of distance 1 */
+  uint64_t duplicate_returns;  /* dual-return pairs carrying the same echo twice */
+  uint64_t beyond_rated_range; /* points farther than the model's rated range */
+  uint32_t blockage_by_channel[128]; /* blockage units per channel - 1 */
+  int fov_gap;                 /* 1: a gap recurred at the same azimuths (an azimuth FOV, not loss) */
+  uint16_t fov_gap_from;       /* its edges, 0.01 degree, in the direction of rotation */
+  uint16_t fov_gap_to;
+} hesai_health_counts;
+
+/* Which returns become points (hesai::Returns): all (default), or a repeated second return once. */
+enum {
+  HESAI_RETURNS_all = 0,
+  HESAI_RETURNS_distinct = 1
+};
+
+/* A fresh monitor for a unit spinning `rotation` (HESAI_ROTATION_*). invalid_argument for a NULL
+ * monitor or another rotation value. */
+hesai_error hesai_health_init(hesai_health* health, int rotation) HESAI_NOEXCEPT;
+/* hesai_decoder_decode, with `returns` (HESAI_RETURNS_*), then the packet and its units fed to
+ * `health` (when not NULL; not on error; the units' scan is kept in `health`'s bytes, so the call
+ * stays within the stack budget). *lost_before (when not NULL): the packets the monitor found
+ * missing just before this one (0 on error). invalid_argument for a `returns` value that is
+ * neither, or HESAI_RETURNS_distinct without a monitor. */
+hesai_error hesai_decoder_decode_health(hesai_decoder* decoder, const uint8_t* payload, size_t size,
+                                        hesai_packet_info* info, hesai_point* points, size_t capacity, size_t* count,
+                                        int returns, hesai_health* health, uint32_t* lost_before) HESAI_NOEXCEPT;
+/* The monitor's counters. invalid_argument for a NULL pointer. */
+hesai_error hesai_health_counts_get(const hesai_health* health, hesai_health_counts* counts) HESAI_NOEXCEPT;
+
 #ifdef __cplusplus
 }
 #endif

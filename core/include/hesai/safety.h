@@ -45,7 +45,8 @@ inline constexpr std::uint8_t kFaultPast = 2;
 /// 5 ms update period, and less than the 8 x 5 ms = 40 ms the counter needs to come back to a value.
 inline constexpr std::int64_t kSafetyStallNs = 20000000;
 
-/// Counters of functional-safety sections (packets without one count nowhere here).
+/// Counters of functional-safety sections (packets without one count nowhere here); each
+/// saturates at its largest value (hesai/saturating.h).
 struct SafetyCounts {
   std::uint64_t packets = 0;                          ///< packets with a functional-safety section
   std::array<std::uint64_t, kLidarStateCount> states{};  ///< packets per lidar state (index: LidarState)

@@ -26,7 +26,7 @@ enum class SequenceEvent : std::uint8_t {
   resync,     ///< the series restarted elsewhere (see SequenceTracker)
 };
 
-/// Counters of one source.
+/// Counters of one source; each saturates at its largest value (hesai/saturating.h).
 struct SequenceCounts {
   std::uint64_t packets = 0;     ///< numbers observed
   std::uint64_t lost = 0;        ///< numbers skipped and not (yet) seen

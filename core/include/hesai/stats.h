@@ -7,12 +7,29 @@
 #include "hesai/decoder.h"
 #include "hesai/error.h"
 #include "hesai/gps.h"
+#include "hesai/health.h"
 #include "hesai/model.h"
 #include "hesai/safety.h"
 
 namespace hesai {
 
+/// Which method counted the losses of a run: a bit per method, so that a run of several sensors
+/// shows both when their packets differ.
+enum class LostBy : std::uint8_t {
+  none = 0,          ///< no point-cloud packet yet
+  udp_sequence = 1,  ///< the packets' UDP sequence numbers (SequenceTracker)
+  azimuth_time = 2,  ///< the block azimuth and the packet time (HealthMonitor): packets without a sequence
+  mixed = 3,         ///< some sensors one way, some the other
+};
+/// `lost_by` with `method` added.
+constexpr LostBy operator|(LostBy a, LostBy b) {
+  return static_cast<LostBy>(static_cast<std::uint8_t>(a) | static_cast<std::uint8_t>(b));
+}
+/// "none", "udp_sequence", "azimuth_time", "mixed".
+const char* lost_by_name(LostBy by) noexcept;
+
 /// Counters of a run. Each rejected packet counts under the first check it failed (count_error).
+/// Every counter saturates at its largest value (hesai/saturating.h); none wraps.
 struct Stats {
   std::uint64_t packets = 0;               ///< UDP payloads examined
   std::uint64_t points = 0;                ///< points decoded
@@ -29,11 +46,24 @@ struct Stats {
   std::uint64_t malformed = 0;             ///< every other rejection (length, magic, fields...)
   std::uint64_t unsupported = 0;           ///< a version, model or section we do not implement, or
                                            ///< customised QT128 channels without a matching configuration
-  std::uint64_t lost = 0;                  ///< UDP sequence numbers never seen (SequenceTracker)
-  std::uint64_t duplicates = 0;            ///< sequence numbers seen again
-  std::uint64_t reordered = 0;             ///< sequence numbers that arrived after a later one
+  std::uint64_t lost = 0;                  ///< packets never seen: UDP sequence numbers (SequenceTracker) where
+                                           ///< the packets carry one, else by block azimuth and time (HealthMonitor)
+  std::uint64_t duplicates = 0;            ///< packets seen again (by the same method as `lost`)
+  std::uint64_t reordered = 0;             ///< packets that arrived after a later one (by the same method as `lost`)
   std::uint64_t sequence_resyncs = 0;      ///< sequence series restarts: a sensor restart, or a loss
                                            ///< longer than kSequenceWindow (not counted in `lost`)
+  LostBy lost_by = LostBy::none;           ///< which method counted `lost` (and duplicates, reordered)
+  std::uint64_t time_stalls = 0;           ///< HealthCounts::time_stalls, every sensor summed
+  std::uint64_t time_virtual = 0;          ///< HealthCounts::time_virtual: packets dated in 2000, the free-run clock
+  std::uint64_t time_jumps = 0;            ///< HealthCounts::time_jumps: clock steps
+  std::uint64_t blockage_units = 0;        ///< UnitScan::blockage_units summed: QT128C2X distance-1 markers
+  std::array<std::uint32_t, kMaxChannels> blockage_by_channel{};  ///< the same per channel - 1 (saturating)
+  std::uint64_t duplicate_returns = 0;     ///< UnitScan::duplicate_returns summed: one echo sent as both returns
+  std::uint64_t beyond_rated_range = 0;    ///< UnitScan::beyond_rated_range summed: points beyond rated_range_m()
+  bool fov_gap = false;                    ///< HealthCounts::fov_gap of the first sensor that showed one
+  std::uint16_t fov_gap_from = 0;          ///< its edges, 0.01 degree, in the direction of rotation
+  std::uint16_t fov_gap_to = 0;
+  std::uint64_t ip_fragments = 0;          ///< IP fragments a capture reader skipped (set by the port: not reassembled)
   std::uint64_t gps_packets = 0;           ///< GPS packets (512 bytes)
   std::int64_t first_time_ns = 0;          ///< packet time of the first packet, ns (0: none yet)
   std::int64_t last_time_ns = 0;           ///< packet time of the last packet, ns (0: none yet)

@@ -12,6 +12,7 @@
 #include "hesai/calibration.h"
 #include "hesai/decoder.h"
 #include "hesai/gps.h"
+#include "hesai/health.h"
 #include "hesai/hkdf.h"
 #include "hesai/model.h"
 #include "hesai/point.h"
@@ -33,6 +34,10 @@ constexpr bool fits() {
 // There is no release call: the storage may be dropped without running ~Decoder(), whose only
 // effect is wiping the key (hesai_decoder_clear_session_key() does that).
 static_assert(fits<Decoder, hesai_decoder>(), "hesai::Decoder must fit in HESAI_DECODER_SIZE aligned bytes");
+static_assert(std::is_trivially_destructible_v<hesai::HealthMonitor> && std::is_trivially_destructible_v<hesai::UnitScan>);
+static_assert(HESAI_RETURNS_all == static_cast<int>(hesai::Returns::all) &&
+              HESAI_RETURNS_distinct == static_cast<int>(hesai::Returns::distinct));
+static_assert(sizeof(hesai_health_counts::blockage_by_channel) / sizeof(std::uint32_t) == hesai::kMaxChannels);
 static_assert(fits<hesai::AngleCorrection, hesai_calibration_scratch>() &&
                   fits<hesai::FiretimeCorrection, hesai_calibration_scratch>() &&
                   fits<hesai::ChannelConfig, hesai_calibration_scratch>(),
@@ -153,6 +158,19 @@ const Decoder& decoder_in(const hesai_decoder* d) noexcept {
 }
 
 hesai_error c_error(Error e) noexcept { return static_cast<hesai_error>(e); }
+
+// What hesai_health_init() builds in the storage: the monitor, and the scan of the packet being
+// decoded (kept there, not on the stack: the call stays within the 1 KiB stack budget).
+struct HealthStorage {
+  hesai::HealthMonitor monitor;
+  hesai::UnitScan scan;
+};
+HealthStorage& health_in(hesai_health* h) noexcept {
+  return *std::launder(static_cast<HealthStorage*>(static_cast<void*>(h)));
+}
+const HealthStorage& health_in(const hesai_health* h) noexcept {
+  return *std::launder(static_cast<const HealthStorage*>(static_cast<const void*>(h)));
+}
 
 // A byte range the caller passed: NULL only when empty.
 bool bytes_ok(const std::uint8_t* p, std::size_t size) noexcept { return p != nullptr || size == 0; }
@@ -401,6 +419,64 @@ hesai_error hesai_decoder_decode_columns(hesai_decoder* decoder, const std::uint
   const Error e = decoder_in(decoder).decode(ByteView{payload, size}, i, c, *count);
   if (info != nullptr) copy_info(i, *info);
   return c_error(e);
+}
+
+static_assert(fits<HealthStorage, hesai_health>(), "the monitor and a unit scan must fit in HESAI_HEALTH_SIZE aligned bytes");
+
+hesai_error hesai_health_init(hesai_health* health, int rotation) noexcept {
+  if (health == nullptr || (rotation != HESAI_ROTATION_clockwise && rotation != HESAI_ROTATION_counterclockwise))
+    return HESAI_ERROR_invalid_argument;
+  HealthStorage* h = ::new (static_cast<void*>(health)) HealthStorage{};
+  h->monitor.set_rotation(static_cast<hesai::Rotation>(rotation));
+  return HESAI_ERROR_ok;
+}
+
+hesai_error hesai_decoder_decode_health(hesai_decoder* decoder, const std::uint8_t* payload, std::size_t size,
+                                        hesai_packet_info* info, hesai_point* points, std::size_t capacity,
+                                        std::size_t* count, int returns, hesai_health* health,
+                                        std::uint32_t* lost_before) noexcept {
+  if (count != nullptr) *count = 0;
+  if (lost_before != nullptr) *lost_before = 0;
+  if (decoder == nullptr || points == nullptr || count == nullptr || !bytes_ok(payload, size) ||
+      (returns != HESAI_RETURNS_all && returns != HESAI_RETURNS_distinct) ||
+      (returns == HESAI_RETURNS_distinct && health == nullptr))
+    return HESAI_ERROR_invalid_argument;
+  hesai::PacketInfo i;
+  Error e;
+  if (health == nullptr) {
+    e = decoder_in(decoder).decode(ByteView{payload, size}, i, reinterpret_cast<hesai::Point*>(points), capacity, *count);
+  } else {
+    HealthStorage& h = health_in(health);
+    e = decoder_in(decoder).decode(ByteView{payload, size}, i, reinterpret_cast<hesai::Point*>(points), capacity, *count,
+                                   h.scan, static_cast<hesai::Returns>(returns));
+    if (e == Error::ok) {
+      const std::uint32_t lost = h.monitor.observe(i);
+      h.monitor.observe_units(h.scan);
+      if (lost_before != nullptr) *lost_before = lost;
+    }
+  }
+  if (info != nullptr) copy_info(i, *info);
+  return c_error(e);
+}
+
+hesai_error hesai_health_counts_get(const hesai_health* health, hesai_health_counts* counts) noexcept {
+  if (health == nullptr || counts == nullptr) return HESAI_ERROR_invalid_argument;
+  const hesai::HealthCounts& h = health_in(health).monitor.counts();
+  counts->packets = h.packets;
+  counts->lost = h.lost;
+  counts->reordered = h.reordered;
+  counts->duplicates = h.duplicates;
+  counts->time_stalls = h.time_stalls;
+  counts->time_virtual = h.time_virtual;
+  counts->time_jumps = h.time_jumps;
+  counts->blockage_units = h.blockage_units;
+  counts->duplicate_returns = h.duplicate_returns;
+  counts->beyond_rated_range = h.beyond_rated_range;
+  for (std::size_t ch = 0; ch < hesai::kMaxChannels; ++ch) counts->blockage_by_channel[ch] = h.blockage_by_channel[ch];
+  counts->fov_gap = h.fov_gap ? 1 : 0;
+  counts->fov_gap_from = h.fov_gap_from;
+  counts->fov_gap_to = h.fov_gap_to;
+  return HESAI_ERROR_ok;
 }
 
 }  // extern "C"

@@ -30,6 +30,7 @@ struct DecodeOutput {
   PointColumns columns;
   DecodePath path = DecodePath::best;
   std::size_t count = 0;
+  UnitScan* scan = nullptr;  // when set, the units are scanned too (scan_units)
 
   // Replaces the intensity of points [first, count) by table[intensity].
   void map_intensity(std::size_t first, const std::uint8_t* table) noexcept {
@@ -45,6 +46,48 @@ HESAI_ALWAYS_INLINE inline bool has_channel_map(const kernels::BlockRef* blocks,
   bool mapped = false;
   for (std::size_t b = 0; b < block_count; ++b) mapped = mapped || blocks[b].channel_of != nullptr;
   return mapped;
+}
+
+// Blockage markers, repeated dual returns and distances beyond the rated range, from the units
+// themselves (UnitScan, decoder.h); `scan` was reset by the caller.
+template <std::size_t kUnitBytes>
+HESAI_NOINLINE_FOR_SIZE void scan_units(const kernels::BlockRef* blocks, std::size_t block_count, std::size_t unit_count,
+                                        const PacketInfo& info, std::uint16_t min_distance, UnitScan& scan) noexcept {
+  // distance x unit > rated  <=>  distance > floor(rated / unit), for whole numbers; the limit is far
+  // above the smallest kept distance (50 000 or 12 500 at 4 mm).
+  const std::uint32_t rated_mm = 1000u * rated_range_m(info.model);
+  const std::uint32_t limit = rated_mm != 0 && info.dis_unit_mm != 0 ? rated_mm / info.dis_unit_mm : 0xFFFFu;
+  const bool markers = min_distance > 1;  // distance 1 is a marker only where it is not a point
+  std::uint32_t blockage = 0, beyond = 0, duplicates = 0;
+  for (std::size_t b = 0; b < block_count; ++b) {
+    const std::uint8_t* u = blocks[b].units;
+    for (std::size_t j = 0; j < unit_count; ++j, u += kUnitBytes) {
+      const std::uint32_t distance = load_le16(u);
+      beyond += distance > limit ? 1u : 0u;
+      if (markers && distance == 1) {
+        ++blockage;
+        const std::uint8_t ch = blocks[b].channel_of != nullptr ? blocks[b].channel_of[j] : static_cast<std::uint8_t>(j);
+        ++scan.blockage_by_channel[ch % kMaxChannels];
+      }
+    }
+  }
+  if (info.returns == 2) {  // blocks 2i and 2i + 1 are the two returns of a firing
+    for (std::size_t b = 0; b + 1 < block_count; b += 2) {
+      const std::uint8_t* u0 = blocks[b].units;
+      const std::uint8_t* u1 = blocks[b + 1].units;
+      for (std::size_t j = 0; j < unit_count; ++j, u0 += kUnitBytes, u1 += kUnitBytes) {
+        const std::uint16_t d0 = load_le16(u0);
+        if (d0 >= min_distance && d0 == load_le16(u1) && u0[2] == u1[2]) {
+          ++duplicates;
+          const std::uint8_t ch = blocks[b + 1].channel_of != nullptr ? blocks[b + 1].channel_of[j] : static_cast<std::uint8_t>(j);
+          if (b / 2 < kMaxDualFirings) scan.repeated[b / 2][(ch % kMaxChannels) / 8] |= static_cast<std::uint8_t>(1u << (ch % 8));
+        }
+      }
+    }
+  }
+  scan.blockage_units = static_cast<std::uint16_t>(blockage);
+  scan.beyond_rated_range = static_cast<std::uint16_t>(beyond);
+  scan.duplicate_returns = static_cast<std::uint16_t>(duplicates);
 }
 
 // Optimising for size (-Os, the firmware builds), every sensor calls one shared copy per unit
@@ -72,6 +115,7 @@ HESAI_NOINLINE_FOR_SIZE void SensorBase::emit_blocks(const Decoder& d, const ker
   }
   const float unit_m = static_cast<float>(info.dis_unit_mm) * 0.001f;
   const std::uint16_t min_distance = sensor_of(d.model_)->min_distance;
+  if (out.scan != nullptr) scan_units<kUnitBytes>(blocks, block_count, unit_count, info, min_distance, *out.scan);
 #if defined(HESAI_KERNELS_VECTOR)
   const kernels::VectorIsa isa = kernels::vector_isa(out.path);  // none for DecodePath::portable
   if (isa != kernels::VectorIsa::none && block_count <= kernels::kMaxBlocks) {

@@ -216,6 +216,33 @@ Error Decoder::decode(ByteView payload, PacketInfo& info, PacketPoints& out, Dec
   return decode(payload, info, out.points.data(), out.points.size(), out.count, path);
 }
 
+Error Decoder::decode(ByteView payload, PacketInfo& info, PacketPoints& out, UnitScan& scan, Returns returns,
+                      DecodePath path) noexcept {
+  return decode(payload, info, out.points.data(), out.points.size(), out.count, scan, returns, path);
+}
+
+Error Decoder::decode(ByteView payload, PacketInfo& info, Point* points, std::size_t capacity, std::size_t& count,
+                      UnitScan& scan, Returns returns, DecodePath path) noexcept {
+  scan = UnitScan{};
+  if (points == nullptr) {
+    count = 0;
+    return Error::invalid_argument;
+  }
+  const Error e = decode_into(payload, info, points, nullptr, capacity, count, path, &scan);
+  if (e != Error::ok || returns != Returns::distinct || scan.duplicate_returns == 0) return e;
+  // Leave out the second returns the scan found repeated, keeping the order of the rest.
+  std::size_t kept = 0;
+  for (std::size_t i = 0; i < count; ++i) {
+    const Point& p = points[i];
+    const std::size_t firing = p.block / 2u, ch = static_cast<std::size_t>(p.channel - 1u) % kMaxChannels;
+    const bool repeated = p.block % 2u == 1u && firing < kMaxDualFirings &&
+                          (static_cast<unsigned>(scan.repeated[firing][ch / 8]) >> (ch % 8) & 1u) != 0;
+    if (!repeated) points[kept++] = p;
+  }
+  count = kept;
+  return e;
+}
+
 Error Decoder::decode(ByteView payload, PacketInfo& info, Point* points, std::size_t capacity, std::size_t& count,
                       DecodePath path) noexcept {
   return decode_into(payload, info, points, nullptr, capacity, count, path);
@@ -231,6 +258,17 @@ Error Decoder::decode(ByteView payload, PacketInfo& info, const PointColumns& co
   return decode_into(payload, info, nullptr, &columns, columns.capacity, count, path);
 }
 
+Error Decoder::decode(ByteView payload, PacketInfo& info, const PointColumns& columns, std::size_t& count,
+                      UnitScan& scan, DecodePath path) noexcept {
+  scan = UnitScan{};
+  if (columns.x == nullptr || columns.y == nullptr || columns.z == nullptr || columns.time_ns == nullptr ||
+      columns.intensity == nullptr || columns.channel == nullptr || columns.return_index == nullptr) {
+    count = 0;
+    return Error::invalid_argument;
+  }
+  return decode_into(payload, info, nullptr, &columns, columns.capacity, count, path, &scan);
+}
+
 bool decode_simd_available() noexcept {
   const kernels::VectorIsa isa = kernels::vector_isa(DecodePath::best);
   return isa != kernels::VectorIsa::none && isa != kernels::VectorIsa::armv7m;  // the ARMv7E-M loops are scalar
@@ -238,7 +276,7 @@ bool decode_simd_available() noexcept {
 const char* decode_simd_name() noexcept { return kernels::vector_isa_name(kernels::vector_isa(DecodePath::best)); }
 
 Error Decoder::decode_into(ByteView payload, PacketInfo& info, Point* points, const PointColumns* columns,
-                           std::size_t capacity, std::size_t& count, DecodePath path) noexcept {
+                           std::size_t capacity, std::size_t& count, DecodePath path, UnitScan* scan) noexcept {
   count = 0;
   if (capacity < max_points(model_)) return Error::buffer_too_small;
   const Error e = validate(payload, info);
@@ -247,6 +285,7 @@ Error Decoder::decode_into(ByteView payload, PacketInfo& info, Point* points, co
   out.points = points;
   if (columns != nullptr) out.columns = *columns;
   out.path = path;
+  out.scan = scan;
   sensor_of(model_)->walk(*this, payload.data, info, out);  // validate() found model_'s packet
   count = out.count;
   return Error::ok;

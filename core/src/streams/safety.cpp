@@ -1,5 +1,7 @@
 #include "hesai/safety.h"
 
+#include "hesai/saturating.h"
+
 namespace hesai {
 
 namespace {
@@ -26,15 +28,15 @@ const char* lidar_state_name(std::uint8_t state) noexcept {
 
 void count_safety(SafetyCounts& counts, const FunctionalSafety& fs, bool stall_began) noexcept {
   if (!fs.present) return;
-  ++counts.packets;
+  saturating_increment(counts.packets);
   // The decoder gives 3 bits; the mask keeps a hand-filled struct in range too.
-  ++counts.states[fs.lidar_state & (kLidarStateCount - 1)];
-  if (stall_began) ++counts.counter_stalls;
+  saturating_increment(counts.states[fs.lidar_state & (kLidarStateCount - 1)]);
+  if (stall_began) saturating_increment(counts.counter_stalls);
   switch (fs.fault_code_type) {
-    case kFaultCurrent: ++counts.current_fault; break;
-    case kFaultPast: ++counts.past_fault; break;
+    case kFaultCurrent: saturating_increment(counts.current_fault); break;
+    case kFaultPast: saturating_increment(counts.past_fault); break;
     case 0: return;  // no fault in this packet
-    default: ++counts.reserved_fault_type; return;
+    default: saturating_increment(counts.reserved_fault_type); return;
   }
   counts.last_fault_code = fs.fault_code;
   counts.last_fault_id = fs.fault_code_id;

@@ -1,5 +1,7 @@
 #include "hesai/sequence.h"
 
+#include "hesai/saturating.h"
+
 namespace hesai {
 
 namespace {
@@ -44,12 +46,12 @@ std::uint32_t SequenceTracker::advance(std::uint32_t k) noexcept {
   set(newest_);
   span_ = span_ + k < kSequenceWindow ? span_ + k : kSequenceWindow;
   const std::uint32_t lost = k - 1;
-  counts_.lost += lost;
+  saturating_add(counts_.lost, lost);
   return lost;
 }
 
 std::uint32_t SequenceTracker::observe(std::uint32_t seq) noexcept {
-  ++counts_.packets;
+  saturating_increment(counts_.packets);
   if (!started_) {
     started_ = true;
     start_series(seq);
@@ -67,9 +69,9 @@ std::uint32_t SequenceTracker::observe(std::uint32_t seq) noexcept {
     const std::uint32_t from_candidate = seq - candidate_;
     if (!in_window && from_candidate >= 1 && from_candidate <= kSequenceWindow) {
       // The far-behind number was the first of a restarted series: undo its count as stale.
-      --counts_.reordered;
-      --counts_.stale;
-      ++counts_.resyncs;
+      saturating_subtract(counts_.reordered, 1);
+      saturating_subtract(counts_.stale, 1);
+      saturating_increment(counts_.resyncs);
       start_series(candidate_);
       last_ = SequenceEvent::resync;
       return advance(from_candidate);
@@ -81,7 +83,7 @@ std::uint32_t SequenceTracker::observe(std::uint32_t seq) noexcept {
       last_ = d == 1 ? SequenceEvent::in_order : SequenceEvent::gap;
       return advance(d);
     }
-    ++counts_.resyncs;  // too far ahead to count as loss
+    saturating_increment(counts_.resyncs);  // too far ahead to count as loss
     start_series(seq);
     last_ = SequenceEvent::resync;
     return 0;
@@ -89,13 +91,13 @@ std::uint32_t SequenceTracker::observe(std::uint32_t seq) noexcept {
 
   if (behind < kSequenceWindow) {
     if (test(seq)) {
-      ++counts_.duplicates;
+      saturating_increment(counts_.duplicates);
       last_ = SequenceEvent::duplicate;
       return 0;
     }
     set(seq);
-    ++counts_.reordered;
-    if (behind < span_ && counts_.lost > 0) --counts_.lost;  // it was counted lost when skipped
+    saturating_increment(counts_.reordered);
+    if (behind < span_ && counts_.lost > 0) saturating_subtract(counts_.lost, 1);  // it was counted lost when skipped
     last_ = SequenceEvent::late;
     return 0;
   }
@@ -103,8 +105,8 @@ std::uint32_t SequenceTracker::observe(std::uint32_t seq) noexcept {
   // More than the window behind: late, unless the next number shows a restart here.
   candidate_ = seq;
   has_candidate_ = true;
-  ++counts_.reordered;
-  ++counts_.stale;
+  saturating_increment(counts_.reordered);
+  saturating_increment(counts_.stale);
   last_ = SequenceEvent::stale;
   return 0;
 }

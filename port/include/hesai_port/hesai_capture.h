@@ -47,6 +47,7 @@ typedef struct hesai_capture_options {
   float max_range_m;          /* --max-range (1e9) */
   const uint8_t* session_key; /* --session-key: 32 bytes, or NULL (no signature verification) */
   int allow_unsigned;         /* --allow-unsigned (0) */
+  int returns;                /* --returns: 0 all (default), 1 distinct (a repeated second return once) */
 } hesai_capture_options;
 
 /* One row of the CSV. Field order favours alignment; the meaning of each is the CSV column's. */

@@ -146,6 +146,11 @@ int hesai_capture_open(const char* path, const hesai_capture_options* options, h
       std::memcpy(d.session_key.data(), o.session_key, d.session_key.size());
     }
     d.allow_unsigned = o.allow_unsigned != 0;
+    if (o.returns != 0 && o.returns != 1) {
+      put_message(message, message_size, "returns takes all or distinct");
+      return kExitUsage;
+    }
+    d.returns = o.returns == 1 ? hesai::Returns::distinct : hesai::Returns::all;
 
     auto c = std::make_unique<hesai_capture>();
     if (c->file.open(path) != hesai::port::CaptureError::ok) {

@@ -67,6 +67,25 @@ int fail(const std::string& command, int status, const std::string& message) {
 }
 
 // Feeds every datagram of an open capture to the pipeline. Returns an exit status.
+// The sender of a captured datagram, for the per-sensor report: "192.168.1.201:10000",
+// "[fe80::1]:10000", or "mcap channel N" (MCAP packets carry no address).
+std::string source_text(const port::UdpDatagram& d) {
+  char buf[64];
+  if (d.ip_version == 4) {
+    std::snprintf(buf, sizeof buf, "%u.%u.%u.%u:%u", d.src_addr[0], d.src_addr[1], d.src_addr[2], d.src_addr[3], d.src_port);
+  } else if (d.ip_version == 6) {
+    std::string a = "[";
+    for (std::size_t i = 0; i < 16; i += 2) {
+      std::snprintf(buf, sizeof buf, "%s%x", i ? ":" : "", (d.src_addr[i] << 8) | d.src_addr[i + 1]);
+      a += buf;
+    }
+    return a + "]:" + std::to_string(d.src_port);
+  } else {
+    std::snprintf(buf, sizeof buf, "mcap channel %u", d.interface_id);
+  }
+  return buf;
+}
+
 int run_capture(port::CaptureFile& file, Pipeline& pipeline, bool quiet) {
   const bool progress = !quiet && isatty(STDERR_FILENO);
   const std::size_t total = file.bytes().size;
@@ -80,7 +99,9 @@ int run_capture(port::CaptureFile& file, Pipeline& pipeline, bool quiet) {
       pipeline.finish();
       return kExitInput;
     }
-    if (!pipeline.feed(d.payload, source_key(d))) {
+    const std::uint64_t key = source_key(d);
+    if (!pipeline.has_label(key)) pipeline.label_source(key, source_text(d));
+    if (!pipeline.feed(d.payload, key)) {
       std::fprintf(stderr, "hesai: %s\n", pipeline.error().c_str());
       return kExitUsage;
     }
@@ -166,7 +187,10 @@ int cmd_stats(Args& args) {
                   "  --json                  one JSON object: packets, models, points, frames, crc_errors,\n"
                   "                          signature_valid, signature_invalid, signature_missing,\n"
                   "                          signature_unverified, malformed, unsupported, lost, duplicates,\n"
-                  "                          reordered, sequence_resyncs, gps_packets, first_time_ns,\n"
+                  "                          reordered, sequence_resyncs, lost_by, time_stalls,\n"
+                  "                          time_virtual, time_jumps, blockage_units,\n"
+                  "                          blockage_by_channel, duplicate_returns, beyond_rated_range,\n"
+                  "                          fov_gap_deg, ip_fragments, gps_packets, first_time_ns,\n"
                   "                          last_time_ns, high_temperature, gps_unlocked,\n"
                   "                          gps_position_invalid, fs_packets, fs_states (per lidar state),\n"
                   "                          fs_current_fault, fs_past_fault, fs_reserved_fault_type,\n"
@@ -201,7 +225,8 @@ int cmd_stats(Args& args) {
   }
   const int rc = run_capture(file, pipeline, quiet);
   if (rc == kExitUsage) return rc;
-  if (json) std::printf("%s\n", stats_json(pipeline.stats()).c_str());
+  pipeline.set_ip_fragments(file.stats().fragments);
+  if (json) std::printf("%s\n", stats_json(pipeline.stats(), pipeline.sensors()).c_str());
   else std::printf("%s\n%s", capture.c_str(), stats_text(pipeline).c_str());
   return rc;
 }
@@ -479,7 +504,7 @@ int cmd_listen(Args& args) {
   if (sink && !sink->close(error)) std::fprintf(stderr, "hesai listen: %s\n", error.c_str());
   const std::uint64_t restarts = session ? session->restarts() : 0;
   if (json) {
-    std::string j = stats_json(pipeline.stats());
+    std::string j = stats_json(pipeline.stats(), pipeline.sensors());
     j.insert(j.size() - 1, ",\"foreign_packets\":" + std::to_string(foreign) + ",\"foreign_model_packets\":" +
                                std::to_string(pipeline.foreign_model_packets()) +
                                ",\"session_restarts\":" + std::to_string(restarts));

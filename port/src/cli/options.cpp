@@ -43,6 +43,8 @@ const char* const kDecodeOptionsHelp =
     "                          customised channels (header flags bit 6)\n"
     "  --reflectivity raw|nonlinear  intensity: the byte as sent (default), or the Pandar64's\n"
     "                          nonlinear mapping (manual Appendix D) as a percentage\n"
+    "  --returns all|distinct  dual return: both returns as sent (default), or a second return\n"
+    "                          that repeats its first (same distance and reflectivity) once\n"
     "  --no-firetime-azimuth   do not add firing time x spin rate to each point's azimuth\n"
     "  --rotation auto|cw|ccw  direction the sensor spins (default auto: detected per sensor from\n"
     "                          its block azimuths; clockwise until known, see docs/CLI.md)\n"
@@ -155,6 +157,14 @@ bool parse_decode_option(Args& args, DecodeOptions& o, std::string& error) {
       if (v == "raw") o.reflectivity = Reflectivity::raw;
       else if (v == "nonlinear") o.reflectivity = Reflectivity::nonlinear;
       else error = "--reflectivity takes raw or nonlinear, got '" + v + "'";
+    }
+    return true;
+  }
+  if (opt == "--returns") {
+    if (need(v)) {
+      if (v == "all") o.returns = Returns::all;
+      else if (v == "distinct") o.returns = Returns::distinct;
+      else error = "--returns takes all or distinct, got '" + v + "'";
     }
     return true;
   }

@@ -113,6 +113,8 @@ Pipeline::Source* Pipeline::source_for(std::uint64_t key, Model model) {
     sources_.erase(it);  // another sensor now sends from this address: start over
   }
   Source s;
+  s.key = key;
+  s.order = sources_made_++;
   s.decoder = std::make_unique<Decoder>(model);
   Decoder& d = *s.decoder;
   const std::size_t channels = channel_count(model);
@@ -172,13 +174,13 @@ Pipeline::Source* Pipeline::source_for(std::uint64_t key, Model model) {
 void Pipeline::close_frames(FrameAssembler& frames) {
   FrameInfo f;
   while (frames.pop_closed(f)) {
-    ++stats_.frames;
+    saturating_increment(stats_.frames);
     if (sink_) sink_->frame_closed(f);
   }
 }
 
 bool Pipeline::feed(ByteView payload, std::uint64_t source_key, bool pre_session) {
-  ++stats_.packets;
+  saturating_increment(stats_.packets);
   Model model = Model::unknown;
   PacketKind kind = PacketKind::point_cloud;
   Error e = identify(payload, model, kind);
@@ -210,7 +212,7 @@ bool Pipeline::feed(ByteView payload, std::uint64_t source_key, bool pre_session
 
   allow_unsigned_for(*src, pre_session);
   PacketInfo info;
-  e = src->decoder->decode(payload, info, points_);
+  e = src->decoder->decode(payload, info, points_, scan_, options_.returns);
   if (e != Error::ok) {
     count_error(stats_, e);
     ++rejections_[e];
@@ -234,7 +236,7 @@ bool Pipeline::feed(ByteView payload, std::uint64_t source_key, bool pre_session
         while (!src->held.empty())
           if (!release_held(*src)) return false;
         allow_unsigned_for(*src, pre_session);
-        e = src->decoder->decode(payload, info, points_);
+        e = src->decoder->decode(payload, info, points_, scan_, options_.returns);
         if (e != Error::ok) {  // the packet decoded once: a fault of ours, but counted as bad input
           count_error(stats_, e);
           ++rejections_[e];
@@ -251,7 +253,7 @@ bool Pipeline::release_held(Source& src) {
   const std::uint64_t index = src.held.front_tag() & ~kPreSessionTag;
   allow_unsigned_for(src, (src.held.front_tag() & kPreSessionTag) != 0);
   PacketInfo info;
-  const Error e = src.decoder->decode(payload, info, points_);
+  const Error e = src.decoder->decode(payload, info, points_, scan_, options_.returns);
   src.held.pop_front();
   if (e != Error::ok) {  // it decoded when it came: a fault of ours, but counted as bad input
     count_error(stats_, e);
@@ -268,13 +270,14 @@ bool Pipeline::process(Source& src, std::uint64_t index, const PacketInfo& info)
     return false;
   }
   last_source_ = &src;
+  ++src.packets;
   count_model(stats_, info.model);
   switch (info.signature) {
-    case SignatureStatus::valid: ++stats_.signature_valid; break;
-    case SignatureStatus::unverified: ++stats_.signature_unverified; break;
+    case SignatureStatus::valid: saturating_increment(stats_.signature_valid); break;
+    case SignatureStatus::unverified: saturating_increment(stats_.signature_unverified); break;
     case SignatureStatus::accepted_unsigned:
-      ++stats_.signature_missing;
-      ++stats_.unsigned_accepted;
+      saturating_increment(stats_.signature_missing);
+      saturating_increment(stats_.unsigned_accepted);
       break;
     case SignatureStatus::not_signed: break;
   }
@@ -286,21 +289,56 @@ bool Pipeline::process(Source& src, std::uint64_t index, const PacketInfo& info)
   // The sensor's own monitor finds its stalls; the run's counters sum every sensor's sections.
   count_safety(stats_.safety, info.safety, src.safety.observe(info.safety, info.time_ns));
 
+  // The health monitor watches every packet (clocks); it counts the losses of packets that carry
+  // no UDP sequence. Only this source's counters move: add their change (below).
+  src.health.set_rotation(src.decoder->rotation());
+  const HealthCounts health_before = src.health.counts();
+  const std::uint32_t health_lost_before = src.health.observe(info);
+  const HealthCounts& health = src.health.counts();
+  saturating_add(stats_.time_stalls, health.time_stalls - health_before.time_stalls);
+  saturating_add(stats_.time_virtual, health.time_virtual - health_before.time_virtual);
+  saturating_add(stats_.time_jumps, health.time_jumps - health_before.time_jumps);
+
+  if (health.fov_gap && (!stats_.fov_gap || fov_source_ == &src)) {
+    fov_source_ = &src;
+    stats_.fov_gap = true;
+    stats_.fov_gap_from = health.fov_gap_from;
+    stats_.fov_gap_to = health.fov_gap_to;
+  }
+  src.health.observe_units(scan_);
+  saturating_add(stats_.blockage_units, scan_.blockage_units);
+  saturating_add(stats_.duplicate_returns, scan_.duplicate_returns);
+  saturating_add(stats_.beyond_rated_range, scan_.beyond_rated_range);
+  if (scan_.blockage_units != 0)
+    for (std::size_t ch = 0; ch < kMaxChannels; ++ch) saturating_add(stats_.blockage_by_channel[ch], scan_.blockage_by_channel[ch]);
+
   std::uint32_t lost_before = 0;
-  if (info.has_sequence) {
-    // Only this source's counters move: add their change. `lost` can fall (a late packet);
-    // unsigned arithmetic (modulo 2^64) adds a negative change as well.
+  if (!info.has_sequence) {
+    // `lost` can fall (a late packet, an FOV gap taken back): the change either way, saturating.
+    lost_before = health_lost_before;
+    saturating_follow(stats_.lost, health_before.lost, health.lost);
+    saturating_follow(stats_.duplicates, health_before.duplicates, health.duplicates);
+    saturating_follow(stats_.reordered, health_before.reordered, health.reordered);
+    stats_.lost_by = stats_.lost_by | LostBy::azimuth_time;
+    src.lost_by = src.lost_by | LostBy::azimuth_time;
+  } else {
+    stats_.lost_by = stats_.lost_by | LostBy::udp_sequence;
+    src.lost_by = src.lost_by | LostBy::udp_sequence;
+    // Only this source's counters move: add their change. `lost` can fall (a late packet): the
+    // change either way, saturating.
     const SequenceCounts before = src.sequence.counts();
     lost_before = src.sequence.observe(info.sequence);
     const SequenceCounts& after = src.sequence.counts();
-    stats_.lost += after.lost - before.lost;
-    stats_.duplicates += after.duplicates - before.duplicates;
-    stats_.reordered += after.reordered - before.reordered;
-    stats_.sequence_resyncs += after.resyncs - before.resyncs;
+    saturating_follow(stats_.lost, before.lost, after.lost);
+    saturating_follow(stats_.duplicates, before.duplicates, after.duplicates);
+    saturating_follow(stats_.reordered, before.reordered, after.reordered);
+    saturating_follow(stats_.sequence_resyncs, before.resyncs, after.resyncs);
   }
 
   // Each point goes to the frame of its own azimuth; frames close when the blocks have moved
   // far enough past their end that no later point can reach them.
+  // `points` counts every point decoded: with --returns distinct, the repeated ones left out too.
+  if (options_.returns == Returns::distinct) saturating_add(stats_.points, scan_.duplicate_returns);
   const bool keep = index >= options_.first_packet && index < options_.end_packet;
   FrameAssembler& frames = src.frames;
   frames.begin_packet(index, lost_before);
@@ -309,7 +347,7 @@ bool Pipeline::process(Source& src, std::uint64_t index, const PacketInfo& info)
     if (frames.block(info.block_azimuth[b])) close_frames(frames);
     for (; next < points_.count && points_.points[next].block == b; ++next) {
       const Point& p = points_.points[next];
-      ++stats_.points;
+      saturating_increment(stats_.points);
       if (!keep || p.distance_m < options_.min_range || p.distance_m > options_.max_range) continue;
       if (!frames.in_fov(p.azimuth_deg)) continue;
       const std::uint64_t frame_id = frames.point(p.azimuth_deg);
@@ -317,6 +355,27 @@ bool Pipeline::process(Source& src, std::uint64_t index, const PacketInfo& info)
     }
   }
   return true;
+}
+
+std::vector<SensorReport> Pipeline::sensors() const {
+  std::vector<std::pair<std::uint64_t, SensorReport>> ordered;
+  for (const auto& [key, s] : sources_) {
+    if (s.packets == 0) continue;
+    SensorReport r;
+    const auto label = labels_.find(key);
+    r.source = label != labels_.end() ? label->second : "source " + std::to_string(s.order + 1);
+    r.model = s.decoder->model();
+    r.packets = s.packets;
+    r.lost_by = s.lost_by;
+    r.health = s.health.counts();
+    // A sensor whose packets carry no sequence counts by its monitor; one whose packets do, by the sequence.
+    r.lost = s.lost_by == LostBy::azimuth_time ? r.health.lost : s.sequence.counts().lost;
+    ordered.emplace_back(s.order, std::move(r));
+  }
+  std::sort(ordered.begin(), ordered.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+  std::vector<SensorReport> out;
+  for (auto& [order, r] : ordered) out.push_back(std::move(r));
+  return out;
 }
 
 std::string Pipeline::rotation_text() const {

@@ -12,6 +12,7 @@
 
 #include "hesai/decoder.h"
 #include "hesai/frame.h"
+#include "hesai/health.h"
 #include "hesai/held_packets.h"
 #include "hesai/rotation.h"
 #include "hesai/safety.h"
@@ -27,6 +28,7 @@ struct DecodeOptions {
   std::string firetimes_path;       ///< --firetimes
   std::string channel_config_path;  ///< --channel-config (QT128)
   Reflectivity reflectivity = Reflectivity::raw;  ///< --reflectivity (nonlinear: Pandar64 only)
+  Returns returns = Returns::all;   ///< --returns: distinct leaves out the repeated second returns
   bool firetime_azimuth = true;     ///< off with --no-firetime-azimuth
   bool detect_rotation = true;      ///< --rotation auto (default): per sensor, by a RotationDetector
   Rotation rotation = Rotation::clockwise;  ///< --rotation cw|ccw; with auto, the direction assumed for packets released undecided
@@ -61,8 +63,20 @@ class Sink {
   virtual void frame_closed(const FrameInfo& frame) = 0;
 };
 
-/// Decodes datagrams. One decoder, sequence tracker, frame assembler and functional-safety
-/// monitor per source (the sensor's address and port), created on its first packet.
+/// One sensor's stream health, for the per-sensor report (`sensors` in stats --json).
+struct SensorReport {
+  std::string source;             ///< "192.168.1.201:10000" (label_source), or "source N"
+  Model model = Model::unknown;
+  std::uint64_t packets = 0;      ///< its point-cloud packets decoded
+  std::uint64_t lost = 0;         ///< by its UDP sequence, or by azimuth and time when its packets carry none
+  LostBy lost_by = LostBy::none;
+  HealthCounts health;            ///< its monitor's counters (its lost, reordered, duplicates: by azimuth and time)
+};
+
+/// Decodes datagrams. One decoder, sequence tracker, stream-health monitor, frame assembler and
+/// functional-safety monitor per source (the sensor's address and port), created on its first
+/// packet. A packet with a UDP sequence counts its losses by the sequence; one without, by the
+/// health monitor's block azimuth and packet time (Stats::lost_by says which).
 ///
 /// With --rotation auto, a source's point-cloud packets are held (up to kHeldPackets) until its
 /// RotationDetector knows the direction, then decoded in it, in their order and with the indices
@@ -110,6 +124,13 @@ class Pipeline {
   void finish();
 
   const Stats& stats() const { return stats_; }
+  /// Names the sender `key` in the per-sensor report (once; later calls for the key change nothing).
+  void label_source(std::uint64_t key, const std::string& label) { labels_.emplace(key, label); }
+  bool has_label(std::uint64_t key) const { return labels_.count(key) != 0; }
+  /// Every sensor that sent point-cloud packets, in the order they first did.
+  std::vector<SensorReport> sensors() const;
+  /// The IP fragments the capture reader skipped (they are not reassembled), for the report.
+  void set_ip_fragments(std::uint64_t n) { stats_.ip_fragments = n; }
   const std::string& error() const { return error_; }
   /// Packets per Error code that rejected them (for the text summary).
   const std::map<Error, std::uint64_t>& rejections() const { return rejections_; }
@@ -126,11 +147,16 @@ class Pipeline {
   struct Source {
     std::unique_ptr<Decoder> decoder;
     SequenceTracker sequence;
+    HealthMonitor health;
     FrameAssembler frames;
     SafetyMonitor safety;
     RotationDetector rotation;
     HeldPackets<kHeldPackets> held;  // decoded, not yet processed: the direction is not known;
                                      // tagged with the packet's index | kPreSessionTag
+    std::uint64_t key = 0;           // the sender (feed's source)
+    std::uint64_t order = 0;         // when it first sent (for the report's order)
+    std::uint64_t packets = 0;       // point-cloud packets processed
+    LostBy lost_by = LostBy::none;
   };
   // A held packet's tag: its index, with this bit when it was fed as pre_session.
   static constexpr std::uint64_t kPreSessionTag = std::uint64_t{1} << 63;
@@ -151,7 +177,10 @@ class Pipeline {
   std::string angles_text_, firetimes_text_;
   std::unique_ptr<ChannelConfig> channel_config_;  // --channel-config, parsed once
   std::map<std::uint64_t, Source> sources_;
+  std::map<std::uint64_t, std::string> labels_;
+  std::uint64_t sources_made_ = 0;
   const Source* last_source_ = nullptr;  // of the last decoded point-cloud packet
+  const Source* fov_source_ = nullptr;   // the sensor whose FOV gap Stats reports (compared, never read)
   bool session_ = false;  // start_session() was called
   Model fixed_model_ = Model::unknown;  // fix_model(); unknown: any model
   std::uint64_t foreign_model_packets_ = 0;
@@ -162,6 +191,7 @@ class Pipeline {
   std::uint64_t point_packet_index_ = 0;
   std::string error_;
   PacketPoints points_;  // one packet's points (reused)
+  UnitScan scan_;        // and what its units say beyond them
 };
 
 /// The source a captured datagram comes from, for Pipeline::feed: its sender's address and port.

@@ -13,9 +13,47 @@ void add(std::string& out, const char* key, std::uint64_t v, bool comma = true) 
   out += key;
   out += "\":" + std::to_string(v) + (comma ? "," : "");
 }
+// 0.01 degree as degrees with two decimals.
+std::string degrees(std::uint16_t cdeg) {
+  char buf[16];
+  std::snprintf(buf, sizeof buf, "%u.%02u", static_cast<unsigned>(cdeg / 100), static_cast<unsigned>(cdeg % 100));
+  return buf;
+}
+// [start, end] in degrees, or null.
+std::string fov_json(bool has, std::uint16_t from, std::uint16_t to) {
+  return has ? "[" + degrees(from) + "," + degrees(to) + "]" : "null";
+}
+
+// The most channels of the models the run saw (the length of blockage_by_channel).
+std::size_t channels_seen(const Stats& s) {
+  std::size_t n = 0;
+  for (std::size_t m = 1; m < kModelCount; ++m)
+    if (s.models[m] != 0 && channel_count(static_cast<Model>(m)) > n) n = channel_count(static_cast<Model>(m));
+  return n;
+}
 }  // namespace
 
-std::string stats_json(const Stats& s) {
+namespace {
+std::string sensor_json(const SensorReport& r) {
+  const HealthCounts& h = r.health;
+  std::string out = "{\"source\":\"" + r.source + "\",\"model\":\"" + model_name(r.model) + "\",";
+  add(out, "packets", r.packets);
+  add(out, "lost", r.lost);
+  out += "\"lost_by\":\"" + std::string(lost_by_name(r.lost_by)) + "\",";
+  add(out, "time_stalls", h.time_stalls);
+  add(out, "time_virtual", h.time_virtual);
+  add(out, "time_jumps", h.time_jumps);
+  add(out, "blockage_units", h.blockage_units);
+  out += "\"blockage_by_channel\":[";
+  for (std::size_t ch = 0; ch < channel_count(r.model); ++ch) out += (ch ? "," : "") + std::to_string(h.blockage_by_channel[ch]);
+  out += "],";
+  add(out, "duplicate_returns", h.duplicate_returns);
+  add(out, "beyond_rated_range", h.beyond_rated_range);
+  return out + "\"fov_gap_deg\":" + fov_json(h.fov_gap, h.fov_gap_from, h.fov_gap_to) + "}";
+}
+}  // namespace
+
+std::string stats_json(const Stats& s, const std::vector<SensorReport>& sensors) {
   std::string out = "{";
   add(out, "packets", s.packets);
   out += "\"models\":{";
@@ -42,6 +80,19 @@ std::string stats_json(const Stats& s) {
   add(out, "duplicates", s.duplicates);
   add(out, "reordered", s.reordered);
   add(out, "sequence_resyncs", s.sequence_resyncs);
+  out += "\"lost_by\":\"" + std::string(lost_by_name(s.lost_by)) + "\",";
+  add(out, "time_stalls", s.time_stalls);
+  add(out, "time_virtual", s.time_virtual);
+  add(out, "time_jumps", s.time_jumps);
+  add(out, "blockage_units", s.blockage_units);
+  out += "\"blockage_by_channel\":[";
+  const std::size_t channels = channels_seen(s);
+  for (std::size_t ch = 0; ch < channels; ++ch) out += (ch ? "," : "") + std::to_string(s.blockage_by_channel[ch]);
+  out += "],";
+  add(out, "duplicate_returns", s.duplicate_returns);
+  add(out, "beyond_rated_range", s.beyond_rated_range);
+  out += "\"fov_gap_deg\":" + fov_json(s.fov_gap, s.fov_gap_from, s.fov_gap_to) + ",";
+  add(out, "ip_fragments", s.ip_fragments);
   add(out, "gps_packets", s.gps_packets);
   out += "\"first_time_ns\":" + std::to_string(s.first_time_ns) + ",";
   out += "\"last_time_ns\":" + std::to_string(s.last_time_ns) + ",";
@@ -61,6 +112,11 @@ std::string stats_json(const Stats& s) {
   add(out, "fs_last_fault_id", fs.last_fault_id);
   add(out, "fs_last_fault_total", fs.last_fault_total);
   add(out, "fs_counter_stalls", fs.counter_stalls, false);
+  if (sensors.size() > 1) {
+    out += ",\"sensors\":[";
+    for (std::size_t i = 0; i < sensors.size(); ++i) out += (i ? "," : "") + sensor_json(sensors[i]);
+    out += "]";
+  }
   return out + "}";
 }
 
@@ -104,9 +160,37 @@ std::string stats_text(const Pipeline& p) {
   line("malformed", std::to_string(s.malformed));
   line("unsupported", std::to_string(s.unsupported));
   line("lost", std::to_string(s.lost));
+  if (s.lost_by == LostBy::azimuth_time)
+    line("lost_by", "azimuth_time (the packets carry no UDP sequence: counted from the block azimuth and the packet time)");
+  else if (s.lost_by == LostBy::mixed)
+    line("lost_by", "mixed (udp_sequence for the sensors that send one, azimuth_time for the others)");
+  else if (s.lost_by == LostBy::udp_sequence)
+    line("lost_by", "udp_sequence");
   line("duplicates", std::to_string(s.duplicates));
   line("reordered", std::to_string(s.reordered));
   if (s.sequence_resyncs) line("sequence_resyncs", std::to_string(s.sequence_resyncs));
+  line("time_stalls", std::to_string(s.time_stalls));
+  line("time_virtual", std::to_string(s.time_virtual));
+  if (s.time_jumps) line("time_jumps", std::to_string(s.time_jumps));
+  line("blockage_units", std::to_string(s.blockage_units));
+  if (s.blockage_units) {
+    std::string by;
+    for (std::size_t ch = 0; ch < kMaxChannels; ++ch)
+      if (s.blockage_by_channel[ch]) by += (by.empty() ? "" : ", ") + ("channel " + std::to_string(ch + 1)) + ": " + std::to_string(s.blockage_by_channel[ch]);
+    line("blockage_by_channel", by);
+  }
+  line("duplicate_returns", std::to_string(s.duplicate_returns));
+  line("beyond_rated_range", std::to_string(s.beyond_rated_range));
+  if (s.fov_gap)
+    line("fov_gap_deg", degrees(s.fov_gap_from) + " to " + degrees(s.fov_gap_to) +
+                            " (no packets there on every rotation: an azimuth FOV, not counted as lost)");
+  line("ip_fragments", std::to_string(s.ip_fragments));
+  if (s.ip_fragments)
+    out += "  warning: " + std::to_string(s.ip_fragments) +
+           " IP fragments were skipped (not reassembled): the datagrams they carried are missing from every count\n";
+  if (s.time_virtual)
+    out += "  warning: " + std::to_string(s.time_virtual) +
+           " packets are dated in the year 2000: their times are the unit's free-running clock, not PTP or GPS time\n";
   line("high_temperature", std::to_string(s.high_temperature));
   line("gps_unlocked", std::to_string(s.gps_unlocked));
   if (s.gps_position_invalid) line("gps_position_invalid", std::to_string(s.gps_position_invalid));
