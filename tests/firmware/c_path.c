@@ -9,7 +9,6 @@
 #include "semihost.h"
 
 static hesai_decoder decoder; /* HESAI_DECODER_SIZE bytes */
-static uint8_t damaged[1200];
 
 static int expect_error(hesai_error got, const char* want, const char* what) {
   if (strcmp(hesai_error_name(got), want) == 0) return 0;
@@ -21,12 +20,13 @@ static int expect_error(hesai_error got, const char* want, const char* what) {
   return 1;
 }
 
-int firmware_c_path_checks(const uint8_t* qt128, size_t size, hesai_point* points, size_t capacity) {
+int firmware_c_path_checks(const uint8_t* qt128, size_t size, hesai_point* points, size_t capacity,
+                           uint8_t* damaged, size_t damaged_size) {
   int failures = 0;
   size_t count = 0;
   hesai_packet_info info;
   failures += expect_error(hesai_decoder_init(&decoder, HESAI_MODEL_qt128c2x), "ok", "init");
-  if (size > sizeof damaged || capacity < hesai_model_max_points(HESAI_MODEL_qt128c2x)) return failures + 1;
+  if (size > damaged_size || capacity < hesai_model_max_points(HESAI_MODEL_qt128c2x)) return failures + 1;
   /* A flipped body byte fails CRC1; one byte short, the flags' length; an array one point short of
    * the QT128's 2 x 128 is refused before the packet is read. */
   memcpy(damaged, qt128, size);
