@@ -110,9 +110,18 @@ std::vector<std::uint8_t> pandar_scan_mcap(std::size_t packets) {
   rec(f, 0x06, b);
   b.clear();
   le(b, 0, 4);
-  rec(f, 0x0F, b);
+  rec(f, 0x0F, b);  // Data End
+  b.clear();
+  le(b, 0, 8);
+  le(b, 0, 8);
+  le(b, 0, 4);
+  rec(f, 0x02, b);  // Footer: no summary section
+  f.insert(f.end(), {0x89, 'M', 'C', 'A', 'P', '0', '\r', '\n'});
   return f;
 }
+
+// After the chunk: Data End (9 + 4 bytes), Footer (9 + 20), the closing magic (8).
+constexpr std::size_t kMcapTail = 13 + 29 + 8;
 
 }  // namespace
 
@@ -131,7 +140,7 @@ TEST(ZeroAllocation, McapParser) {
       ++datagrams;
       bytes += d.payload.size;
     }
-    if (parser.open(hesai::ByteView{file.data(), file.size() - 20}) == hesai::port::CaptureError::ok) {
+    if (parser.open(hesai::ByteView{file.data(), file.size() - kMcapTail - 20}) == hesai::port::CaptureError::ok) {
       while (parser.next(d) == hesai::port::CaptureStatus::datagram) {
       }
     }

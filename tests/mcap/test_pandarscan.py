@@ -10,7 +10,9 @@ second, non-PandarScan topic; chunked without CRCs) equals `stats --json` on the
 `decode --format csv` gives the same bytes. `replay` of a bag sends the pcap's payloads in order.
 Then each damaged file gives exit 2 and its own code at the byte offset where the writer put the
 damaged record (never a value read back from the program), and a compressed chunk's message names
-the compression and the commands that rewrite the file uncompressed.
+the compression and the commands that rewrite the file uncompressed. A bag cut at a record boundary
+(before a message, after the Data End or the Footer, inside the closing magic) is mcap_cut, with
+every point before the cut still written.
 With --memory, only: `stats` on a bag of more than 256 MiB peaks under 64 MiB resident.
 """
 import json
@@ -200,7 +202,8 @@ def damaged_files(hesai, work, pcap):
     bag.channel(2, 2, '/chatter')
     bag.message(2, 0, b'\x00\x01\x00\x00' + struct.pack('<I', 3) + b'hi\x00')
     bag.add(mp.OP_DATA_END, struct.pack('<I', 0), name='end')
-    data = bag.finish(data_end=False)
+    bag.add(mp.OP_FOOTER, struct.pack('<QQI', 0, 0, 0))
+    data = bag.finish(data_end=False) + mp.MAGIC
     expect_error(hesai, work, 'no_pandar_scan', data, 'mcap_no_pandar_scan', bag.offsets['end'] + 9 + 4)
 
     # A record inside a chunk whose length passes the chunk's end.
@@ -228,6 +231,8 @@ def damaged_files(hesai, work, pcap):
                      also=("'%s'" % compression, 'mcap decompress IN.mcap -o OUT.mcap', 'ros2 bag convert',
                            'compression: "None"'))
 
+    cut_bags(hesai, work, base, scan_msg, scans)
+
     # Damaged part-way: stats gives the counters up to the damage (the first two scans).
     bag = base()
     for s in scans[:2]:
@@ -239,6 +244,47 @@ def damaged_files(hesai, work, pcap):
     r = run(hesai, ['stats', path])
     check(r.returncode == 2 and b'packets' in r.stdout and b'20' in r.stdout,
           'part-way damage: exit %d, stdout %r' % (r.returncode, r.stdout[:200]))
+
+
+def cut_bags(hesai, work, base, scan_msg, scans):
+    """A bag cut at a record boundary is an error (mcap_cut, exit 2), not a whole bag: cut before
+    a message, after the Data End, after the Footer, inside the closing magic. decode still writes
+    every point before the cut: its CSV equals that of a whole bag of the messages before it."""
+    bag = base()
+    for i, s in enumerate(scans):
+        scan_msg(bag, s, name='m%d' % i)
+    data = bag.finish()
+    # Records before m2: Header, Schema, Channel, m0, m1.
+    cut = bag.offsets['m2']
+    expect_error(hesai, work, 'cut_before_message', data[:cut], 'mcap_cut', cut, also=('cut after record 5 ',))
+    whole = base()
+    for s in scans[:2]:
+        scan_msg(whole, s)
+    with open(os.path.join(work, 'first_two.mcap'), 'wb') as f:
+        f.write(whole.finish())
+    with open(os.path.join(work, 'cut_before_message.mcap'), 'wb') as f:
+        f.write(data[:cut])
+    want = run(hesai, ['decode', os.path.join(work, 'first_two.mcap'), '--out', '-', '--quiet'])
+    got = run(hesai, ['decode', os.path.join(work, 'cut_before_message.mcap'), '--out', '-', '--quiet'])
+    check(want.returncode == 0 and want.stdout.count(b'\n') > 1000,
+          'whole bag of two scans: exit %d, %d lines' % (want.returncode, want.stdout.count(b'\n')))
+    check(got.returncode == 2 and got.stdout == want.stdout,
+          'cut bag: exit %d, %d CSV bytes, the whole two-scan bag\'s %d' % (got.returncode, len(got.stdout), len(want.stdout)))
+    # The tail: Data End (9 + 4 bytes), Footer (9 + 20), the magic (8). Records: the five, m2, Data End.
+    footer = len(data) - 8 - 29
+    expect_error(hesai, work, 'cut_after_data_end', data[:footer], 'mcap_cut', footer, also=('cut after record 7 ',))
+    expect_error(hesai, work, 'cut_after_footer', data[:-8], 'mcap_cut', len(data) - 8)
+    expect_error(hesai, work, 'cut_in_magic', data[:-3], 'mcap_cut', len(data) - 3)
+    # A bag that ends at its Footer (no Data End), then the magic, is whole.
+    bag = base()
+    scan_msg(bag, scans[0])
+    bag.add(mp.OP_FOOTER, struct.pack('<QQI', 0, 0, 0))
+    path = os.path.join(work, 'footer_no_data_end.mcap')
+    with open(path, 'wb') as f:
+        f.write(bag.finish(data_end=False) + mp.MAGIC)
+    code, got_stats, err = stats(hesai, path)
+    check(code == 0 and got_stats['packets'] == len(scans[0]),
+          'Footer without Data End: exit %d, %s' % (code, err))
 
 
 def bounded_memory(hesai, work, pcap):

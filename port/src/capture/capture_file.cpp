@@ -130,6 +130,10 @@ std::string CaptureFile::message() const {
            "out.yaml gives the output bag storage_id: mcap and a storage_config_uri file that holds "
            "compression: \"None\" (docs/CLI.md, Input formats)";
   }
+  if (e == CaptureError::mcap_cut) {
+    return where + "cut after record " + std::to_string(mcap_.records_whole()) + " at byte " + std::to_string(at) +
+           ": the file ends without its Data End, Footer and closing magic (every packet before the cut was read)";
+  }
   return where + describe(e);
 }
 

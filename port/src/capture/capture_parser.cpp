@@ -339,6 +339,7 @@ const char* capture_error_name(CaptureError e) {
     case CaptureError::mcap_bad_cdr: return "mcap_bad_cdr";
     case CaptureError::mcap_bad_packet_size: return "mcap_bad_packet_size";
     case CaptureError::mcap_no_pandar_scan: return "mcap_no_pandar_scan";
+    case CaptureError::mcap_cut: return "mcap_cut";
   }
   return "unknown";
 }

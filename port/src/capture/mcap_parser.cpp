@@ -18,6 +18,8 @@ constexpr std::uint8_t op_message = 0x05;
 constexpr std::uint8_t op_chunk = 0x06;
 constexpr std::uint8_t op_data_end = 0x0F;
 
+constexpr std::size_t footer_body = 8 + 8 + 4;  // summary_start, summary_offset_start, summary_crc
+
 constexpr std::size_t record_prefix = 9;  // opcode(1), length(8)
 // Message record before its data: channel_id(2), sequence(4), log_time(8), publish_time(8).
 constexpr std::size_t message_fixed = 2 + 4 + 8 + 8;
@@ -85,6 +87,8 @@ CaptureError McapParser::open(ByteView file) {
   scan_channels_.fill(0);
   any_scan_channel_ = false;
   record_index_ = 0;
+  records_whole_ = 0;
+  ended_by_footer_ = false;
   stats_ = CaptureStats{};
   error_ = CaptureError::ok;
   error_offset_ = 0;
@@ -117,6 +121,7 @@ CaptureError McapParser::open(ByteView file) {
     return error_;
   }
   pos_ = at + record_prefix + static_cast<std::size_t>(len);
+  records_whole_ = 1;
   opened_ = true;
   return CaptureError::ok;
 }
@@ -143,13 +148,15 @@ CaptureStatus McapParser::next(UdpDatagram& out) {
       chunk_pos_ += record_prefix + static_cast<std::size_t>(len);
       step = record(p[0], ByteView(p + record_prefix, static_cast<std::size_t>(len)), offset_of(p), true);
     } else if (pos_ == file_.size) {
-      step = Step::end;  // no Data End: a file cut at a record boundary ends there
+      // No Data End or Footer: the file was cut at a record boundary (what was read stands).
+      return stop(CaptureError::mcap_cut, pos_);
     } else {
       const std::size_t at = pos_;
       if (file_.size - at < record_prefix) return stop(CaptureError::truncated, at);
       const std::uint64_t len = load_le64(file_.data + at + 1);
       if (len > file_.size - at - record_prefix) return stop(CaptureError::truncated, at);
       pos_ = at + record_prefix + static_cast<std::size_t>(len);
+      ++records_whole_;
       step = record(file_[at], file_.sub(at + record_prefix, static_cast<std::size_t>(len)), at, false);
     }
     switch (step) {
@@ -158,10 +165,22 @@ CaptureStatus McapParser::next(UdpDatagram& out) {
       case Step::error: return CaptureStatus::error;
       case Step::end:
         done_ = true;
+        if (!closed()) return stop(CaptureError::mcap_cut, file_.size);
         if (!any_scan_channel_) return stop(CaptureError::mcap_no_pandar_scan, pos_);
         return CaptureStatus::end;
     }
   }
+}
+
+bool McapParser::closed() const {
+  // The file's last bytes: a Footer record (opcode, length 20, its body), then the magic. After a
+  // Data End a summary section may come between; after the Footer, only the magic.
+  const std::size_t tail = record_prefix + footer_body + magic.size();
+  if (file_.size < tail || file_.size - pos_ < (ended_by_footer_ ? magic.size() : tail)) return false;
+  if (ended_by_footer_ && file_.size - pos_ != magic.size()) return false;
+  const std::uint8_t* footer = file_.data + file_.size - tail;
+  return std::memcmp(file_.data + file_.size - magic.size(), magic.data(), magic.size()) == 0 &&
+         footer[0] == op_footer && load_le64(footer + 1) == footer_body;
 }
 
 McapParser::Step McapParser::record(std::uint8_t op, ByteView body, std::uint64_t at, bool in_chunk) {
@@ -172,7 +191,10 @@ McapParser::Step McapParser::record(std::uint8_t op, ByteView body, std::uint64_
     case op_chunk: return in_chunk ? fail(CaptureError::bad_record, at) : chunk(body, at);
     case op_header: return fail(CaptureError::bad_record, at);  // only the first record
     case op_data_end:
-    case op_footer: return in_chunk ? fail(CaptureError::bad_record, at) : Step::end;
+    case op_footer:
+      if (in_chunk) return fail(CaptureError::bad_record, at);
+      ended_by_footer_ = op == op_footer;
+      return Step::end;
     default: return Step::more;  // indexes, attachments, metadata, statistics, unknown opcodes
   }
 }

@@ -42,10 +42,11 @@ enum class [[nodiscard]] CaptureError : std::uint8_t {
   mcap_bad_cdr,           ///< "mcap_bad_cdr": a PandarScan message too short for its CDR, or not little-endian CDR
   mcap_bad_packet_size,   ///< "mcap_bad_packet_size": a PandarPacket whose size exceeds its 1500 data bytes
   mcap_no_pandar_scan,    ///< "mcap_no_pandar_scan": the data section ended without a PandarScan channel
+  mcap_cut,               ///< "mcap_cut": the file ends at a record boundary without its Data End, Footer or closing magic
 };
 
 /// The last code, for loops over every code (keep it last when adding codes).
-inline constexpr CaptureError kLastCaptureError = CaptureError::mcap_no_pandar_scan;
+inline constexpr CaptureError kLastCaptureError = CaptureError::mcap_cut;
 
 /// Stable lower-case name of a code, for messages and logs ("capture_bad_magic"); "unknown" for
 /// a value that is not a code.

@@ -6,8 +6,10 @@
 // the byte offset of the damaged record. CaptureFile (hesai_port/capture/capture.h) picks it by the magic.
 //
 // What is read (https://mcap.dev/spec, major version 0): the magic, a Header record first, then
-// the data section up to the Data End record (or the Footer, or the end of the file at a record
-// boundary). Schema, Channel and Message records at the top level or inside Chunk records whose
+// the data section up to the Data End record (or the Footer). The file must then end in a Footer
+// record and the closing magic: a file that ends at a record boundary before them was cut (a
+// recorder killed, a copy stopped short) and stops with mcap_cut once every packet before the cut
+// has been handed out, so that the damage is reported, not read as a whole bag. Schema, Channel and Message records at the top level or inside Chunk records whose
 // compression is "" (none); a chunk's uncompressed_crc is checked unless it is 0 (not computed).
 // Other records (message and chunk indexes, attachments, metadata, statistics, unknown opcodes)
 // are skipped. The summary section is not read: every record it repeats is in the data section.
@@ -63,6 +65,9 @@ class McapParser {
   [[nodiscard]] CaptureError error() const { return error_; }
   /// Byte offset of the record where the error was found.
   std::uint64_t error_offset() const { return error_offset_; }
+  /// Top-level records read whole, the Header the first: for mcap_cut, the record the file was
+  /// cut after.
+  std::uint32_t records_whole() const { return records_whole_; }
   /// The compression named by the chunk of a mcap_compressed_chunk error (its bytes as in the file).
   ByteView compression() const { return compression_; }
   /// records: packets read; datagrams: packets returned; other_blocks: messages of other channels.
@@ -84,6 +89,7 @@ class McapParser {
   Step message(ByteView body, std::uint64_t at);
   Step chunk(ByteView body, std::uint64_t at);
   Step next_packet(UdpDatagram& out);
+  bool closed() const;  // the file ends in a Footer and the closing magic
   std::uint64_t offset_of(const std::uint8_t* p) const { return static_cast<std::uint64_t>(p - file_.data); }
 
   ByteView file_;
@@ -105,6 +111,8 @@ class McapParser {
   IdSet scan_channels_{};
   bool any_scan_channel_ = false;
   std::uint32_t record_index_ = 0;
+  std::uint32_t records_whole_ = 0;  // top-level records read, the Header included
+  bool ended_by_footer_ = false;     // the data section ended at a Footer (no Data End)
   CaptureStats stats_{};
   CaptureError error_ = CaptureError::ok;
   std::uint64_t error_offset_ = 0;
