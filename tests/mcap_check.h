@@ -64,6 +64,10 @@ struct Parsed {
   std::vector<Record> summary;
   std::vector<std::pair<std::uint64_t, std::vector<std::uint8_t>>> messages;  // log_time, data (via the index)
   std::uint64_t chunks = 0;
+  // Metadata records of the data section, by name: their key-value pairs.
+  std::map<std::string, std::map<std::string, std::string>> metadata;
+  // Every message of the data section in file order: channel, log_time.
+  std::vector<std::pair<std::uint16_t, std::uint64_t>> file_order;
 };
 
 // Checks an MCAP file the way a strict indexed reader would, and returns its messages.
@@ -101,7 +105,18 @@ inline Parsed check_mcap(const std::vector<std::uint8_t>& b) {
   for (const Record& r : data) by_offset[r.at] = &r;
   for (std::size_t i = 1; i + 1 < data.size(); ++i) {
     const Record& r = data[i];
-    EXPECT_TRUE(r.op == 0x06 || r.op == 0x07) << "data record " << i << " opcode " << int(r.op);
+    EXPECT_TRUE(r.op == 0x06 || r.op == 0x07 || r.op == 0x0C) << "data record " << i << " opcode " << int(r.op);
+    if (r.op == 0x0C) {  // Metadata: name, then a map of string pairs
+      std::size_t m = r.body;
+      const std::string name = str_at(b, m);
+      const std::size_t map_end = m + 4 + static_cast<std::size_t>(le(b, m, 4));
+      EXPECT_EQ(map_end, r.body + r.length) << "metadata " << name;
+      std::map<std::string, std::string>& pairs = p.metadata[name];
+      for (m += 4; m < map_end;) {
+        const std::string k = str_at(b, m);
+        pairs[k] = str_at(b, m);
+      }
+    }
     if (r.op != 0x06) continue;
     ++p.chunks;
     // Chunk: start, end, uncompressed size, CRC, compression "", records.
@@ -112,8 +127,11 @@ inline Parsed check_mcap(const std::vector<std::uint8_t>& b) {
     const std::size_t rec = r.body + 40;
     EXPECT_EQ(r.length, 40 + size);
     EXPECT_EQ(crc, hesai::port::crc32_ieee(b.data() + rec, static_cast<std::size_t>(size))) << "chunk at " << r.at;
-    for (const Record& inner : records(b, rec, rec + static_cast<std::size_t>(size)))
+    for (const Record& inner : records(b, rec, rec + static_cast<std::size_t>(size))) {
       EXPECT_TRUE(inner.op == 0x03 || inner.op == 0x04 || inner.op == 0x05);
+      if (inner.op == 0x05)
+        p.file_order.emplace_back(static_cast<std::uint16_t>(le(b, inner.body, 2)), le(b, inner.body + 6, 8));
+    }
   }
 
   // Summary: records grouped by opcode; the Summary Offsets describe the groups exactly.
@@ -137,6 +155,23 @@ inline Parsed check_mcap(const std::vector<std::uint8_t>& b) {
     EXPECT_EQ(le(b, o.body + 9, 8), g->second.second - g->second.first);
   }
   EXPECT_TRUE(groups.count(0x04) && groups.count(0x0B)) << "channels and statistics in the summary";
+  // Metadata indexes: each at a Metadata record of its name and length; statistics count them.
+  std::size_t metadata_indexes = 0;
+  for (const Record& mi : p.summary) {
+    if (mi.op == 0x0B) {
+      EXPECT_EQ(le(b, mi.body + 8 + 2 + 4 + 4, 4), p.metadata.size()) << "statistics metadata_count";
+    }
+    if (mi.op != 0x0D) continue;
+    ++metadata_indexes;
+    const auto r = by_offset.find(static_cast<std::size_t>(le(b, mi.body, 8)));
+    EXPECT_NE(r, by_offset.end()) << "metadata index to no record";
+    if (r == by_offset.end()) continue;
+    EXPECT_EQ(r->second->op, 0x0C);
+    EXPECT_EQ(le(b, mi.body + 8, 8), 9 + r->second->length);
+    std::size_t at_name = mi.body + 16, at_record = r->second->body;
+    EXPECT_EQ(str_at(b, at_name), str_at(b, at_record));
+  }
+  EXPECT_EQ(metadata_indexes, p.metadata.size());
 
   // Chunk indexes: point at the chunks and their message indexes, which point at the messages.
   std::uint64_t indexed_chunks = 0;

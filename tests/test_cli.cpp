@@ -43,34 +43,6 @@ using namespace hesai_test;
 namespace {
 
 
-struct CmdResult {
-  int status = -1;
-  std::string out;
-  std::string err;
-};
-
-// Runs the program with `args` (shell words) and `env` ("NAME=value ...", or empty) as its only
-// key variables: HESAI_SESSION_KEY and HESAI_SECRET of the test's own environment are removed.
-CmdResult run(const std::string& args, const std::string& env = "") {
-  CmdResult r;
-  char err_path[] = "/tmp/hesai_cli_err_XXXXXX";
-  const int fd = mkstemp(err_path);
-  if (fd < 0) return r;
-  close(fd);
-  const std::string cmd = "env -u HESAI_SESSION_KEY -u HESAI_SECRET " + env + " " + cli() + " " + args + " 2>" + err_path;
-  FILE* p = popen(cmd.c_str(), "r");
-  if (p) {
-    char buf[65536];
-    std::size_t n;
-    while ((n = std::fread(buf, 1, sizeof buf, p)) > 0) r.out.append(buf, n);
-    const int st = pclose(p);
-    r.status = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
-  }
-  r.err = read_text(err_path);
-  std::remove(err_path);
-  return r;
-}
-
 // The integer value of "key": in a flat JSON object (models is read separately).
 std::map<std::string, long long> json_numbers(const std::string& json) {
   std::map<std::string, long long> m;
@@ -139,27 +111,27 @@ void write_pcap(const std::string& path, const std::vector<std::vector<std::uint
 // ---- Usage and errors ----
 
 TEST(Cli, HelpAndExitStatuses) {
-  EXPECT_EQ(run("--help").status, 0);
+  EXPECT_EQ(run_cli("--help").status, 0);
   for (const char* cmd : {"decode", "stats", "listen", "replay"}) {
-    const CmdResult r = run(std::string(cmd) + " --help");
+    const CmdResult r = run_cli(std::string(cmd) + " --help");
     EXPECT_EQ(r.status, 0) << cmd;
     EXPECT_NE(r.out.find("usage: hesai"), std::string::npos) << cmd;
   }
-  EXPECT_EQ(run("").status, 1);
-  EXPECT_EQ(run("frobnicate").status, 1);
-  EXPECT_EQ(run("decode").status, 1);
-  EXPECT_EQ(run("stats x.pcap --bogus").status, 1);
-  EXPECT_EQ(run("decode x.pcap --format tiff").status, 1);
+  EXPECT_EQ(run_cli("").status, 1);
+  EXPECT_EQ(run_cli("frobnicate").status, 1);
+  EXPECT_EQ(run_cli("decode").status, 1);
+  EXPECT_EQ(run_cli("stats x.pcap --bogus").status, 1);
+  EXPECT_EQ(run_cli("decode x.pcap --format tiff").status, 1);
   // --cut-angle in [0, 360), --fov START in [0, 360), END in [0, 360], START != END (frame.h).
   for (const char* bad : {"--cut-angle 360", "--cut-angle -0.01", "--cut-angle nan", "--fov 10:10", "--fov 360:10",
                           "--fov 10:360.5", "--fov 10"})
-    EXPECT_EQ(run(std::string("stats x.pcap ") + bad).status, 1) << bad;
-  EXPECT_EQ(run("stats " + data_path("pandar64_dual.pcap") + " --cut-angle 359.999 --fov 300:360").status, 0);
-  EXPECT_EQ(run("stats /nonexistent/file.pcap").status, 2);
-  EXPECT_EQ(run("stats " + data_path("calibration/pandar64_unit_a_angles.csv")).status, 2);  // not a capture
-  EXPECT_EQ(run("stats " + data_path("pandar64_dual.pcap") + " --calibration /nonexistent.csv").status, 2);
+    EXPECT_EQ(run_cli(std::string("stats x.pcap ") + bad).status, 1) << bad;
+  EXPECT_EQ(run_cli("stats " + data_path("pandar64_dual.pcap") + " --cut-angle 359.999 --fov 300:360").status, 0);
+  EXPECT_EQ(run_cli("stats /nonexistent/file.pcap").status, 2);
+  EXPECT_EQ(run_cli("stats " + data_path("calibration/pandar64_unit_a_angles.csv")).status, 2);  // not a capture
+  EXPECT_EQ(run_cli("stats " + data_path("pandar64_dual.pcap") + " --calibration /nonexistent.csv").status, 2);
   // A QT128 calibration for a Pandar64 capture: a configuration error, named.
-  EXPECT_EQ(run("stats " + data_path("pandar64_dual.pcap") + " --calibration " +
+  EXPECT_EQ(run_cli("stats " + data_path("pandar64_dual.pcap") + " --calibration " +
                 data_path("calibration/qt128c2x_unit_a_angles.csv")).status, 1);
 }
 
@@ -188,7 +160,7 @@ TEST(Cli, CaptureErrorMessages) {
       {dir + "/none.pcap", dir + "/none.pcap: open failed: " + std::strerror(ENOENT)},
   };
   for (const auto& [file, message] : cases) {
-    const CmdResult r = run("stats --json " + file);
+    const CmdResult r = run_cli("stats --json " + file);
     EXPECT_EQ(r.status, 2) << r.err;
     EXPECT_NE(r.err.find("hesai: " + message + "\n"), std::string::npos) << r.err;
   }
@@ -236,18 +208,18 @@ TEST(Cli, CalibrationValueOutOfRangeIsAConfigurationError) {
     SCOPED_TRACE(std::string(c.file) + ": " + c.to);
     const std::string stats = "stats " + data_path(c.capture) + " --json " + c.option + " ";
     // The bundled file itself is accepted.
-    EXPECT_EQ(run(stats + data_path(std::string("calibration/") + c.file)).status, 0);
+    EXPECT_EQ(run_cli(stats + data_path(std::string("calibration/") + c.file)).status, 0);
     const std::string path = altered_calibration(c.file, c.from, c.to);
-    const CmdResult r = run(stats + path);
+    const CmdResult r = run_cli(stats + path);
     EXPECT_EQ(r.status, 1) << r.err;
     EXPECT_NE(r.err.find(path + ": " + c.error), std::string::npos) << r.err;
     EXPECT_NE(r.err.find(c.why), std::string::npos) << r.err;
     EXPECT_EQ(r.out.find("\"packets\""), std::string::npos) << r.out;  // no statistics
   }
   // The ends of the ranges are accepted: elevation 90 degrees, a firing time of -1000 us.
-  EXPECT_EQ(run("stats " + data_path("pandar64_dual.pcap") + " --calibration " +
+  EXPECT_EQ(run_cli("stats " + data_path("pandar64_dual.pcap") + " --calibration " +
                 altered_calibration("pandar64_unit_a_angles.csv", "2,11.05,", "2,90,")).status, 0);
-  EXPECT_EQ(run("stats " + data_path("pandar64_dual.pcap") + " --firetimes " +
+  EXPECT_EQ(run_cli("stats " + data_path("pandar64_dual.pcap") + " --firetimes " +
                 altered_calibration("pandar64_firetimes.csv", "61,-3.62", "61,-1000")).status, 0);
 }
 
@@ -256,7 +228,7 @@ TEST(Cli, CalibrationValueOutOfRangeIsAConfigurationError) {
 // see test_golden.cpp). The same packet with year byte 40 is 2040 (by every reading), past 2038:
 // a 32-bit time_t (armhf without _TIME_BITS=64) printed such dates wrapped into the 1900s.
 TEST(Cli, StatsTextPrintsDatesPast2038) {
-  const CmdResult r = run("stats " + data_path("pandar64_dual.pcap"));
+  const CmdResult r = run_cli("stats " + data_path("pandar64_dual.pcap"));
   ASSERT_EQ(r.status, 0) << r.out;
   EXPECT_NE(r.out.find("2020-06-25T12:02:09.977341000Z"), std::string::npos) << r.out;
 
@@ -265,7 +237,7 @@ TEST(Cli, StatsTextPrintsDatesPast2038) {
   p[1188] = 40;  // Date & Time year byte: 2040
   const std::string dir = temp_dir();
   write_pcap(dir + "/y2040.pcap", {p});
-  const CmdResult late = run("stats " + dir + "/y2040.pcap");
+  const CmdResult late = run_cli("stats " + dir + "/y2040.pcap");
   ASSERT_EQ(late.status, 0) << late.out;
   EXPECT_NE(late.out.find("2040-06-25T12:02:09.977341000Z"), std::string::npos) << late.out;
 }
@@ -287,7 +259,7 @@ class CliCapture : public ::testing::TestWithParam<CaptureCase> {};
 
 TEST_P(CliCapture, StatsJsonOnRealCapture) {
   const CaptureCase& c = GetParam();
-  const CmdResult r = run("stats " + data_path(c.file) + " --json");
+  const CmdResult r = run_cli("stats " + data_path(c.file) + " --json");
   ASSERT_EQ(r.status, 0) << r.out;
   auto j = json_numbers(r.out);
   for (const char* key : {"packets", "points", "frames", "crc_errors", "signature_valid", "signature_invalid",
@@ -380,11 +352,12 @@ TEST_P(CliCapture, PerFrameCsvHoldsEachRotationsPoints) {
   ASSERT_EQ(static_cast<long long>(rotations.size()), c.frames);
   ASSERT_EQ(rotations.rbegin()->first - rotations.begin()->first + 1, c.frames) << "a rotation without points";
   const std::string dir = temp_dir();
-  const CmdResult r = run("decode " + data_path(c.file) + " --per-frame --format csv --quiet --out " + dir);
+  const CmdResult r = run_cli("decode " + data_path(c.file) + " --per-frame --format csv --quiet --out " + dir);
   ASSERT_EQ(r.status, 0);
+  // Every bundled capture comes from 192.168.1.201 (port 10000): the sensor's token (sinks.h).
   const auto file_of = [&dir](long long id) {
     char name[64];
-    std::snprintf(name, sizeof name, "/frame_%06lld.csv", id);
+    std::snprintf(name, sizeof name, "/frame_ip_192_168_1_201_%06lld.csv", id);
     return dir + name;
   };
   for (const auto& [rotation, n] : rotations) {
@@ -393,18 +366,20 @@ TEST_P(CliCapture, PerFrameCsvHoldsEachRotationsPoints) {
     ASSERT_TRUE(f) << file_of(id);
     std::string line;
     std::getline(f, line);
-    EXPECT_EQ(line, "frame,packet,block,channel,return,azimuth_deg,elevation_deg,distance_m,x,y,z,intensity,time_ns");
-    std::uint64_t rows = 0, other = 0;
+    EXPECT_EQ(line, "frame,packet,block,channel,return,azimuth_deg,elevation_deg,distance_m,x,y,z,intensity,time_ns,sensor");
+    std::uint64_t rows = 0, other = 0, other_sensor = 0;
     while (std::getline(f, line)) {
       ++rows;
       other += line.substr(0, line.find(',')) != std::to_string(id);
+      other_sensor += line.substr(line.rfind(',') + 1) != "192.168.1.201:10000";
     }
+    EXPECT_EQ(other_sensor, 0u) << "rows of frame " << id << " with another sensor";
     EXPECT_EQ(rows, n) << "frame " << id;
     EXPECT_EQ(other, 0u) << "rows of frame " << id << " with another frame number";
   }
   EXPECT_FALSE(std::ifstream(file_of(0))) << "a frame 0";
   EXPECT_FALSE(std::ifstream(file_of(c.frames + 1))) << "a frame after the last rotation";
-  const CmdResult s = run("stats " + data_path(c.file) + " --json");
+  const CmdResult s = run_cli("stats " + data_path(c.file) + " --json");
   EXPECT_EQ(json_numbers(s.out)["frames"], c.frames);
 }
 
@@ -438,7 +413,7 @@ INSTANTIATE_TEST_SUITE_P(BundledXt, CliCapture,
 // the third does); cw all of them with the clockwise correction. The frames follow: stats counts
 // the library's counter-clockwise frames with ccw and with auto.
 TEST(Cli, RotationOption) {
-  EXPECT_EQ(run("stats x.pcap --rotation left").status, 1);
+  EXPECT_EQ(run_cli("stats x.pcap --rotation left").status, 1);
   const auto real = pcap_payloads("qt128c2x_dual.pcap");
   std::vector<std::vector<std::uint8_t>> mirrored;
   for (const auto& p : real) mirrored.push_back(counterclockwise_copy(p, Model::qt128c2x));
@@ -461,7 +436,7 @@ TEST(Cli, RotationOption) {
     }
   }
   for (const char* mode : {"ccw", "auto", "cw"}) {
-    const CmdResult out = run("decode " + dir + "/ccw_head.pcap --quiet --out - --rotation " + mode);
+    const CmdResult out = run_cli("decode " + dir + "/ccw_head.pcap --quiet --out - --rotation " + mode);
     ASSERT_EQ(out.status, 0) << mode;
     std::istringstream rows(out.out);
     std::string line;
@@ -486,10 +461,10 @@ TEST(Cli, RotationOption) {
   const auto frames = reckoned_frames(mirrored, Model::qt128c2x, Rotation::counterclockwise);
   EXPECT_EQ(frames.size(), 3u);
   for (const char* mode : {"ccw", "auto"}) {
-    const CmdResult s = run("stats " + dir + "/ccw.pcap --json --rotation " + std::string(mode));
+    const CmdResult s = run_cli("stats " + dir + "/ccw.pcap --json --rotation " + std::string(mode));
     EXPECT_EQ(json_numbers(s.out)["frames"], 3) << mode;
   }
-  const CmdResult text = run("stats " + dir + "/ccw.pcap");
+  const CmdResult text = run_cli("stats " + dir + "/ccw.pcap");
   EXPECT_NE(text.out.find("counterclockwise (detected)"), std::string::npos) << text.out;
 }
 
@@ -535,10 +510,10 @@ TEST_P(CliRotationAuto, FirstPacketsInTheFrameOfTheirRotation) {
       char cut_arg[32];
       std::snprintf(cut_arg, sizeof cut_arg, "%.2f", cut / 100.0);
       const std::string what = std::string(cw ? "clockwise" : "mirrored") + " cut " + cut_arg;
-      const CmdResult out = run("decode " + path + " --quiet --out - --rotation auto --cut-angle " + cut_arg);
+      const CmdResult out = run_cli("decode " + path + " --quiet --out - --rotation auto --cut-angle " + cut_arg);
       ASSERT_EQ(out.status, 0) << what << ": " << out.err;
       // And the same rows, byte for byte, as with the direction given.
-      const CmdResult set = run("decode " + path + " --quiet --out - --rotation " + (cw ? "cw" : "ccw") + " --cut-angle " + cut_arg);
+      const CmdResult set = run_cli("decode " + path + " --quiet --out - --rotation " + (cw ? "cw" : "ccw") + " --cut-angle " + cut_arg);
       EXPECT_EQ(out.out, set.out) << what;
 
       // Unwrapped position of every block, past the first cut.
@@ -623,20 +598,20 @@ TEST(Cli, UndecidedPacketsAreReleasedInOrder) {
     }
     const std::string path = dir + "/still" + std::to_string(n) + ".pcap";
     write_pcap(path, still);
-    const CmdResult automatic = run("decode " + path + " --quiet --out - --rotation auto");
-    const CmdResult cw = run("decode " + path + " --quiet --out - --rotation cw");
+    const CmdResult automatic = run_cli("decode " + path + " --quiet --out - --rotation auto");
+    const CmdResult cw = run_cli("decode " + path + " --quiet --out - --rotation cw");
     ASSERT_EQ(automatic.status, 0) << automatic.err;
     EXPECT_EQ(automatic.out, cw.out) << n << " packets";
     EXPECT_EQ(static_cast<std::size_t>(std::count(automatic.out.begin(), automatic.out.end(), '\n')), raw_points + 1)
         << n << " packets (rows and the header)";
-    const CmdResult text = run("stats " + path);
+    const CmdResult text = run_cli("stats " + path);
     EXPECT_NE(text.out.find("clockwise (assumed: not detected)"), std::string::npos) << text.out;
   }
 }
 
 TEST(Cli, PacketRangeAndRangeFilter) {
   const std::string dir = temp_dir();
-  const CmdResult r = run("decode " + data_path("pandar64_dual.pcap") + " --packets 10:12 --out -");
+  const CmdResult r = run_cli("decode " + data_path("pandar64_dual.pcap") + " --packets 10:12 --out -");
   ASSERT_EQ(r.status, 0);
   // Every row belongs to packet 10 or 11; the count equals the non-zero distances of those two.
   const auto packets = pcap_payloads("pandar64_dual.pcap");
@@ -657,7 +632,7 @@ TEST(Cli, PacketRangeAndRangeFilter) {
   }
   EXPECT_EQ(rows, expected);
   // This indoor capture sees nothing beyond 2.3 m in these packets: keep what lies within 2 m.
-  const CmdResult near = run("decode " + data_path("pandar64_dual.pcap") + " --packets 10:12 --max-range 2 --out -");
+  const CmdResult near = run_cli("decode " + data_path("pandar64_dual.pcap") + " --packets 10:12 --max-range 2 --out -");
   std::size_t near_rows = 0;
   for (std::size_t at = near.out.find('\n') + 1; at < near.out.size(); at = near.out.find('\n', at) + 1) {
     std::string row = near.out.substr(at, near.out.find('\n', at) - at);
@@ -695,15 +670,15 @@ TEST(Cli, OneCloudFileIsStreamedAndItsCountWrittenAtTheEnd) {
   for (const char* format_name : {"pcd", "ply"}) {
     const std::string format = format_name;
     const std::string one = dir + "/one." + format;
-    const CmdResult r = run("decode " + data_path("qt128c2x_dual.pcap") + " --quiet --format " + format + " --out " + one);
+    const CmdResult r = run_cli("decode " + data_path("qt128c2x_dual.pcap") + " --quiet --format " + format + " --out " + one);
     ASSERT_EQ(r.status, 0) << r.err;
-    ASSERT_EQ(run("decode " + data_path("qt128c2x_dual.pcap") + " --quiet --per-frame --format " + format + " --out " +
+    ASSERT_EQ(run_cli("decode " + data_path("qt128c2x_dual.pcap") + " --quiet --per-frame --format " + format + " --out " +
                   dir + "/" + format).status, 0);
     const std::string end = format == "pcd" ? "DATA binary\n" : "end_header\n";
     std::string frames;
     for (int id = 1;; ++id) {
       char name[64];
-      std::snprintf(name, sizeof name, "/frame_%06d.", id);
+      std::snprintf(name, sizeof name, "/frame_ip_192_168_1_201_%06d.", id);
       std::ifstream f(dir + "/" + format + name + format);
       if (!f) break;
       frames += records(read_text(dir + "/" + format + name + format), end);
@@ -727,7 +702,7 @@ TEST(Cli, OneCloudFileIsStreamedAndItsCountWrittenAtTheEnd) {
 // says so, before any decoding.
 TEST(Cli, OneCloudFileRefusesAPipe) {
   for (const char* format : {"pcd", "ply"}) {
-    const CmdResult r = run("decode " + data_path("qt128c2x_dual.pcap") + " --quiet --format " + format + " --out /dev/stdout");
+    const CmdResult r = run_cli("decode " + data_path("qt128c2x_dual.pcap") + " --quiet --format " + format + " --out /dev/stdout");
     EXPECT_EQ(r.status, 1) << format;
     EXPECT_TRUE(r.out.empty()) << format;
     EXPECT_NE(r.err.find("give a file"), std::string::npos) << r.err;
@@ -740,7 +715,7 @@ TEST(Cli, OutputThatCannotBeCreatedExits2) {
   for (const char* out : {"--per-frame --out /nonexistent-hesai/frames", "--format pcd --out /nonexistent-hesai/x.pcd",
                                 "--format ply --out /nonexistent-hesai/x.ply", "--out /nonexistent-hesai/x.csv",
                                 "--format png --out /nonexistent-hesai/x.png"}) {
-    const CmdResult r = run("decode " + capture + " --quiet " + std::string(out));
+    const CmdResult r = run_cli("decode " + capture + " --quiet " + std::string(out));
     EXPECT_EQ(r.status, 2) << out;
     EXPECT_NE(r.err.find("/nonexistent-hesai/"), std::string::npos) << r.err;
     EXPECT_EQ(r.err.find("--help"), std::string::npos) << "not a usage error: " << r.err;
@@ -752,7 +727,7 @@ TEST(Cli, OutputThatCannotBeCreatedExits2) {
 TEST(Cli, UnreadableCaptureGivesOnlyItsError) {
   for (const std::string& input : {std::string("/nonexistent-hesai/file.pcap"), data_path("calibration/pandar64_unit_a_angles.csv")}) {
     for (const char* json : {"", " --json"}) {
-      const CmdResult r = run("stats " + input + json);
+      const CmdResult r = run_cli("stats " + input + json);
       EXPECT_EQ(r.status, 2) << input;
       EXPECT_EQ(r.out, "") << input;
       EXPECT_NE(r.err.find(input), std::string::npos) << r.err;
@@ -760,7 +735,7 @@ TEST(Cli, UnreadableCaptureGivesOnlyItsError) {
   }
   const std::string out = temp_dir() + "/kept.csv";
   std::ofstream(out) << "kept\n";
-  EXPECT_EQ(run("decode /nonexistent-hesai/file.pcap --out " + out).status, 2);
+  EXPECT_EQ(run_cli("decode /nonexistent-hesai/file.pcap --out " + out).status, 2);
   EXPECT_EQ(read_text(out), "kept\n");
 }
 
@@ -788,12 +763,12 @@ TEST(Cli, ChannelConfigAppliesToCustomisedPackets) {
   }
   const std::string dir = temp_dir();
   write_pcap(dir + "/custom.pcap", out);
-  auto j = json_numbers(run("stats " + dir + "/custom.pcap --json").out);
+  auto j = json_numbers(run_cli("stats " + dir + "/custom.pcap --json").out);
   EXPECT_EQ(j["packets"], 100);
   EXPECT_EQ(j["unsupported"], 100);  // channel_config_required
   EXPECT_EQ(j["points"], 0);
   const std::string config = " --channel-config " + data_path("calibration/qt128c2x_channel_config.csv");
-  const CmdResult r = run("stats " + dir + "/custom.pcap --json" + config);
+  const CmdResult r = run_cli("stats " + dir + "/custom.pcap --json" + config);
   ASSERT_EQ(r.status, 0);
   j = json_numbers(r.out);
   EXPECT_EQ(j["unsupported"], 0);
@@ -801,16 +776,16 @@ TEST(Cli, ChannelConfigAppliesToCustomisedPackets) {
   EXPECT_GT(points, 0);
   EXPECT_EQ(j["points"], points);
   // The real (uncustomised) capture decodes as before with the file given.
-  EXPECT_EQ(json_numbers(run("stats " + data_path("qt128c2x_dual.pcap") + " --json" + config).out)["points"], 337108);
+  EXPECT_EQ(json_numbers(run_cli("stats " + data_path("qt128c2x_dual.pcap") + " --json" + config).out)["points"], 337108);
   // A QT128 file for a Pandar64 capture, and a BlockNum the QT128 does not send: configuration errors.
-  EXPECT_EQ(run("stats " + data_path("pandar64_dual.pcap") + config).status, 1);
+  EXPECT_EQ(run_cli("stats " + data_path("pandar64_dual.pcap") + config).status, 1);
   const auto bytes = read_file(data_path("calibration/qt128c2x_channel_config.csv"));
   std::string text(bytes.begin(), bytes.end());
   const std::size_t at = text.find("BlockNum,2");
   ASSERT_NE(at, std::string::npos);
   text.replace(at, 10, "BlockNum,3");
   std::ofstream(dir + "/blocks3.csv") << text;
-  EXPECT_EQ(run("stats " + data_path("qt128c2x_dual.pcap") + " --channel-config " + dir + "/blocks3.csv").status, 1);
+  EXPECT_EQ(run_cli("stats " + data_path("qt128c2x_dual.pcap") + " --channel-config " + dir + "/blocks3.csv").status, 1);
 }
 
 // --reflectivity nonlinear: a Pandar64's intensity is its reflectivity byte mapped by the manual's
@@ -820,7 +795,7 @@ TEST(Cli, ChannelConfigAppliesToCustomisedPackets) {
 TEST(Cli, ReflectivityMapping) {
   const auto packets = pcap_payloads("pandar64_dual.pcap");
   for (const bool nonlinear : {false, true}) {
-    const CmdResult r = run("decode " + data_path("pandar64_dual.pcap") + " --packets 0:2 --out -" +
+    const CmdResult r = run_cli("decode " + data_path("pandar64_dual.pcap") + " --packets 0:2 --out -" +
                             (nonlinear ? " --reflectivity nonlinear" : ""));
     ASSERT_EQ(r.status, 0);
     std::size_t rows = 0, mapped = 0;
@@ -844,10 +819,10 @@ TEST(Cli, ReflectivityMapping) {
       EXPECT_GT(mapped, rows / 4);  // 181 of 545 rows change (a byte of 0 maps to 0)
     }
   }
-  EXPECT_EQ(run("stats " + data_path("qt128c2x_dual.pcap") + " --reflectivity nonlinear").status, 1);
-  EXPECT_EQ(run("stats " + data_path("pandar40p_dual.pcap") + " --reflectivity nonlinear").status, 1);
-  EXPECT_EQ(run("stats " + data_path("pandar64_dual.pcap") + " --reflectivity linear").status, 1);
-  EXPECT_EQ(run("stats " + data_path("qt128c2x_dual.pcap") + " --reflectivity raw").status, 0);
+  EXPECT_EQ(run_cli("stats " + data_path("qt128c2x_dual.pcap") + " --reflectivity nonlinear").status, 1);
+  EXPECT_EQ(run_cli("stats " + data_path("pandar40p_dual.pcap") + " --reflectivity nonlinear").status, 1);
+  EXPECT_EQ(run_cli("stats " + data_path("pandar64_dual.pcap") + " --reflectivity linear").status, 1);
+  EXPECT_EQ(run_cli("stats " + data_path("qt128c2x_dual.pcap") + " --reflectivity raw").status, 0);
 }
 
 // ---- Built captures with known faults ----
@@ -874,7 +849,7 @@ TEST(Cli, StatsCountsDropsDuplicatesLateAndCrcErrors) {
   out.push_back(junk);
   const std::string dir = temp_dir();
   write_pcap(dir + "/faults.pcap", out);
-  const CmdResult r = run("stats " + dir + "/faults.pcap --json");
+  const CmdResult r = run_cli("stats " + dir + "/faults.pcap --json");
   ASSERT_EQ(r.status, 0);
   auto j = json_numbers(r.out);
   EXPECT_EQ(j["packets"], 21);
@@ -935,7 +910,7 @@ SignedCapture make_signed_capture() {
 
 TEST(Cli, StatsCountsSignatures) {
   const SignedCapture c = make_signed_capture();
-  auto j = json_numbers(run("stats " + c.path + " --json --secret " + c.secret + c.randoms()).out);
+  auto j = json_numbers(run_cli("stats " + c.path + " --json --secret " + c.secret + c.randoms()).out);
   EXPECT_EQ(j["signature_valid"], 6);
   EXPECT_EQ(j["signature_invalid"], 2);
   EXPECT_EQ(j["signature_missing"], 3);
@@ -944,7 +919,7 @@ TEST(Cli, StatsCountsSignatures) {
   EXPECT_EQ(j["signature_unverified"], 0);
   const long long points_checked = j["points"];
 
-  j = json_numbers(run("stats " + c.path + " --json --session-key " + c.key_hex + " --allow-unsigned").out);
+  j = json_numbers(run_cli("stats " + c.path + " --json --session-key " + c.key_hex + " --allow-unsigned").out);
   EXPECT_EQ(j["signature_valid"], 6);
   EXPECT_EQ(j["signature_invalid"], 2);
   EXPECT_EQ(j["signature_missing"], 3);  // accepted, and still counted as unsigned
@@ -952,7 +927,7 @@ TEST(Cli, StatsCountsSignatures) {
   EXPECT_EQ(j["unsigned_rejected"], 0);
   EXPECT_GT(j["points"], points_checked);  // the 3 unsigned packets now contribute points
 
-  j = json_numbers(run("stats " + c.path + " --json").out);  // no key
+  j = json_numbers(run_cli("stats " + c.path + " --json").out);  // no key
   EXPECT_EQ(j["signature_unverified"], 8);
   EXPECT_EQ(j["signature_valid"], 0);
   EXPECT_EQ(j["signature_invalid"], 0);
@@ -966,7 +941,7 @@ TEST(Cli, StatsReportsFunctionalSafety) {
   const SafetyExpect& e = s.expect;
   const std::string dir = temp_dir();
   write_pcap(dir + "/safety.pcap", s.packets);
-  const CmdResult r = run("stats " + dir + "/safety.pcap --json");
+  const CmdResult r = run_cli("stats " + dir + "/safety.pcap --json");
   ASSERT_EQ(r.status, 0);
   auto j = json_numbers(r.out);
   EXPECT_EQ(j["packets"], static_cast<long long>(s.packets.size()));
@@ -984,7 +959,7 @@ TEST(Cli, StatsReportsFunctionalSafety) {
   EXPECT_EQ(j["fs_counter_stalls"], static_cast<long long>(e.stalls));
   EXPECT_EQ(e.stalls, 1u);
 
-  const CmdResult t = run("stats " + dir + "/safety.pcap");
+  const CmdResult t = run_cli("stats " + dir + "/safety.pcap");
   ASSERT_EQ(t.status, 0);
   EXPECT_EQ(text_number(t.out, "fs_packets"), static_cast<long long>(e.packets)) << t.out;
   for (std::size_t st = 0; st < 8; ++st) EXPECT_EQ(text_number(t.out, states[st]), static_cast<long long>(e.states[st])) << t.out;
@@ -1025,14 +1000,14 @@ TEST(Cli, StatsReportsHighTemperatureAndGpsLock) {
   }
   const std::string dir = temp_dir();
   write_pcap(dir + "/status.pcap", out);
-  auto j = json_numbers(run("stats " + dir + "/status.pcap --json").out);
+  auto j = json_numbers(run_cli("stats " + dir + "/status.pcap --json").out);
   EXPECT_EQ(j["packets"], 206);
   EXPECT_EQ(j["gps_packets"], 6);
   EXPECT_EQ(j["high_temperature"], hot);
   EXPECT_EQ(j["gps_unlocked"], 3);          // {'A', 0}, {0, 1}, {'V', 0}
   EXPECT_EQ(j["gps_position_invalid"], 2);  // the two 'V'
   EXPECT_EQ(j["fs_packets"], 0);
-  const CmdResult t = run("stats " + dir + "/status.pcap");
+  const CmdResult t = run_cli("stats " + dir + "/status.pcap");
   EXPECT_EQ(text_number(t.out, "high_temperature"), hot) << t.out;
   EXPECT_EQ(text_number(t.out, "gps_unlocked"), 3) << t.out;
   EXPECT_EQ(text_number(t.out, "gps_position_invalid"), 2) << t.out;
@@ -1075,7 +1050,7 @@ TEST(Cli, KeysFromFilesAndEnvironmentVerifyAsTheFlags) {
   };
   for (const Case& k : cases) {
     SCOPED_TRACE(k.args + " " + k.env);
-    const CmdResult r = run("stats " + c.path + " --json --quiet " + k.args, k.env);
+    const CmdResult r = run_cli("stats " + c.path + " --json --quiet " + k.args, k.env);
     ASSERT_EQ(r.status, 0) << r.err;
     auto j = json_numbers(r.out);
     EXPECT_EQ(j["signature_valid"], 6);
@@ -1104,7 +1079,7 @@ TEST(Cli, KeyFileReadableByOthersWarns) {
   for (const mode_t mode : {0644u, 0640u, 0604u, 0660u, 0600u, 0400u}) {
     SCOPED_TRACE(mode);
     write_key_file(file, c.key_hex + "\n", mode);
-    const CmdResult r = run("stats " + c.path + " --json --quiet --session-key-file " + file);
+    const CmdResult r = run_cli("stats " + c.path + " --json --quiet --session-key-file " + file);
     ASSERT_EQ(r.status, 0) << r.err;
     EXPECT_EQ(json_numbers(r.out)["signature_valid"], 6);
     if ((mode & 077) != 0) {
@@ -1152,7 +1127,7 @@ TEST(Cli, KeyErrors) {
   };
   for (const Case& k : cases) {
     SCOPED_TRACE(k.args + " " + k.env);
-    const CmdResult r = run("stats " + c.path + " --json " + k.args, k.env);
+    const CmdResult r = run_cli("stats " + c.path + " --json " + k.args, k.env);
     EXPECT_EQ(r.status, k.status) << r.err;
     EXPECT_EQ(r.out, "");
     EXPECT_NE(r.err.find("hesai stats: "), std::string::npos) << r.err;
@@ -1211,7 +1186,7 @@ std::string replay_into_listen(const std::string& listen_options, const char* bo
     return "";
   }
   EXPECT_TRUE(wait_for_listener(port, bound));
-  const CmdResult sent = run("replay " + data_path("qt128c2x_dual.pcap") + " --to " + to_host + ":" +
+  const CmdResult sent = run_cli("replay " + data_path("qt128c2x_dual.pcap") + " --to " + to_host + ":" +
                              std::to_string(port) + " --rate 4 --quiet " + replay_options);
   EXPECT_EQ(sent.status, 0) << sent.err;
   std::string out;
@@ -1226,7 +1201,7 @@ std::string replay_into_listen(const std::string& listen_options, const char* bo
 // `stats` gives it for the file.
 void expect_whole_capture(const std::string& out) {
   auto live = json_numbers(out);
-  auto file = json_numbers(run("stats " + data_path("qt128c2x_dual.pcap") + " --json").out);
+  auto file = json_numbers(run_cli("stats " + data_path("qt128c2x_dual.pcap") + " --json").out);
   EXPECT_EQ(live["packets"], 1800) << out;
   EXPECT_EQ(live["points"], file["points"]);
   EXPECT_EQ(live["frames"], file["frames"]);
@@ -1262,17 +1237,17 @@ TEST(Cli, ListenJoinsAMulticastGroup) {
 // destination that is not a group, and --rcvbuf that is not a byte count the socket can take.
 TEST(Cli, MulticastAndReceiveBufferUsageErrors) {
   for (const char* group : {"10.1.2.3", "240.0.0.1", "223.255.255.255", "group"}) {
-    const CmdResult r = run(std::string("listen --multicast ") + group + " --port 0 --seconds 1");
+    const CmdResult r = run_cli(std::string("listen --multicast ") + group + " --port 0 --seconds 1");
     EXPECT_EQ(r.status, 1) << group;
     EXPECT_NE(r.err.find(std::string("'") + group + "'"), std::string::npos) << r.err;
     EXPECT_NE(r.err.find("multicast"), std::string::npos) << r.err;
   }
   for (const char* bytes : {"0", "-1", "2147483648", "1k"}) {
-    const CmdResult r = run(std::string("listen --rcvbuf ") + bytes + " --port 0 --seconds 1");
+    const CmdResult r = run_cli(std::string("listen --rcvbuf ") + bytes + " --port 0 --seconds 1");
     EXPECT_EQ(r.status, 1) << bytes;
     EXPECT_NE(r.err.find("--rcvbuf"), std::string::npos) << r.err;
   }
-  const CmdResult r = run("replay " + data_path("qt128c2x_dual.pcap") + " --to 127.0.0.1:9 --multicast-if 127.0.0.1");
+  const CmdResult r = run_cli("replay " + data_path("qt128c2x_dual.pcap") + " --to 127.0.0.1:9 --multicast-if 127.0.0.1");
   EXPECT_EQ(r.status, 1);
   EXPECT_NE(r.err.find("multicast"), std::string::npos) << r.err;
 }
@@ -1288,14 +1263,14 @@ TEST(Cli, ListenReportsTheReceiveBuffer) {
   if (limit == 0) GTEST_SKIP() << "/proc/sys/net/core/rmem_max is not readable";
   const std::size_t small = std::min<std::size_t>(65536, limit), big = limit + 1024 * 1024;
   const std::string common = " --bind 127.0.0.1 --port 0 --gps-port 0 --seconds 0.2";
-  const CmdResult granted = run("listen --rcvbuf " + std::to_string(small) + common);
+  const CmdResult granted = run_cli("listen --rcvbuf " + std::to_string(small) + common);
   EXPECT_EQ(granted.status, 0) << granted.err;
   EXPECT_NE(granted.err.find("receive buffer " + std::to_string(small) + " bytes (requested " + std::to_string(small) +
                              "; the kernel reports " + std::to_string(2 * small)),
             std::string::npos)
       << granted.err;
   EXPECT_EQ(granted.err.find("capped"), std::string::npos) << granted.err;
-  const CmdResult capped = run("listen --quiet --rcvbuf " + std::to_string(big) + common);
+  const CmdResult capped = run_cli("listen --quiet --rcvbuf " + std::to_string(big) + common);
   EXPECT_EQ(capped.status, 0) << capped.err;
   EXPECT_NE(capped.err.find("capped the receive buffer at " + std::to_string(limit) + " bytes (requested " +
                             std::to_string(big) + ")"),
@@ -1332,7 +1307,7 @@ TEST(Cli, ReplayListenXt32m2x) {
     FILE* l = popen(listen.c_str(), "r");
     ASSERT_NE(l, nullptr);
     ASSERT_TRUE(wait_for_listener(port));
-    const CmdResult sent = run("replay " + data_path("pandar_xt32m2x.pcap") + " --to 127.0.0.1:" + std::to_string(port) +
+    const CmdResult sent = run_cli("replay " + data_path("pandar_xt32m2x.pcap") + " --to 127.0.0.1:" + std::to_string(port) +
                                " --rate 20 --quiet" + (renumbered ? " --renumber" : ""));
     EXPECT_EQ(sent.status, 0);
     std::string out;
@@ -1365,7 +1340,7 @@ TEST(Cli, LoadTestReportsLossHonestly) {
   FILE* l = popen(listen.c_str(), "r");
   ASSERT_NE(l, nullptr);
   ASSERT_TRUE(wait_for_listener(port));
-  const CmdResult sent = run("replay " + data_path("qt128c2x_dual.pcap") + " --to 127.0.0.1:" + std::to_string(port) +
+  const CmdResult sent = run_cli("replay " + data_path("qt128c2x_dual.pcap") + " --to 127.0.0.1:" + std::to_string(port) +
                              " --rate max --loop 56 --renumber --quiet");
   EXPECT_EQ(sent.status, 0);
   // Packets dropped after the last one received are invisible to any sequence tracker. Once the
@@ -1397,8 +1372,8 @@ TEST(Cli, LoadTestReportsLossHonestly) {
 TEST(Cli, StatsStreamHealthWithoutSequence) {
   const std::string dir = temp_dir();
   auto p = pcap_payloads("pandar64_dual.pcap");
-  const auto seq = json_numbers(run("stats " + data_path("pandar64_dual.pcap") + " --json").out);
-  EXPECT_NE(run("stats " + data_path("pandar64_dual.pcap") + " --json").out.find("\"lost_by\":\"udp_sequence\""),
+  const auto seq = json_numbers(run_cli("stats " + data_path("pandar64_dual.pcap") + " --json").out);
+  EXPECT_NE(run_cli("stats " + data_path("pandar64_dual.pcap") + " --json").out.find("\"lost_by\":\"udp_sequence\""),
             std::string::npos);
   EXPECT_EQ(seq.at("time_stalls"), 0);
   EXPECT_EQ(seq.at("time_virtual"), 0);
@@ -1406,14 +1381,14 @@ TEST(Cli, StatsStreamHealthWithoutSequence) {
   for (auto& q : p) q.resize(1194);  // Pandar64 manual, Chapter 3: the UDP sequence off
   p.erase(p.begin() + 700, p.begin() + 800);
   write_pcap(dir + "/dropped.pcap", p);
-  CmdResult r = run("stats " + dir + "/dropped.pcap --json");
+  CmdResult r = run_cli("stats " + dir + "/dropped.pcap --json");
   ASSERT_EQ(r.status, 0);
   auto j = json_numbers(r.out);
   EXPECT_EQ(j["lost"], 100);
   EXPECT_NE(r.out.find("\"lost_by\":\"azimuth_time\""), std::string::npos) << r.out;
   EXPECT_EQ(j["time_stalls"], 0);
   EXPECT_EQ(j["time_virtual"], 0);
-  r = run("stats " + dir + "/dropped.pcap");
+  r = run_cli("stats " + dir + "/dropped.pcap");
   EXPECT_EQ(text_number(r.out, "lost"), 100) << r.out;
   EXPECT_NE(r.out.find("  lost_by               azimuth_time"), std::string::npos) << r.out;
   EXPECT_EQ(r.out.find("free-running"), std::string::npos) << r.out;
@@ -1425,11 +1400,11 @@ TEST(Cli, StatsStreamHealthWithoutSequence) {
     for (std::size_t b = 16; b < 22; ++b) p[i][tail + b] = p[300][tail + b];
   }
   write_pcap(dir + "/virtual.pcap", p);
-  j = json_numbers(run("stats " + dir + "/virtual.pcap --json").out);
+  j = json_numbers(run_cli("stats " + dir + "/virtual.pcap --json").out);
   EXPECT_EQ(j["time_virtual"], static_cast<long long>(p.size()));
   EXPECT_EQ(j["time_stalls"], 9);
   EXPECT_EQ(j["lost"], 100);
-  r = run("stats " + dir + "/virtual.pcap");
+  r = run_cli("stats " + dir + "/virtual.pcap");
   EXPECT_EQ(text_number(r.out, "time_virtual"), static_cast<long long>(p.size())) << r.out;
   EXPECT_EQ(text_number(r.out, "time_stalls"), 9) << r.out;
   EXPECT_NE(r.out.find("the unit's free-running clock, not PTP or GPS time"), std::string::npos) << r.out;
@@ -1456,7 +1431,7 @@ TEST(Cli, StatsBlockageDuplicatesFragments) {
   file[24 + 30 * (16 + 42 + 1127) + 16 + 20] = 0x20;
   std::ofstream(dir + "/blocked.pcap", std::ios::binary).write(reinterpret_cast<const char*>(file.data()),
                                                                 static_cast<long>(file.size()));
-  CmdResult r = run("stats " + dir + "/blocked.pcap --json");
+  CmdResult r = run_cli("stats " + dir + "/blocked.pcap --json");
   ASSERT_EQ(r.status, 0) << r.err;
   auto j = json_numbers(r.out);
   EXPECT_EQ(j["packets"], static_cast<long long>(p.size() - 1));
@@ -1468,17 +1443,17 @@ TEST(Cli, StatsBlockageDuplicatesFragments) {
   EXPECT_GT(j["duplicate_returns"], 0);  // counted from the bytes in test_health.cpp
   EXPECT_EQ(j["beyond_rated_range"], 0);
   EXPECT_EQ(j["lost"], 1);  // the fragment's packet, by its UDP sequence
-  r = run("stats " + dir + "/blocked.pcap");
+  r = run_cli("stats " + dir + "/blocked.pcap");
   EXPECT_EQ(text_number(r.out, "blockage_units"), 13) << r.out;
   EXPECT_NE(r.out.find("  blockage_by_channel   channel 70: 10, channel 100: 3\n"), std::string::npos) << r.out;
   EXPECT_EQ(text_number(r.out, "ip_fragments"), 1) << r.out;
   EXPECT_NE(r.out.find("warning: 1 IP fragments were skipped"), std::string::npos) << r.out;
   // A capture without fragments has no warning, and a Pandar64's array has its 64 channels.
-  r = run("stats " + data_path("pandar64_dual.pcap") + " --json");
+  r = run_cli("stats " + data_path("pandar64_dual.pcap") + " --json");
   std::string zeros = "[0";
   for (int ch = 2; ch <= 64; ++ch) zeros += ",0";
   EXPECT_NE(r.out.find("\"blockage_by_channel\":" + zeros + "],"), std::string::npos) << r.out;
-  EXPECT_EQ(run("stats " + data_path("pandar64_dual.pcap")).out.find("warning"), std::string::npos);
+  EXPECT_EQ(run_cli("stats " + data_path("pandar64_dual.pcap")).out.find("warning"), std::string::npos);
 }
 
 // An azimuth FOV on a sequence-less Pandar64 (issue #32): the packets whose first block azimuth
@@ -1502,15 +1477,15 @@ TEST(Cli, StatsFovGapIsNotLoss) {
     p.push_back(q);
   }
   write_pcap(dir + "/fov.pcap", p);
-  const CmdResult r = run("stats " + dir + "/fov.pcap --json");
+  const CmdResult r = run_cli("stats " + dir + "/fov.pcap --json");
   ASSERT_EQ(r.status, 0);
   EXPECT_EQ(json_numbers(r.out)["lost"], 0) << r.out;
   char want[64];
   std::snprintf(want, sizeof want, "\"fov_gap_deg\":[%u.%02u,%u.%02u]", before / 100u, before % 100u, after / 100u,
                 after % 100u);
   EXPECT_NE(r.out.find(want), std::string::npos) << want << "\n" << r.out;
-  EXPECT_NE(run("stats " + data_path("pandar64_dual.pcap") + " --json").out.find("\"fov_gap_deg\":null"), std::string::npos);
-  EXPECT_NE(run("stats " + dir + "/fov.pcap").out.find("  fov_gap_deg"), std::string::npos);
+  EXPECT_NE(run_cli("stats " + data_path("pandar64_dual.pcap") + " --json").out.find("\"fov_gap_deg\":null"), std::string::npos);
+  EXPECT_NE(run_cli("stats " + dir + "/fov.pcap").out.find("  fov_gap_deg"), std::string::npos);
 }
 
 // Two sensors in one capture (issue #32): a sequence-less Pandar64 from 192.168.1.201 with 100
@@ -1544,7 +1519,7 @@ TEST(Cli, StatsPerSensorObjects) {
   }
   std::ofstream(dir + "/two.pcap", std::ios::binary).write(reinterpret_cast<const char*>(file.data()),
                                                             static_cast<long>(file.size()));
-  const CmdResult r = run("stats " + dir + "/two.pcap --json");
+  const CmdResult r = run_cli("stats " + dir + "/two.pcap --json");
   ASSERT_EQ(r.status, 0) << r.err;
   const std::size_t sensors = r.out.find("\"sensors\":[");
   ASSERT_NE(sensors, std::string::npos) << r.out;
@@ -1566,7 +1541,7 @@ TEST(Cli, StatsPerSensorObjects) {
   EXPECT_EQ(two.at("time_stalls"), 0);
   EXPECT_NE(r.out.substr(b).find("\"lost_by\":\"udp_sequence\""), std::string::npos);
   // One sensor: no `sensors` key.
-  EXPECT_EQ(run("stats " + data_path("qt128c2x_dual.pcap") + " --json").out.find("\"sensors\""), std::string::npos);
+  EXPECT_EQ(run_cli("stats " + data_path("qt128c2x_dual.pcap") + " --json").out.find("\"sensors\""), std::string::npos);
 }
 
 }  // namespace

@@ -3,6 +3,8 @@
 #pragma once
 
 #include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include <cstdint>
 #include <cstdio>
@@ -34,6 +36,34 @@ inline std::string cli() {
 #else
   return HESAI_CLI_PATH;
 #endif
+}
+
+struct CmdResult {
+  int status = -1;
+  std::string out;
+  std::string err;
+};
+
+// Runs the program with `args` (shell words) and `env` ("NAME=value ...", or empty) as its only
+// key variables: HESAI_SESSION_KEY and HESAI_SECRET of the test's own environment are removed.
+inline CmdResult run_cli(const std::string& args, const std::string& env = "") {
+  CmdResult r;
+  char err_path[] = "/tmp/hesai_cli_err_XXXXXX";
+  const int fd = mkstemp(err_path);
+  if (fd < 0) return r;
+  close(fd);
+  const std::string cmd = "env -u HESAI_SESSION_KEY -u HESAI_SECRET " + env + " " + cli() + " " + args + " 2>" + err_path;
+  FILE* p = popen(cmd.c_str(), "r");
+  if (p) {
+    char buf[65536];
+    std::size_t n;
+    while ((n = std::fread(buf, 1, sizeof buf, p)) > 0) r.out.append(buf, n);
+    const int st = pclose(p);
+    r.status = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
+  }
+  r.err = read_text(err_path);
+  std::remove(err_path);
+  return r;
 }
 #endif
 

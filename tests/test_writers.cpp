@@ -61,7 +61,7 @@ TEST(CsvWriter, HeaderIsTheColumnContract) {
   ASSERT_TRUE(w.open(path).ok());
   ASSERT_TRUE(w.close().ok());
   EXPECT_EQ(read_text(path),
-            "frame,packet,block,channel,return,azimuth_deg,elevation_deg,distance_m,x,y,z,intensity,time_ns\n");
+            "frame,packet,block,channel,return,azimuth_deg,elevation_deg,distance_m,x,y,z,intensity,time_ns,sensor\n");
   std::remove(path.c_str());
 }
 
@@ -95,14 +95,14 @@ TEST(CsvWriter, FormatsRowsWithFixedDecimals) {
   const std::string path = temp_path("rows.csv");
   port::CsvWriter w;
   ASSERT_TRUE(w.open(path).ok());
-  EXPECT_TRUE(w.write(a, 42, 123456789012u).ok());
-  EXPECT_TRUE(w.write(b, 4294967295u, 18446744073709551615u).ok());
+  EXPECT_TRUE(w.write(a, 42, 123456789012u, "192.168.1.201:2368").ok());
+  EXPECT_TRUE(w.write(b, 4294967295u, 18446744073709551615u, "\"a,b\"").ok());
   EXPECT_EQ(w.rows(), 2u);
   ASSERT_TRUE(w.close().ok());
   EXPECT_EQ(read_text(path),
-            "frame,packet,block,channel,return,azimuth_deg,elevation_deg,distance_m,x,y,z,intensity,time_ns\n"
-            "42,123456789012,3,17,1,123.456,-15.000,12.3456,1.5000,-2.2500,0.1250,200,1700000000123456789\n"
-            "4294967295,18446744073709551615,0,128,0,359.999,0.000,200.0000,0.0000,-1.2346,0.0000,255,-5\n");
+            "frame,packet,block,channel,return,azimuth_deg,elevation_deg,distance_m,x,y,z,intensity,time_ns,sensor\n"
+            "42,123456789012,3,17,1,123.456,-15.000,12.3456,1.5000,-2.2500,0.1250,200,1700000000123456789,192.168.1.201:2368\n"
+            "4294967295,18446744073709551615,0,128,0,359.999,0.000,200.0000,0.0000,-1.2346,0.0000,255,-5,\"a,b\"\n");
   std::remove(path.c_str());
 }
 
@@ -159,7 +159,7 @@ TEST(CsvWriter, ManyRowsCrossBufferBlocks) {
     pts[i].elevation_deg = -24.75f;
     pts[i].channel = 64;
     pts[i].time_ns = 1700000000000000000 + static_cast<std::int64_t>(i);
-    ASSERT_TRUE(w.write(pts[i], 7, i).ok());
+    ASSERT_TRUE(w.write(pts[i], 7, i, "/pandar_packets").ok());
   }
   ASSERT_TRUE(w.close().ok());
   std::istringstream in(read_text(path));
@@ -168,7 +168,7 @@ TEST(CsvWriter, ManyRowsCrossBufferBlocks) {
   std::size_t n = 0;
   while (std::getline(in, line)) {
     const std::string expect = "7," + std::to_string(n) + ",0,64,0,270.500,-24.750,150.2500,-123.4567,98.7654,-1.5000," +
-                               std::to_string(n % 256) + "," + std::to_string(1700000000000000000 + n);
+                               std::to_string(n % 256) + "," + std::to_string(1700000000000000000 + n) + ",/pandar_packets";
     if (line != expect) {
       ADD_FAILURE() << "row " << n << ": " << line << " != " << expect;
       break;
@@ -185,7 +185,7 @@ TEST(CsvWriter, WritesToCallerStreamAndLeavesItOpen) {
   port::CsvWriter w;
   ASSERT_TRUE(w.open(f, "tmp").ok());
   const Point pts[2] = {make_point(1, 2, 3, 4), make_point(-1, -2, -3, 5)};
-  EXPECT_TRUE(w.write(pts, 2, 1, 2).ok());
+  EXPECT_TRUE(w.write(pts, 2, 1, 2, "s").ok());
   ASSERT_TRUE(w.close().ok());
   EXPECT_FALSE(w.is_open());
   // The stream is still usable: read it back.
@@ -196,14 +196,14 @@ TEST(CsvWriter, WritesToCallerStreamAndLeavesItOpen) {
   while ((got = std::fread(buf, 1, sizeof buf, f)) > 0) text.append(buf, got);
   std::fclose(f);
   EXPECT_EQ(text,
-            "frame,packet,block,channel,return,azimuth_deg,elevation_deg,distance_m,x,y,z,intensity,time_ns\n"
-            "1,2,0,0,0,0.000,0.000,0.0000,1.0000,2.0000,3.0000,4,0\n"
-            "1,2,0,0,0,0.000,0.000,0.0000,-1.0000,-2.0000,-3.0000,5,0\n");
+            "frame,packet,block,channel,return,azimuth_deg,elevation_deg,distance_m,x,y,z,intensity,time_ns,sensor\n"
+            "1,2,0,0,0,0.000,0.000,0.0000,1.0000,2.0000,3.0000,4,0,s\n"
+            "1,2,0,0,0,0.000,0.000,0.0000,-1.0000,-2.0000,-3.0000,5,0,s\n");
 }
 
 TEST(CsvWriter, ReportsErrors) {
   port::CsvWriter w;
-  const port::WriteResult not_open = w.write(Point{}, 0, 0);
+  const port::WriteResult not_open = w.write(Point{}, 0, 0, "s");
   EXPECT_FALSE(not_open.ok());
   EXPECT_NE(not_open.message().find("not open"), std::string::npos);
 
@@ -214,11 +214,25 @@ TEST(CsvWriter, ReportsErrors) {
   EXPECT_FALSE(w.is_open());
 }
 
+TEST(CsvWriter, RefusesASensorFieldOverItsLimit) {
+  std::FILE* f = std::tmpfile();
+  ASSERT_NE(f, nullptr);
+  port::CsvWriter w;
+  ASSERT_TRUE(w.open(f, "tmp").ok());
+  EXPECT_TRUE(w.write(Point{}, 1, 0, std::string(port::CsvWriter::kMaxSensorBytes, 's')).ok());
+  const port::WriteResult r = w.write(Point{}, 1, 0, std::string(port::CsvWriter::kMaxSensorBytes + 1, 's'));
+  EXPECT_FALSE(r.ok());
+  EXPECT_NE(r.message().find("sensor field"), std::string::npos) << r.message();
+  EXPECT_EQ(w.rows(), 1u);
+  (void)w.close();
+  std::fclose(f);
+}
+
 TEST(CsvWriter, ReportsFullDisk) {
   if (::access("/dev/full", W_OK) != 0) GTEST_SKIP() << "no /dev/full";
   port::CsvWriter w;
   ASSERT_TRUE(w.open("/dev/full").ok());
-  for (int i = 0; i < 20000; ++i) (void)w.write(make_point(1, 2, 3, 4), 0, static_cast<std::uint64_t>(i));
+  for (int i = 0; i < 20000; ++i) (void)w.write(make_point(1, 2, 3, 4), 0, static_cast<std::uint64_t>(i), "s");
   const port::WriteResult r = w.close();
   EXPECT_FALSE(r.ok());
   EXPECT_EQ(r.os_error(), ENOSPC) << r.message();

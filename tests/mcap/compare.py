@@ -10,12 +10,20 @@ frame's rows, its points the rows in the same order: channel = CSV channel - 1 (
 from 0), return_type = return, intensity exactly; x, y, z, distance within the CSV's 4 decimals
 (0.00005 m) plus float32 rounding; azimuth and elevation (radians) within the CSV's 3 decimals
 of a degree; time_ns (stamp + time_stamp) exactly. stamp = the frame's earliest time_ns.
+Topic and frame_id: /hesai/<token>/points and hesai_<token>, the token made here from the CSV's
+sensor column by the documented rule ("ip_" and the address with '_' for '.'). log_time: the pcap
+time of a datagram at or after the frame's last packet (the frame closed when it came), never
+before the previous message's.
 """
 import csv
 import math
 import os
 import subprocess
 import sys
+
+sys.dont_write_bytecode = True  # no __pycache__ in the source tree
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import make_pandarscan  # noqa: E402  (its pcap reader: the capture's datagram times)
 
 
 def fail(msg):
@@ -46,8 +54,12 @@ def main():
         last_row = {}
         for i, row in enumerate(reader_csv):
             last_row[int(row[0])] = i
-    col = {k: header.index(k) for k in ("frame", "channel", "return", "intensity", "x", "y", "z",
-                                         "azimuth_deg", "elevation_deg", "distance_m", "time_ns")}
+    col = {k: header.index(k) for k in ("frame", "packet", "channel", "return", "intensity", "x", "y", "z",
+                                         "azimuth_deg", "elevation_deg", "distance_m", "time_ns", "sensor")}
+    # The capture's datagram times, by point-cloud packet index (every bundled capture's datagrams
+    # are point-cloud packets).
+    times = [t for t, _ in make_pandarscan.pcap_payloads(capture)]
+    last_log = -1
     frames = sorted(last_row)
 
     node = subprocess.Popen(["node", reader, mcap_path, modules], stdout=subprocess.PIPE,
@@ -80,10 +92,20 @@ def main():
             if mparts[0] != "M" or int(mparts[1]) != frame:
                 fail_read(f"expected the message of frame {frame}, read '{line.strip()}'")
             stamp, frame_id, width, topic = int(mparts[2]), mparts[3], int(mparts[4]), mparts[5]
+            log_time = int(mparts[6])
             if width != len(rows):
                 fail(f"frame {frame}: {width} points in the message, {len(rows)} rows")
-            if frame_id != "hesai" or topic != "/hesai/points":
-                fail(f"frame {frame}: frame_id {frame_id} topic {topic}")
+            sensors = {row[col["sensor"]] for row in rows}
+            if len(sensors) != 1:
+                fail(f"frame {frame}: rows of several sensors {sensors}")
+            token = "ip_" + sensors.pop().rsplit(":", 1)[0].replace(".", "_")
+            if frame_id != "hesai_" + token or topic != "/hesai/" + token + "/points":
+                fail(f"frame {frame}: frame_id {frame_id} topic {topic}, sensor token {token}")
+            last_packet = max(int(row[col["packet"]]) for row in rows)
+            if not (times[last_packet] <= log_time <= times[-1]) or log_time < last_log:
+                fail(f"frame {frame}: log_time {log_time}, its last packet's time {times[last_packet]}, "
+                     f"the previous message's {last_log}, the capture's last {times[-1]}")
+            last_log = log_time
             if stamp != min(int(row[col["time_ns"]]) for row in rows):
                 fail(f"frame {frame}: stamp {stamp} is not the earliest time_ns")
             for i, row in enumerate(rows):

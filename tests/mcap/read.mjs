@@ -166,15 +166,27 @@ expect(dataCrc === reader.dataSectionCrc, `data_section_crc ${reader.dataSection
 const streamed = new Map();  // by sequence (the indexed reader yields log_time order)
 const stream = new McapStreamReader({ validateCrcs: true });
 stream.append(bytes);
-for (let record; (record = stream.nextRecord()); ) if (record.type === "Message") {
-  expect(!streamed.has(record.sequence), `two messages of sequence ${record.sequence}`);
-  streamed.set(record.sequence, record);
+// In file order: log times never go back, across every topic; one rosbag2 metadata record.
+let lastLogTime = -1n;
+const rosbag2 = [];
+for (let record; (record = stream.nextRecord()); ) {
+  if (record.type === "Metadata") rosbag2.push(record);
+  if (record.type !== "Message") continue;
+  const key = `${record.channelId}/${record.sequence}`;
+  expect(!streamed.has(key), `two messages of sequence ${record.sequence} on channel ${record.channelId}`);
+  expect(record.logTime >= lastLogTime, `message ${key}: log_time ${record.logTime} before the previous message's`);
+  lastLogTime = record.logTime;
+  streamed.set(key, record);
 }
+expect(rosbag2.length === 1 && rosbag2[0].name === "rosbag2" && rosbag2[0].metadata.get("ROS_DISTRO") === "humble",
+       "no rosbag2 metadata record with ROS_DISTRO humble");
+expect(reader.metadataIndexes.length === 1 && reader.metadataIndexes[0].name === "rosbag2",
+       "the summary does not index the rosbag2 metadata record");
 expect(stream.done(), "the stream reader did not reach the trailing magic");
 
 const messages = [];
 for await (const m of reader.readMessages({ validateCrcs: true })) {
-  const s = streamed.get(m.sequence);
+  const s = streamed.get(`${m.channelId}/${m.sequence}`);
   expect(s && s.sequence === m.sequence && s.logTime === m.logTime && Buffer.compare(s.data, m.data) === 0,
          `message ${messages.length}: the stream reader reads another`);
   messages.push(m);
@@ -186,7 +198,7 @@ expect(stats.chunkCount === reader.chunkIndexes.length, "statistics chunk_count"
 messages.sort((a, b) => a.sequence - b.sequence);
 for (const m of messages) {
   const h = cloudHeader(m.data);
-  expect(m.logTime === h.stamp && m.publishTime === h.stamp, `message ${m.sequence}: log_time is not header.stamp`);
+  expect(m.publishTime === m.logTime, `message ${m.sequence}: publish_time is not log_time`);
   const topic = reader.channelsById.get(m.channelId).topic;
   writeSync(1, ["M", m.sequence, h.stamp, h.frameId, h.width, topic, m.logTime].join(",") + "\n");
   decodeCloud(m.data);

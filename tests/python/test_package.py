@@ -37,6 +37,8 @@ INT_COLUMNS = ["frame", "packet", "block", "channel", "return", "intensity", "ti
 # Column, decimals the CSV prints.
 FLOAT_COLUMNS = [("azimuth_deg", 3), ("elevation_deg", 3), ("distance_m", 4), ("x", 4), ("y", 4), ("z", 4)]
 HEADER = "frame,packet,block,channel,return,azimuth_deg,elevation_deg,distance_m,x,y,z,intensity,time_ns"
+# The CLI's CSV: the row's fields, then the sensor (its address and port, or a bag's topic).
+CSV_HEADER = HEADER + ",sensor"
 
 
 def test_every_bundled_capture_is_covered():
@@ -47,7 +49,7 @@ def cli_csv(capture, args):
     """The program's CSV of `capture`: {column: array}."""
     out = subprocess.run([CLI, "decode", str(capture), "--quiet", *args], check=True, capture_output=True).stdout
     lines = out.split(b"\n", 1)
-    assert lines[0].decode() == HEADER
+    assert lines[0].decode() == CSV_HEADER
     return cli_csv_body(lines[1])
 
 
@@ -191,7 +193,7 @@ def test_frames_equal_the_per_frame_csv_files(name, args, kw, tmp_path):
         assert_rows_equal(part, want)
         rows += len(want["frame"])
         if len(part):
-            assert int(f.stem.split("_")[1]) == int(part["frame"][0])
+            assert int(f.stem.rsplit("_", 1)[1]) == int(part["frame"][0])  # frame_<sensor>_<n>
     assert rows > 0
 
 

@@ -59,7 +59,11 @@ class RowSink : public hesai::cli::Sink {
     r.intensity = p.point.intensity;
     rows.push_back(r);
   }
-  void frame_closed(const hesai::FrameInfo& frame) override { closures.emplace_back(rows.size(), frame.id); }
+  // The rows do not name their sensor yet (hesai_capture_row has no such field): frames of several
+  // sensors are told apart only by their ids.
+  void sensor_added(std::uint32_t, const std::string&) override {}
+  void receive_time(std::uint64_t) override {}
+  void frame_closed(const hesai::FrameInfo& frame, std::uint32_t) override { closures.emplace_back(rows.size(), frame.id); }
 
   std::vector<hesai_capture_row> rows;                         // from `taken` on: not yet given
   std::size_t taken = 0;

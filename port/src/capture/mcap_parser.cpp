@@ -86,6 +86,7 @@ CaptureError McapParser::open(ByteView file) {
   channels_.fill(0);
   scan_channels_.fill(0);
   any_scan_channel_ = false;
+  topics_.fill(ByteView{});
   record_index_ = 0;
   records_whole_ = 0;
   ended_by_footer_ = false;
@@ -229,6 +230,7 @@ McapParser::Step McapParser::channel(ByteView body, std::uint64_t at) {
   if (scan && !equals(encoding, cdr_encoding)) return fail(CaptureError::mcap_bad_encoding, at);
   set(channels_, id, true);
   set(scan_channels_, id, scan);
+  if (id < kTopicIds) topics_[id] = scan ? topic : ByteView{};
   any_scan_channel_ = any_scan_channel_ || scan;
   return Step::more;
 }

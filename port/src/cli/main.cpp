@@ -69,7 +69,7 @@ int fail(const std::string& command, int status, const std::string& message) {
 // Feeds every datagram of an open capture to the pipeline. Returns an exit status.
 // The sender of a captured datagram, for the per-sensor report: "192.168.1.201:10000",
 // "[fe80::1]:10000", or "mcap channel N" (MCAP packets carry no address).
-std::string source_text(const port::UdpDatagram& d) {
+std::string source_text(const port::UdpDatagram& d, const port::CaptureFile& file) {
   char buf[64];
   if (d.ip_version == 4) {
     std::snprintf(buf, sizeof buf, "%u.%u.%u.%u:%u", d.src_addr[0], d.src_addr[1], d.src_addr[2], d.src_addr[3], d.src_port);
@@ -81,6 +81,12 @@ std::string source_text(const port::UdpDatagram& d) {
     }
     return a + "]:" + std::to_string(d.src_port);
   } else {
+    // A bag: the channel's topic, when it is printable and short enough to name a sensor.
+    const ByteView topic =
+        d.interface_id <= 0xFFFF ? file.mcap_parser().topic(static_cast<std::uint16_t>(d.interface_id)) : ByteView{};
+    bool printable = topic.size > 0 && topic.size <= 200;
+    for (std::size_t i = 0; printable && i < topic.size; ++i) printable = topic[i] > 0x20 && topic[i] < 0x7F;
+    if (printable) return std::string(reinterpret_cast<const char*>(topic.data), topic.size);
     std::snprintf(buf, sizeof buf, "mcap channel %u", d.interface_id);
   }
   return buf;
@@ -100,7 +106,8 @@ int run_capture(port::CaptureFile& file, Pipeline& pipeline, bool quiet) {
       return kExitInput;
     }
     const std::uint64_t key = source_key(d);
-    if (!pipeline.has_label(key)) pipeline.label_source(key, source_text(d));
+    if (!pipeline.has_label(key)) pipeline.label_source(key, source_text(d, file));
+    pipeline.set_receive_time(d.time_ns);
     if (!pipeline.feed(d.payload, key)) {
       std::fprintf(stderr, "hesai: %s\n", pipeline.error().c_str());
       return kExitUsage;
@@ -440,7 +447,15 @@ int cmd_listen(Args& args) {
       return true;
     }
     ++received;
-    return pipeline.feed(ByteView{d.data, d.size}, gps ? 1 : 0, pre_session);
+    // Each sender is a sensor of its own, named by its address and port (GPS packets make none).
+    const std::uint64_t key = (std::uint64_t{d.source_ipv4} << 16) | d.source_port;
+    if (!gps && !pipeline.has_label(key)) {
+      const auto* a = reinterpret_cast<const std::uint8_t*>(&d.source_ipv4);  // network byte order
+      pipeline.label_source(key, std::to_string(a[0]) + "." + std::to_string(a[1]) + "." + std::to_string(a[2]) +
+                                     "." + std::to_string(a[3]) + ":" + std::to_string(d.source_port));
+    }
+    pipeline.set_receive_time(static_cast<std::uint64_t>(d.time_ns));
+    return pipeline.feed(ByteView{d.data, d.size}, key, pre_session);
   };
   if (session) {
     // What waits in the sockets arrived before the session's answer was read, or while it was

@@ -12,6 +12,7 @@
 
 #include "hesai/ct.h"
 #include "hesai/hkdf.h"
+#include "hesai_port/formats/pointcloud2.h"
 
 extern char** environ;  // POSIX: the process's environment
 
@@ -66,11 +67,14 @@ const char* const kOutputOptionsHelp =
     "  --format csv|pcd|ply|png|mcap  output format (default csv); mcap: a ROS 2 bag of one\n"
     "                          sensor_msgs/PointCloud2 per frame (see docs/CLI.md)\n"
     "  --out PATH              output file ('-' = stdout for csv); a directory with --per-frame\n"
-    "  --per-frame             one file per frame in --out: frame_000001.pcd, ...\n"
+    "  --per-frame             one file per sensor and frame in --out:\n"
+    "                          frame_<sensor>_000001.pcd, ...\n"
     "  --png-range M           PNG: metres from the sensor to the image edge (default 60)\n"
     "  --png-color intensity|height  PNG: what colours the points (default intensity)\n"
-    "  --topic NAME            MCAP: topic of the point clouds (default /hesai/points)\n"
-    "  --frame-id ID           MCAP: header.frame_id of the point clouds (default hesai)\n";
+    "  --topic NAME            MCAP: topic of the point clouds, a ROS 2 name; {sensor} is each\n"
+    "                          sensor's name token (default /hesai/{sensor}/points)\n"
+    "  --frame-id ID           MCAP: header.frame_id of the point clouds (default hesai_{sensor})\n"
+    "  --ros-distro NAME       MCAP: the ROS 2 distribution the bag names (default humble)\n";
 
 Args::Args(int argc, char** argv, int first) : argv_(argv), first_(first) {
   for (int i = first; i < argc; ++i) args_.emplace_back(argv[i]);
@@ -476,6 +480,14 @@ int finish_tls_options(const TlsOptions& o, std::shared_ptr<port::TlsContext>& c
   return context ? kExitOk : kExitInput;
 }
 
+std::string with_sensor(const std::string& text, const std::string& token) {
+  std::string out = text;
+  const std::string key = "{sensor}";
+  for (std::size_t at = out.find(key); at != std::string::npos; at = out.find(key, at + token.size()))
+    out.replace(at, key.size(), token);
+  return out;
+}
+
 bool parse_output_option(Args& args, OutputOptions& o, std::string& error) {
   const std::string opt = args.peek();
   if (opt == "--per-frame") {
@@ -484,7 +496,7 @@ bool parse_output_option(Args& args, OutputOptions& o, std::string& error) {
     return true;
   }
   if (opt != "--format" && opt != "--out" && opt != "--png-range" && opt != "--png-color" && opt != "--topic" &&
-      opt != "--frame-id")
+      opt != "--frame-id" && opt != "--ros-distro")
     return false;
   args.take();
   std::string v;
@@ -500,10 +512,17 @@ bool parse_output_option(Args& args, OutputOptions& o, std::string& error) {
     if (v != "intensity" && v != "height") error = "--png-color takes intensity or height, got '" + v + "'";
     o.png_height = v == "height";
   } else if (opt == "--topic") {
-    if (v.empty()) error = "--topic needs a name";
+    // Checked with a sensor's token in place of {sensor}: what the bag will record.
+    std::string why;
+    if (port::ros2_topic(with_sensor(v, "ip_192_168_1_201"), why).empty())
+      error = "--topic '" + v + "' is not a ROS 2 topic name: " + why;
     o.topic = v;
   } else if (opt == "--frame-id") {
+    if (with_sensor(v, "ip_192_168_1_201").empty()) error = "--frame-id needs a name";
     o.frame_id = v;
+  } else if (opt == "--ros-distro") {
+    if (!port::ros2_token(v)) error = "--ros-distro takes a distribution's name (humble, jazzy, ...), got '" + v + "'";
+    o.ros_distro = v;
   } else if (v == "csv" || v == "pcd" || v == "ply" || v == "png" || v == "mcap") {
     o.format = v;
   } else {

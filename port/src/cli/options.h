@@ -21,12 +21,17 @@ inline constexpr int kExitInput = 2;
 struct OutputOptions {
   std::string format = "csv";  ///< csv | pcd | ply | png | mcap
   std::string out;             ///< --out PATH ("-" for stdout, CSV only); a directory with --per-frame
-  bool per_frame = false;      ///< one file per frame: frame_000001.pcd ...
+  bool per_frame = false;      ///< one file per sensor and frame: frame_<sensor>_000001.pcd ...
   float png_range_m = 60;      ///< --png-range: metres from the centre to the image edge
   bool png_height = false;     ///< --png-color height (default intensity)
-  std::string topic = "/hesai/points";  ///< --topic: MCAP channel of the PointCloud2 messages
-  std::string frame_id = "hesai";       ///< --frame-id: their header.frame_id
+  /// --topic: MCAP channel of the PointCloud2 messages; {sensor} is each sensor's name token.
+  std::string topic = "/hesai/{sensor}/points";
+  std::string frame_id = "hesai_{sensor}";  ///< --frame-id: their header.frame_id
+  std::string ros_distro = "humble";        ///< --ros-distro: the bag's rosbag2 metadata record
 };
+
+/// `text` with every "{sensor}" replaced by `token`.
+std::string with_sensor(const std::string& text, const std::string& token);
 
 /// Arguments left to right, consumed by the parsers below.
 class Args {

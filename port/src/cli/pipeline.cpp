@@ -108,6 +108,8 @@ Pipeline::Source* Pipeline::source_for(std::uint64_t key, Model model) {
     if (it->second.decoder->model() == model) return &it->second;
     while (!it->second.held.empty())  // the old sensor's packets, in the direction assumed
       if (!release_held(it->second)) return nullptr;
+    it->second.frames.finish();  // and its open frames, to the sink
+    close_frames(it->second);
     it->second.decoder->clear_session_key();
     if (last_source_ == &it->second) last_source_ = nullptr;
     sources_.erase(it);  // another sensor now sends from this address: start over
@@ -168,14 +170,19 @@ Pipeline::Source* Pipeline::source_for(std::uint64_t key, Model model) {
   s.frames = options_.frames;
   d.set_rotation(options_.rotation);
   s.frames.set_rotation(options_.rotation);
+  if (sink_) {
+    const auto label = labels_.find(key);
+    sink_->sensor_added(static_cast<std::uint32_t>(s.order),
+                        label != labels_.end() ? label->second : "source " + std::to_string(s.order + 1));
+  }
   return &sources_.emplace(key, std::move(s)).first->second;
 }
 
-void Pipeline::close_frames(FrameAssembler& frames) {
+void Pipeline::close_frames(Source& src) {
   FrameInfo f;
-  while (frames.pop_closed(f)) {
+  while (src.frames.pop_closed(f)) {
     saturating_increment(stats_.frames);
-    if (sink_) sink_->frame_closed(f);
+    if (sink_) sink_->frame_closed(f, static_cast<std::uint32_t>(src.order));
   }
 }
 
@@ -344,14 +351,14 @@ bool Pipeline::process(Source& src, std::uint64_t index, const PacketInfo& info)
   frames.begin_packet(index, lost_before);
   std::size_t next = 0;
   for (std::size_t b = 0; b < info.blocks; ++b) {
-    if (frames.block(info.block_azimuth[b])) close_frames(frames);
+    if (frames.block(info.block_azimuth[b])) close_frames(src);
     for (; next < points_.count && points_.points[next].block == b; ++next) {
       const Point& p = points_.points[next];
       saturating_increment(stats_.points);
       if (!keep || p.distance_m < options_.min_range || p.distance_m > options_.max_range) continue;
       if (!frames.in_fov(p.azimuth_deg)) continue;
       const std::uint64_t frame_id = frames.point(p.azimuth_deg);
-      if (sink_) sink_->point(OutPoint{p, frame_id, index});
+      if (sink_) sink_->point(OutPoint{p, frame_id, index, static_cast<std::uint32_t>(src.order)});
     }
   }
   return true;
@@ -391,7 +398,7 @@ void Pipeline::finish() {
     // The direction never became known: the held packets are decoded in the assumed one.
     while (!s.held.empty()) (void)release_held(s);
     s.frames.finish();
-    close_frames(s.frames);
+    close_frames(s);
   }
 }
 

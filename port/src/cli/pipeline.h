@@ -49,18 +49,27 @@ struct DecodeOptions {
 /// A point with the context the outputs need.
 struct OutPoint {
   Point point;
-  std::uint64_t frame = 0;   ///< frame id (1-based) of the point's source
+  std::uint64_t frame = 0;   ///< frame id (1-based) within its sensor's frames
   std::uint64_t packet = 0;  ///< 0-based index of the point-cloud packet in the input
+  std::uint32_t sensor = 0;  ///< its sensor, as Sink::sensor_added named it
 };
 
-/// Receives what the pipeline produces. Frames close in order; every point of a frame is given
-/// to point() before its frame_closed(). Points come in packet order, so near a cut the points
-/// of two frames interleave (a packet that straddles the cut gives points to both).
+/// Receives what the pipeline produces. A sensor is one source (an address and port, or a bag
+/// topic): sensor_added() names it before its first point. Each sensor's frames close in order;
+/// every point of a frame is given to point() before its frame_closed(). Points come in packet
+/// order, so near a cut the points of two frames interleave (a packet that straddles the cut gives
+/// points to both), and the points of several sensors interleave as their packets do.
 class Sink {
  public:
   virtual ~Sink() = default;
+  /// A new sensor: `sensor` (0, 1, ... in the order they first sent a point-cloud packet) and its
+  /// label ("192.168.1.201:2368", a bag's topic, or "source N").
+  virtual void sensor_added(std::uint32_t sensor, const std::string& label) = 0;
+  /// The receive time (ns since 1970) of the datagram now being fed: the capture's record time, or
+  /// the kernel's for a live socket. Frames that close while it is processed closed at this time.
+  virtual void receive_time(std::uint64_t ns) = 0;
   virtual void point(const OutPoint& p) = 0;
-  virtual void frame_closed(const FrameInfo& frame) = 0;
+  virtual void frame_closed(const FrameInfo& frame, std::uint32_t sensor) = 0;
 };
 
 /// One sensor's stream health, for the per-sensor report (`sensors` in stats --json).
@@ -120,6 +129,10 @@ class Pipeline {
   /// parse, does not fit the model or holds a value the decoder refuses (message in error(),
   /// naming the file and the Error).
   bool feed(ByteView payload, std::uint64_t source, bool pre_session = false);
+  /// The receive time of the datagrams fed from now on (ns since 1970), for the sink.
+  void set_receive_time(std::uint64_t ns) {
+    if (sink_) sink_->receive_time(ns);
+  }
   /// Decodes the packets still held and closes the open frames at the end of the input.
   void finish();
 
@@ -170,7 +183,7 @@ class Pipeline {
   bool release_held(Source& src);
   // Accounts one decoded packet (points_ holds its points) and gives its points to the frames.
   bool process(Source& src, std::uint64_t index, const PacketInfo& info);
-  void close_frames(FrameAssembler& frames);
+  void close_frames(Source& src);
 
   DecodeOptions options_;
   Sink* sink_;

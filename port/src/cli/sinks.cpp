@@ -11,6 +11,13 @@
 
 namespace hesai::cli {
 
+namespace {
+// The channel's offered_qos_profiles (the ros2 profile's one required metadata key), empty: the QoS
+// YAML changed between rosbag2 versions (integers up to Humble, names since Jazzy), and every
+// version reads an empty value as "not recorded" and plays back with its default profile.
+constexpr const char* kQosProfiles = "";
+}  // namespace
+
 int OutputSink::open(std::string& error) {
   const bool to_stdout = options_.out.empty() || options_.out == "-";
   if (options_.format == "png") {
@@ -50,25 +57,107 @@ int OutputSink::open(std::string& error) {
   return kExitOk;
 }
 
-std::string OutputSink::frame_path(std::uint64_t id) const {
-  char name[64];
-  std::snprintf(name, sizeof name, "/frame_%06llu.%s", static_cast<unsigned long long>(id), options_.format.c_str());
-  return options_.out + name;
+std::string OutputSink::frame_path(FrameKey key) const {
+  char number[32];
+  std::snprintf(number, sizeof number, "_%06llu.", static_cast<unsigned long long>(key.second));
+  return options_.out + "/frame_" + sensor(key.first).token + number + options_.format;
 }
 
-OutputSink::Frame& OutputSink::open_frame(std::uint64_t id) {
-  const auto [it, fresh] = open_.try_emplace(id);
+OutputSink::Frame& OutputSink::open_frame(FrameKey key) {
+  const auto [it, fresh] = open_.try_emplace(key);
   if (fresh && options_.format == "png") it->second.png = png_;  // empty, with the options
   return it->second;
 }
 
 namespace {
-// The channel's offered_qos_profiles (the ros2 profile's one required metadata key), empty: the QoS
-// YAML changed between rosbag2 versions (integers up to Humble, names since Jazzy, read by the
-// version of a rosbag2 metadata record this file does not have), and every version reads an empty
-// value as "not recorded" and plays back with its default profile.
-constexpr const char* kQosProfiles = "";
+
+bool is_digit(char c) { return c >= '0' && c <= '9'; }
+bool is_token_char(char c) { return is_digit(c) || (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || c == '_'; }
+
+// `text` made a ROS 2 name token: other characters as '_', no "__", not empty, no leading digit.
+std::string as_token(const std::string& text) {
+  std::string t;
+  for (const char c : text) {
+    const char k = is_token_char(c) ? c : '_';
+    if (k == '_' && !t.empty() && t.back() == '_') continue;
+    t += k;
+  }
+  while (!t.empty() && t.back() == '_') t.pop_back();
+  if (!t.empty() && t[0] == '_') t.erase(0, 1);
+  if (t.empty()) return "sensor";
+  return is_digit(t[0]) ? "s_" + t : t;
+}
+
+// The token of a label (see sinks.h); `port` gets the UDP port of an address label.
+std::string label_token(const std::string& label, std::string& port) {
+  port.clear();
+  const std::size_t colon = label.rfind(':');
+  if (colon != std::string::npos && colon + 1 < label.size()) {
+    const std::string address = label.substr(0, colon);
+    const std::string p = label.substr(colon + 1);
+    const bool numeric_port = p.find_first_not_of("0123456789") == std::string::npos;
+    if (numeric_port && !address.empty() && address.find_first_not_of("0123456789.") == std::string::npos) {
+      port = p;
+      std::string t = "ip_" + address;
+      std::replace(t.begin(), t.end(), '.', '_');
+      return t;
+    }
+    if (numeric_port && address.size() > 2 && address.front() == '[' && address.back() == ']') {
+      port = p;
+      std::string t = "ip6";
+      for (const char c : address.substr(1, address.size() - 2)) t += c == ':' ? (t.back() == '_' ? "0_" : "_") : std::string(1, c);
+      return as_token(t);
+    }
+  }
+  // A bag's topic: its last token; anything else as it reads.
+  const std::size_t slash = label.rfind('/');
+  return as_token(slash == std::string::npos ? label : label.substr(slash + 1));
+}
+
+// A CSV field: quoted (RFC 4180) when it holds a comma, a quote or a line break.
+std::string csv_field(const std::string& text) {
+  if (text.find_first_of(",\"\r\n") == std::string::npos) return text;
+  std::string q = "\"";
+  for (const char c : text) q += c == '"' ? std::string("\"\"") : std::string(1, c);
+  return q + "\"";
+}
+
 }  // namespace
+
+const OutputSink::SensorOut& OutputSink::sensor(std::uint32_t s) const {
+  static const SensorOut unnamed{"", "sensor", 0, ""};
+  return s < sensors_.size() ? sensors_[s] : unnamed;
+}
+
+void OutputSink::sensor_added(std::uint32_t s, const std::string& label) {
+  if (sensors_.size() <= s) sensors_.resize(s + 1);
+  SensorOut& out = sensors_[s];
+  out.label = csv_field(label);
+  std::string port;
+  std::string token = label_token(label, port);
+  auto taken = [&](const std::string& t) {
+    for (std::size_t i = 0; i < sensors_.size(); ++i)
+      if (i != s && sensors_[i].token == t) return true;
+    return false;
+  };
+  if (taken(token) && !port.empty()) token += "_" + port;
+  if (taken(token)) token += "_" + std::to_string(s + 1);
+  out.token = token;
+  if (!mcap_.is_open()) return;
+  std::string why;
+  const std::string topic = port::ros2_topic(with_sensor(options_.topic, token), why);
+  if (topic.empty()) {
+    if (deferred_error_.empty())
+      deferred_error_ = "--topic '" + options_.topic + "' for sensor " + label + " is not a ROS 2 topic name: " + why;
+    return;
+  }
+  const auto known = mcap_topics_.find(topic);
+  out.channel = known != mcap_topics_.end()
+                    ? known->second
+                    : mcap_topics_[topic] = mcap_.add_channel(mcap_schema_, topic, port::kCdrEncoding,
+                                                              {{"offered_qos_profiles", kQosProfiles}});
+  out.frame_id = with_sensor(options_.frame_id, token);
+}
 
 int OutputSink::open_mcap(std::string& error) {
   if (options_.per_frame) {
@@ -84,22 +173,26 @@ int OutputSink::open_mcap(std::string& error) {
     error = r.message();
     return r.os_error() == ESPIPE ? kExitUsage : kExitInput;
   }
-  const std::uint16_t schema =
-      mcap_.add_schema(port::kPointCloud2Schema, port::kRos2MsgEncoding, port::pointcloud2_definition());
-  mcap_channel_ = mcap_.add_channel(schema, options_.topic, port::kCdrEncoding, {{"offered_qos_profiles", kQosProfiles}});
+  mcap_schema_ = mcap_.add_schema(port::kPointCloud2Schema, port::kRos2MsgEncoding, port::pointcloud2_definition());
   files_.push_back(options_.out);
   return kExitOk;
 }
 
-void OutputSink::write_mcap_frame(std::uint64_t id, const std::vector<Point>& points) {
+void OutputSink::write_mcap_frame(FrameKey key, const std::vector<Point>& points) {
   if (points.empty() || !mcap_.is_open()) return;  // no point, no stamp: no message
+  const SensorOut& s = sensor(key.first);
+  if (s.frame_id.empty()) return;  // its topic was refused (deferred_error_)
   // header.stamp: the frame's earliest point, so that every time_stamp offset is >= 0.
   std::int64_t stamp = points[0].time_ns;
   for (const Point& p : points) stamp = std::min(stamp, p.time_ns);
   const std::vector<std::uint8_t> head =
-      port::pointcloud2_head(stamp, options_.frame_id, static_cast<std::uint32_t>(points.size()));
-  const auto t = static_cast<std::uint64_t>(stamp);
-  port::WriteResult r = mcap_.begin_message(mcap_channel_, static_cast<std::uint32_t>(id), t, t,
+      port::pointcloud2_head(stamp, s.frame_id, static_cast<std::uint32_t>(points.size()));
+  // log_time (and publish_time): when the frame was complete, the receive time of the datagram
+  // that closed it, never before the previous message's, so the file is in log-time order across
+  // sensors whose clocks differ.
+  last_log_ns_ = std::max(last_log_ns_, receive_ns_);
+  const std::uint64_t t = last_log_ns_;
+  port::WriteResult r = mcap_.begin_message(s.channel, static_cast<std::uint32_t>(key.second), t, t,
                                             port::pointcloud2_size(head.size(), points.size()));
   if (r) r = mcap_.append(head.data(), head.size());
   std::uint8_t block[2048 * port::kPointStep];
@@ -115,13 +208,14 @@ void OutputSink::write_mcap_frame(std::uint64_t id, const std::vector<Point>& po
 
 void OutputSink::point(const OutPoint& p) {
   ++points_written_;
+  const FrameKey key{p.sensor, p.frame};
   if (options_.format == "mcap") {
-    open_frame(p.frame).points.push_back(p.point);
+    open_frame(key).points.push_back(p.point);
     return;
   }
   if (options_.per_frame) {
     // Near a cut the points of two frames interleave: each goes to its own frame.
-    Frame& f = open_frame(p.frame);
+    Frame& f = open_frame(key);
     if (options_.format == "png") {
       f.png.add(p.point);
       return;
@@ -133,36 +227,38 @@ void OutputSink::point(const OutPoint& p) {
   if (options_.format == "png") {
     png_.add(p.point);
   } else if (csv_open_) {
-    const port::WriteResult r = csv_.write(p.point, static_cast<std::uint32_t>(p.frame), p.packet);
+    const port::WriteResult r = csv_.write(p.point, static_cast<std::uint32_t>(p.frame), p.packet, sensor(p.sensor).label);
     if (!r && deferred_error_.empty()) deferred_error_ = r.message();
   } else {
     stream_.write(p.point);
   }
 }
 
-void OutputSink::frame_closed(const FrameInfo& frame) {
+void OutputSink::frame_closed(const FrameInfo& frame, std::uint32_t sensor_index) {
+  const FrameKey key{sensor_index, frame.id};
   if (options_.format == "mcap") {
-    const auto it = open_.find(frame.id);
+    const auto it = open_.find(key);
     if (it == open_.end()) return;  // no point was kept
-    write_mcap_frame(frame.id, it->second.points);
+    write_mcap_frame(key, it->second.points);
     open_.erase(it);
     return;
   }
   if (!options_.per_frame) return;
-  const Frame f = std::move(open_frame(frame.id));  // empty when no point was kept
-  open_.erase(frame.id);
+  const Frame f = std::move(open_frame(key));  // empty when no point was kept
+  open_.erase(key);
   std::string error;
   if (options_.format == "csv") {
     // Rows of one frame into its own CSV file.
     port::CsvWriter w;
-    const std::string path = frame_path(frame.id);
+    const std::string path = frame_path(key);
+    const std::string& label = sensor(sensor_index).label;
     port::WriteResult r = w.open(path);
     for (std::size_t i = 0; r && i < f.points.size(); ++i)
-      r = w.write(f.points[i], static_cast<std::uint32_t>(frame.id), f.packets[i]);
+      r = w.write(f.points[i], static_cast<std::uint32_t>(frame.id), f.packets[i], label);
     if (r) r = w.close();
     if (!r && deferred_error_.empty()) deferred_error_ = r.message();
     if (r) files_.push_back(path);
-  } else if (!write_cloud(frame_path(frame.id), f.points, f.png, error) && deferred_error_.empty()) {
+  } else if (!write_cloud(frame_path(key), f.points, f.png, error) && deferred_error_.empty()) {
     deferred_error_ = error;
   }
 }
@@ -183,8 +279,11 @@ bool OutputSink::write_cloud(const std::string& path, const std::vector<Point>& 
 
 bool OutputSink::close(std::string& error) {
   if (mcap_.is_open()) {
-    for (const auto& [id, frame] : open_) write_mcap_frame(id, frame.points);  // frames never closed
+    for (const auto& [key, frame] : open_) write_mcap_frame(key, frame.points);  // frames never closed
     open_.clear();
+    // The rosbag2 metadata record, as rosbag2's MCAP storage plugin writes it (the distribution
+    // under ROS_DISTRO), so that `ros2 bag info` names it.
+    (void)mcap_.add_metadata("rosbag2", {{"ROS_DISTRO", options_.ros_distro}});
     const port::WriteResult r = mcap_.close();
     if (!r && deferred_error_.empty()) deferred_error_ = r.message();
   } else if (csv_open_ || stream_.is_open()) {

@@ -1,6 +1,12 @@
 // Where decoded points go: CSV rows and PCD/PLY records written as they come, or bird's-eye PNG
-// views; one file for the whole input, or one per frame; or an MCAP file of one ROS 2
-// PointCloud2 message per frame.
+// views; one file for the whole input, or one per sensor and frame; or an MCAP file of one ROS 2
+// PointCloud2 message per sensor and frame, on one topic per sensor.
+//
+// Sensors are kept apart in every output: the CSV's last column `sensor` is the sensor's label
+// ("192.168.1.201:2368", a bag's topic); --per-frame files are frame_<token>_<n>; MCAP topics and
+// frame ids take the token in place of {sensor}. The token is a ROS 2 name token: "ip_" and the
+// address with '_' for '.' (IPv6: "ip6_" and its groups), then "_PORT" for a later sensor at an
+// address already named; a bag's topic gives its last token; "source_N" without a label.
 #pragma once
 
 #include <cstdio>
@@ -25,8 +31,10 @@ class OutputSink : public Sink {
   /// kExitUsage (no --out where one is needed; a pipe for PCD/PLY) or kExitInput (the output
   /// cannot be created), with a message.
   int open(std::string& error);
+  void sensor_added(std::uint32_t sensor, const std::string& label) override;
+  void receive_time(std::uint64_t ns) override { receive_ns_ = ns; }
   void point(const OutPoint& p) override;
-  void frame_closed(const FrameInfo& frame) override;
+  void frame_closed(const FrameInfo& frame, std::uint32_t sensor) override;
   /// Writes what is still held (the single PNG), closes the file. Returns false with a message.
   /// Memory: the open frames' points or PNG views with --per-frame, and the open frames' points
   /// for MCAP (two frames near a cut, where a packet gives points to both); otherwise a block of
@@ -43,21 +51,35 @@ class OutputSink : public Sink {
     std::vector<std::uint64_t> packets;  // packet index of each point (CSV)
     port::BirdseyeView png;              // PNG
   };
+  // What each sensor's outputs need.
+  struct SensorOut {
+    std::string label;  // the CSV's `sensor` column (quoted where CSV needs it)
+    std::string token;  // {sensor}: a ROS 2 name token
+    std::uint16_t channel = 0;  // MCAP: its topic's channel
+    std::string frame_id;       // MCAP: header.frame_id
+  };
+  using FrameKey = std::pair<std::uint32_t, std::uint64_t>;  // sensor, frame id
+
   bool write_cloud(const std::string& path, const std::vector<Point>& points, const port::BirdseyeView& png,
                    std::string& error);
-  std::string frame_path(std::uint64_t id) const;
+  std::string frame_path(FrameKey key) const;
   int open_mcap(std::string& error);
-  void write_mcap_frame(std::uint64_t id, const std::vector<Point>& points);
-  Frame& open_frame(std::uint64_t id);
+  void write_mcap_frame(FrameKey key, const std::vector<Point>& points);
+  Frame& open_frame(FrameKey key);
+  const SensorOut& sensor(std::uint32_t s) const;
 
   OutputOptions options_;
   port::CsvWriter csv_;
   bool csv_open_ = false;
   port::CloudWriter stream_;    // the single PCD or PLY file
   port::McapWriter mcap_;      // --format mcap
-  std::uint16_t mcap_channel_ = 0;
+  std::uint16_t mcap_schema_ = 0;
+  std::map<std::string, std::uint16_t> mcap_topics_;  // topic -> channel
+  std::uint64_t receive_ns_ = 0;   // receive_time()
+  std::uint64_t last_log_ns_ = 0;  // the last message's log_time (they never go back)
+  std::vector<SensorOut> sensors_;  // by sensor
   port::BirdseyeView png_;      // the PNG of every point; with --per-frame, the empty view each frame starts from
-  std::map<std::uint64_t, Frame> open_;  // --per-frame and MCAP: the frames not yet closed, by id
+  std::map<FrameKey, Frame> open_;  // --per-frame and MCAP: the frames not yet closed
   std::vector<std::string> files_;
   std::uint64_t points_written_ = 0;
   std::string deferred_error_;

@@ -54,7 +54,8 @@ class Bytes {
 constexpr std::uint8_t kMagic[8] = {0x89, 'M', 'C', 'A', 'P', '0', '\r', '\n'};
 enum Op : std::uint8_t {
   kHeader = 0x01, kFooter = 0x02, kSchema = 0x03, kChannel = 0x04, kMessage = 0x05, kChunk = 0x06,
-  kMessageIndex = 0x07, kChunkIndex = 0x08, kStatistics = 0x0B, kSummaryOffset = 0x0E, kDataEnd = 0x0F,
+  kMessageIndex = 0x07, kChunkIndex = 0x08, kStatistics = 0x0B, kMetadata = 0x0C, kMetadataIndex = 0x0D,
+  kSummaryOffset = 0x0E, kDataEnd = 0x0F,
 };
 // Chunk record up to its records: opcode, length, start and end time, uncompressed size and CRC,
 // the empty compression string, the records' length.
@@ -266,6 +267,23 @@ WriteResult McapWriter::write_message(std::uint16_t channel_id, std::uint32_t se
   return error_;
 }
 
+WriteResult McapWriter::add_metadata(const std::string& name, const std::map<std::string, std::string>& metadata) {
+  if (file_ == nullptr && error_.ok()) error_ = WriteResult::failure("MCAP writer: not open");
+  if (in_message_ && error_.ok()) error_ = WriteResult::failure("MCAP writer: metadata inside a message");
+  if (!error_.ok()) return error_;
+  close_chunk();
+  std::vector<std::uint8_t> r;
+  Bytes b(r);
+  b.begin(kMetadata).str(name);
+  const std::size_t at = b.begin_list();
+  for (const auto& [k, v] : metadata) b.str(k).str(v);
+  b.end_list(at);
+  b.end();
+  metadata_index_.push_back({position_, r.size(), name});
+  put_record(r);
+  return error_;
+}
+
 WriteResult McapWriter::close() {
   if (file_ == nullptr) return error_;
   if (in_message_ && error_.ok()) error_ = WriteResult::failure("MCAP writer: closed inside a message");
@@ -295,7 +313,8 @@ WriteResult McapWriter::close() {
   group(kChannel, from);
   from = s.size();
   sb.begin(kStatistics).u64(message_count_).u16(static_cast<std::uint16_t>(schemas_.size()));
-  sb.u32(static_cast<std::uint32_t>(channels_.size())).u32(0).u32(0).u32(static_cast<std::uint32_t>(chunk_index_.size()));
+  sb.u32(static_cast<std::uint32_t>(channels_.size())).u32(0).u32(static_cast<std::uint32_t>(metadata_index_.size()));
+  sb.u32(static_cast<std::uint32_t>(chunk_index_.size()));
   sb.u64(first_time_).u64(last_time_);
   std::size_t at = sb.begin_list();
   for (const auto& [channel, count] : channel_counts_) sb.u16(channel).u64(count);
@@ -312,6 +331,9 @@ WriteResult McapWriter::close() {
     sb.end();
   }
   group(kChunkIndex, from);
+  from = s.size();
+  for (const MetadataIndex& m : metadata_index_) sb.begin(kMetadataIndex).u64(m.offset).u64(m.length).str(m.name).end();
+  group(kMetadataIndex, from);
   const std::uint64_t summary_offset_start = summary_start + s.size();
   for (const Group& g : groups) sb.begin(kSummaryOffset).u8(g.opcode).u64(g.start).u64(g.length).end();
   sb.u8(kFooter).u64(8 + 8 + 4).u64(summary_start).u64(summary_offset_start);

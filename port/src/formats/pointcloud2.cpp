@@ -180,5 +180,64 @@ void encode_point(const Point& p, std::int64_t stamp_ns, std::uint8_t out[kPoint
   store_le32(out + 28, t);
 }
 
+namespace {
+bool token_char(char c) {
+  return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '_';
+}
+bool digit(char c) { return c >= '0' && c <= '9'; }
+}  // namespace
+
+bool ros2_token(const std::string& token) {
+  if (token.empty() || digit(token[0]) || token.find("__") != std::string::npos) return false;
+  for (const char c : token)
+    if (!token_char(c)) return false;
+  return true;
+}
+
+std::string ros2_topic(const std::string& name, std::string& why) {
+  if (name.empty()) {
+    why = "a topic name cannot be empty";
+    return "";
+  }
+  for (const char c : name) {
+    if (c == '~') {
+      why = "'~' (a node's private namespace) has no node to resolve it in a file";
+      return "";
+    }
+    if (c == '{' || c == '}') {
+      why = "only the {sensor} substitution is known";
+      return "";
+    }
+    if (!token_char(c) && c != '/') {
+      why = std::string("'") + c + "' is not allowed: only letters, digits, '_' and '/'";
+      return "";
+    }
+  }
+  const std::string full = name[0] == '/' ? name : "/" + name;
+  if (full.size() > 1 && full.back() == '/') {
+    why = "a topic name cannot end with '/'";
+    return "";
+  }
+  if (full.find("//") != std::string::npos) {
+    why = "a topic name cannot hold '//'";
+    return "";
+  }
+  if (full.find("__") != std::string::npos) {
+    why = "a topic name cannot hold '__'";
+    return "";
+  }
+  if (full == "/") {
+    why = "'/' names no topic";
+    return "";
+  }
+  for (std::size_t i = 0; i + 1 < full.size(); ++i) {
+    if (full[i] == '/' && digit(full[i + 1])) {
+      why = "a name token cannot start with a digit";
+      return "";
+    }
+  }
+  return full;
+}
+
 }  // namespace port
 }  // namespace hesai

@@ -235,16 +235,21 @@ WriteResult CsvWriter::write_buffer() {
   return sticky_;
 }
 
-WriteResult CsvWriter::write(const Point& p, std::uint32_t frame, std::uint64_t packet) {
-  return write(&p, 1, frame, packet);
+WriteResult CsvWriter::write(const Point& p, std::uint32_t frame, std::uint64_t packet, const std::string& sensor) {
+  return write(&p, 1, frame, packet, sensor);
 }
 
-WriteResult CsvWriter::write(const Point* points, std::size_t count, std::uint32_t frame, std::uint64_t packet) {
+WriteResult CsvWriter::write(const Point* points, std::size_t count, std::uint32_t frame, std::uint64_t packet,
+                             const std::string& sensor) {
   if (stream_ == nullptr) return WriteResult::failure("CsvWriter: not open");
+  if (sensor.size() > kMaxSensorBytes) return WriteResult::failure("CsvWriter: a sensor field of more than 1024 bytes");
   for (std::size_t i = 0; i < count; ++i) {
-    if (buffer_.size() - used_ < kCsvMaxRow + 1) (void)write_buffer();
+    if (buffer_.size() - used_ < kCsvMaxRow + 2 + sensor.size()) (void)write_buffer();
     const std::size_t n = format_csv_row(buffer_.data() + used_, points[i], frame, packet);
     used_ += n;
+    buffer_[used_++] = ',';
+    std::memcpy(buffer_.data() + used_, sensor.data(), sensor.size());
+    used_ += sensor.size();
     buffer_[used_++] = '\n';
   }
   rows_ += count;

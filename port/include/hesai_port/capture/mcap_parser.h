@@ -65,6 +65,10 @@ class McapParser {
   [[nodiscard]] CaptureError error() const { return error_; }
   /// Byte offset of the record where the error was found.
   std::uint64_t error_offset() const { return error_offset_; }
+  /// The topic of PandarScan channel `id` (its bytes as in the file), for channel ids below
+  /// kTopicIds (rosbag2 numbers channels from 0); empty for others and before their Channel record.
+  ByteView topic(std::uint16_t id) const { return id < kTopicIds ? topics_[id] : ByteView{}; }
+  static constexpr std::size_t kTopicIds = 256;
   /// Top-level records read whole, the Header the first: for mcap_cut, the record the file was
   /// cut after.
   std::uint32_t records_whole() const { return records_whole_; }
@@ -110,6 +114,7 @@ class McapParser {
   IdSet channels_{};
   IdSet scan_channels_{};
   bool any_scan_channel_ = false;
+  std::array<ByteView, kTopicIds> topics_{};  // of the PandarScan channels
   std::uint32_t record_index_ = 0;
   std::uint32_t records_whole_ = 0;  // top-level records read, the Header included
   bool ended_by_footer_ = false;     // the data section ended at a Footer (no Data End)

@@ -1,9 +1,10 @@
 // MCAP files (https://mcap.dev/spec, major version 0), written as a stream.
 //
 // What a file holds, in order: the magic, a Header record, the data section (Chunk records,
-// uncompressed, each followed by its Message Index records), a Data End record, the summary
-// section (Schema, Channel, Statistics and Chunk Index records, grouped by opcode), one Summary
-// Offset record per group, the Footer and the magic again. Every CRC is filled in: each chunk's
+// uncompressed, each followed by its Message Index records; Metadata records between chunks), a
+// Data End record, the summary section (Schema, Channel, Statistics, Chunk Index and Metadata
+// Index records, grouped by opcode), one Summary Offset record per group, the Footer and the
+// magic again. Every CRC is filled in: each chunk's
 // uncompressed_crc, the Data End's data_section_crc (over every byte before the Data End record,
 // the leading magic and the Header included, as the reference TypeScript writer does) and the
 // Footer's summary_crc.
@@ -60,6 +61,10 @@ class McapWriter {
   /// begin_message(), append() and end_message() in one.
   WriteResult write_message(std::uint16_t channel_id, std::uint32_t sequence, std::uint64_t log_time,
                             std::uint64_t publish_time, const void* data, std::size_t size);
+  /// Writes a Metadata record `name` with its key-value pairs into the data section (the open chunk,
+  /// if any, is closed first: metadata lies outside chunks) and indexes it in the summary
+  /// (Metadata Index), where readers such as rosbag2 look for it.
+  WriteResult add_metadata(const std::string& name, const std::map<std::string, std::string>& metadata);
   /// Closes the open chunk, writes the Data End, the summary, the Footer and the magic, and closes
   /// the file. Reports the first failure of any call.
   WriteResult close();
@@ -77,6 +82,10 @@ class McapWriter {
     std::uint16_t id, schema_id;
     std::string topic, message_encoding;
     std::map<std::string, std::string> metadata;
+  };
+  struct MetadataIndex {
+    std::uint64_t offset, length;
+    std::string name;
   };
   struct ChunkIndex {
     std::uint64_t start_time, end_time, offset, length, records;
@@ -113,6 +122,7 @@ class McapWriter {
   std::uint64_t message_count_ = 0, first_time_ = 0, last_time_ = 0;
   std::map<std::uint16_t, std::uint64_t> channel_counts_;
   std::vector<ChunkIndex> chunk_index_;
+  std::vector<MetadataIndex> metadata_index_;
 };
 
 }  // namespace port

@@ -58,5 +58,16 @@ inline std::uint64_t pointcloud2_size(std::size_t head_bytes, std::uint64_t poin
 /// One point record (the layout above); `stamp_ns` is the message's header.stamp.
 void encode_point(const Point& p, std::int64_t stamp_ns, std::uint8_t out[kPointStep]);
 
+/// `name` as a bag records a topic: checked against ROS 2's topic-name rules (rcl's
+/// validate_topic_name, for a name whose substitutions are done): only letters, digits, '_' and
+/// '/'; not empty; no token (the text between slashes) starting with a digit; no "//", no "__";
+/// no trailing '/'. '~' (the node's private namespace) and other "{...}" substitutions are refused:
+/// a file has no node to resolve them against. A relative name is made fully qualified ("/" + it).
+/// Returns the fully qualified name, or "" with the broken rule in `why`.
+std::string ros2_topic(const std::string& name, std::string& why);
+/// Whether `token` is a ROS 2 name token: letters, digits and '_', not starting with a digit,
+/// no "__", not empty.
+bool ros2_token(const std::string& token);
+
 }  // namespace port
 }  // namespace hesai

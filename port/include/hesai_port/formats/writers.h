@@ -71,7 +71,7 @@ class CsvWriter {
  public:
   /// The header line, without its line feed.
   static constexpr const char* kHeader =
-      "frame,packet,block,channel,return,azimuth_deg,elevation_deg,distance_m,x,y,z,intensity,time_ns";
+      "frame,packet,block,channel,return,azimuth_deg,elevation_deg,distance_m,x,y,z,intensity,time_ns,sensor";
 
   CsvWriter() = default;
   ~CsvWriter();
@@ -83,10 +83,15 @@ class CsvWriter {
   /// Writes to an open stream (stdout, a pipe) that stays the caller's: close() flushes it but
   /// does not fclose it. `name` is used in messages.
   WriteResult open(std::FILE* stream, const std::string& name = "stream");
-  /// One row. Rows go out in blocks; a failed block write is reported here or by close().
-  WriteResult write(const Point& p, std::uint32_t frame, std::uint64_t packet);
-  /// `count` rows of the same frame and packet.
-  WriteResult write(const Point* points, std::size_t count, std::uint32_t frame, std::uint64_t packet);
+  /// One row; `sensor` is the last column as it is written (a CSV field, quoted by the caller
+  /// where it must be; at most kMaxSensorBytes). Rows go out in blocks; a failed block write is
+  /// reported here or by close().
+  WriteResult write(const Point& p, std::uint32_t frame, std::uint64_t packet, const std::string& sensor);
+  /// `count` rows of the same frame, packet and sensor.
+  WriteResult write(const Point* points, std::size_t count, std::uint32_t frame, std::uint64_t packet,
+                    const std::string& sensor);
+  /// The longest `sensor` field write() takes.
+  static constexpr std::size_t kMaxSensorBytes = 1024;
   /// Writes what is buffered (the stream's own buffer is flushed too).
   WriteResult flush();
   /// Flushes and closes; reports a write error of any earlier block.
