@@ -12,6 +12,8 @@
 #include <fstream>
 #include <string>
 
+#include "hesai/ptc_settings.h"
+#include "hesai_port/net/ptc_client.h"
 #include "sensor_support.h"
 #include "udp_support.h"
 
@@ -321,6 +323,41 @@ TEST(SensorTime, ListenSaysTheTimeSourceAndRequireSyncRefusesAFreeRunningUnit) {
     }
   }
   EXPECT_EQ(run("listen --port 0 --require-sync --count 1").status, 1);  // goes with --sensor
+}
+
+// The stand-in's other answers, asked by the client directly: 0x06 with the PTP status query
+// (nebula HesaiPtpDiagStatus) in the state --ptp-state gives, another query refused; a set payload
+// of the wrong size refused with 'invalid input parameter' and nothing changed; 0x23 the FOV set.
+TEST(SensorStandIn, PtpDiagnosticsFovAndMalformedSets) {
+  StandIn s("qt128c2x_dual.pcap", "127.0.0.1", standin_options("--ptp-state tracking"));
+  ASSERT_NE(s.port(), 0) << s.stderr_text();
+  hesai::port::PtcClient client("127.0.0.1", static_cast<std::uint16_t>(s.port()), 3000);
+  namespace ptc = hesai::ptc;
+  std::vector<std::uint8_t> r;
+  const std::uint8_t status_query[1] = {0x01}, port_query[1] = {0x02};
+  ASSERT_TRUE(client.request(ptc::Command::ptp_diagnostics, hesai::ByteView{status_query, 1}, r).ok());
+  ptc::PtpDiagStatus diag;
+  ASSERT_EQ(ptc::parse_ptp_diag_status(hesai::ByteView{r.data(), r.size()}, diag), hesai::Error::ok);
+  EXPECT_EQ(diag.ptp_state, 1);  // tracking
+  hesai::port::PtcResult res = client.request(ptc::Command::ptp_diagnostics, hesai::ByteView{port_query, 1}, r);
+  EXPECT_EQ(res.outcome, hesai::port::PtcOutcome::sensor_error);
+  EXPECT_EQ(res.return_code, 1);
+
+  const std::string before = run("sensor config" + at(s) + " --json").out;
+  const std::uint8_t three[3] = {0x04, 0xB0, 0x00};  // 0x17 takes two bytes
+  res = client.request(ptc::Command::set_spin_rate, hesai::ByteView{three, 3}, r);
+  EXPECT_EQ(res.outcome, hesai::port::PtcOutcome::sensor_error);
+  EXPECT_EQ(res.return_code, 1);
+  EXPECT_EQ(run("sensor config" + at(s) + " --json").out, before);
+
+  ASSERT_EQ(run("sensor set" + at(s) + " fov=45-315.5").status, 0);
+  ASSERT_TRUE(client.request(ptc::Command::get_fov, {}, r).ok());
+  ptc::Fov fov;
+  ASSERT_EQ(ptc::parse_fov(hesai::ByteView{r.data(), r.size()}, fov), hesai::Error::ok);
+  EXPECT_EQ(fov.method, 0);
+  EXPECT_EQ(fov.start, 450);
+  EXPECT_EQ(fov.end, 3155);
+  EXPECT_TRUE(has(run("sensor status" + at(s) + " --json").out, "\"ptp_status\":\"tracking\""));
 }
 
 }  // namespace

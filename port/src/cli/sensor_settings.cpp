@@ -12,6 +12,7 @@
 #include "hesai/ptc_settings.h"
 #include "hesai_port/base/clock.h"
 #include "sensor.h"
+#include "settings_file.h"
 
 namespace hesai::cli {
 namespace {
@@ -22,12 +23,6 @@ using ptc::Setting;
 using ptc::Settings;
 using Bytes = std::vector<std::uint8_t>;
 
-// One setting asked for: its key and its value as text (set: after '='; apply: the JSON value,
-// strings without their quotes).
-struct Wanted {
-  Setting setting;
-  std::string text;
-};
 
 bool all_digits(const std::string& s, std::size_t max_digits) {
   if (s.empty() || s.size() > max_digits) return false;
@@ -235,121 +230,6 @@ int prepare(PtcClient& client, const std::vector<Wanted>& wanted, Model& model, 
   return kExitOk;
 }
 
-// ---- A flat JSON object, with lines for the messages ----
-
-class JsonReader {
- public:
-  explicit JsonReader(const std::string& text) : t_(text) {}
-  // Reads {"key": value, ...} into `out`; false with `error` ("line N: ...").
-  bool read(std::vector<Wanted>& out, std::string& error) {
-    if (!expect('{', error)) return false;
-    skip();
-    if (peek() == '}') {
-      ++at_;
-      return end(error);
-    }
-    for (;;) {
-      skip();
-      const std::size_t key_line = line_;
-      std::string key;
-      if (peek() != '"' || !string(key, error)) return fail("a key in double quotes", error);
-      if (!expect(':', error)) return false;
-      skip();
-      Setting s;
-      if (!ptc::setting_from_name(key.data(), key.size(), s)) {
-        error = "line " + std::to_string(key_line) + ": unknown key '" + key +
-                "' (keys: rpm, return_mode, standby, sync_angle, destination, fov)";
-        return false;
-      }
-      for (const Wanted& w : out)
-        if (w.setting == s) {
-          error = "line " + std::to_string(key_line) + ": key '" + key + "' given twice";
-          return false;
-        }
-      std::string value;
-      const char c = peek();
-      const bool number = c == '-' || (c >= '0' && c <= '9');
-      if (c == '"') {
-        if (!string(value, error)) return false;
-      } else if (number) {
-        while (at_ < t_.size() && std::strchr("+-.eE0123456789", t_[at_]) != nullptr) value += t_[at_++];
-      } else {
-        const char* kind = c == '{' ? "an object" : c == '[' ? "an array" : c == 't' || c == 'f' ? "a boolean" : c == 'n' ? "null" : nullptr;
-        if (kind == nullptr) return fail("a value", error);
-        error = "line " + std::to_string(line_) + ": key '" + key + "' takes " + type_of(s) + ", got " + kind;
-        return false;
-      }
-      const bool wants_number = s == Setting::rpm || s == Setting::sync_angle;
-      if (number && !wants_number) {
-        error = "line " + std::to_string(key_line) + ": key '" + key + "' takes " + type_of(s) + ", got a number";
-        return false;
-      }
-      if (!number && s == Setting::rpm) {
-        error = "line " + std::to_string(key_line) + ": key '" + key + "' takes a number, got a string";
-        return false;
-      }
-      out.push_back({s, value});
-      skip();
-      if (peek() == ',') {
-        ++at_;
-        continue;
-      }
-      if (peek() == '}') {
-        ++at_;
-        return end(error);
-      }
-      return fail("',' or '}'", error);
-    }
-  }
-
- private:
-  static const char* type_of(Setting s) {
-    return s == Setting::rpm ? "a number" : s == Setting::sync_angle ? "a number or \"off\"" : "a string";
-  }
-  char peek() const { return at_ < t_.size() ? t_[at_] : '\0'; }
-  void skip() {
-    while (at_ < t_.size() && (t_[at_] == ' ' || t_[at_] == '\t' || t_[at_] == '\r' || t_[at_] == '\n')) {
-      if (t_[at_] == '\n') ++line_;
-      ++at_;
-    }
-  }
-  bool fail(const char* wanted, std::string& error) {
-    error = "line " + std::to_string(line_) + ": not JSON: expected " + wanted +
-            (at_ < t_.size() ? std::string(", got '") + t_[at_] + "'" : std::string(", got the end of the file"));
-    return false;
-  }
-  bool expect(char c, std::string& error) {
-    skip();
-    if (peek() != c) return fail(c == '{' ? "'{'" : "':'", error);
-    ++at_;
-    return true;
-  }
-  bool end(std::string& error) {
-    skip();
-    return at_ == t_.size() || fail("the end of the file after '}'", error);
-  }
-  // A string without escapes but \" and \\ (every value here is plain ASCII).
-  bool string(std::string& out, std::string& error) {
-    ++at_;  // the opening quote
-    while (at_ < t_.size() && t_[at_] != '"') {
-      char c = t_[at_++];
-      if (c == '\n' || static_cast<unsigned char>(c) < 0x20) return fail("the closing '\"' on the same line", error);
-      if (c == '\\') {
-        if (at_ >= t_.size() || (t_[at_] != '"' && t_[at_] != '\\')) return fail("only \\\" or \\\\ after '\\'", error);
-        c = t_[at_++];
-      }
-      out += c;
-    }
-    if (at_ >= t_.size()) return fail("the closing '\"'", error);
-    ++at_;
-    return true;
-  }
-
-  const std::string& t_;
-  std::size_t at_ = 0;
-  std::size_t line_ = 1;
-};
-
 }  // namespace
 
 int sensor_config(PtcClient& client, bool json) {
@@ -462,7 +342,7 @@ int sensor_apply(PtcClient& client, const std::string& file, bool dry_run) {
   const std::string bytes = text.str();
   std::vector<Wanted> wanted;
   std::string error;
-  if (!JsonReader(bytes).read(wanted, error)) {
+  if (!read_settings_json(bytes, wanted, error)) {
     std::fprintf(stderr, "hesai sensor: %s: %s (nothing written)\n", file.c_str(), error.c_str());
     return kExitUsage;
   }
