@@ -10,7 +10,9 @@
 #include <gtest/gtest.h>
 
 #include <fstream>
+#include <regex>
 #include <string>
+#include <vector>
 
 #include "hesai/ptc_settings.h"
 #include "hesai_port/net/ptc_client.h"
@@ -98,11 +100,18 @@ TEST(SensorConfig, NamesBesideTheCodes) {
   ASSERT_NE(s.port(), 0) << s.stderr_text();
   const Ran json = run("sensor config" + at(s) + " --json");
   ASSERT_EQ(json.status, 0) << json.err;
-  for (const char* key : {"ip", "mask", "gateway", "destination_ip", "destination_port", "gps_port", "spin_rate_rpm", "sync",
-                          "sync_angle", "start_angle", "stop_angle", "clock_source", "udp_sequence", "trigger_method",
-                          "return_mode", "standby_mode", "motor_status", "vlan_flag", "vlan_id", "clock_data_format",
-                          "noise_filtering", "reflectivity_mapping"})
-    EXPECT_TRUE(has(json.out, std::string("\"") + key + "\":")) << key;
+  // Exactly the earlier keys, each coded field followed by its name.
+  std::vector<std::string> keys;
+  const std::regex key("\"([a-z_]+)\":");
+  for (auto it = std::sregex_iterator(json.out.begin(), json.out.end(), key); it != std::sregex_iterator(); ++it)
+    keys.push_back((*it)[1]);
+  EXPECT_EQ(keys, (std::vector<std::string>{
+                      "ip", "mask", "gateway", "destination_ip", "destination_port", "gps_port", "spin_rate_rpm", "sync",
+                      "sync_angle", "start_angle", "stop_angle", "clock_source", "clock_source_name", "udp_sequence",
+                      "udp_sequence_name", "trigger_method", "trigger_method_name", "return_mode", "return_mode_name",
+                      "standby_mode", "standby_mode_name", "motor_status", "motor_status_name", "vlan_flag",
+                      "vlan_flag_name", "vlan_id", "clock_data_format", "noise_filtering", "reflectivity_mapping",
+                      "reflectivity_mapping_name"}));
   // The stand-in: clock source PTP (1) with a PTP state, UDP sequence on, the rest 0.
   EXPECT_EQ(json_number(json.out, "clock_source"), 1);
   EXPECT_EQ(json_text(json.out, "clock_source_name"), "PTP");
@@ -119,6 +128,8 @@ TEST(SensorConfig, NamesBesideTheCodes) {
   EXPECT_TRUE(has(text.out, "return_mode           last\n")) << text.out;
   EXPECT_TRUE(has(text.out, "standby_mode          in operation\n")) << text.out;
   EXPECT_TRUE(has(text.out, "reflectivity_mapping  linear\n")) << text.out;
+  EXPECT_TRUE(has(text.out, "sync                  off\n")) << text.out;
+  EXPECT_TRUE(has(text.out, "motor_status          clockwise\n")) << text.out;
   const Ran status = run("sensor status" + at(s) + " --json");
   EXPECT_TRUE(has(status.out, "\"ptp_status\":\"locked\"")) << status.out;
 }

@@ -255,7 +255,7 @@ int sensor_config(PtcClient& client, bool json) {
       {"destination_port", std::to_string(c.destination_port), nullptr},
       {"gps_port", std::to_string(c.gps_port), nullptr},
       {"spin_rate_rpm", std::to_string(c.spin_rate_rpm), nullptr},
-      {"sync", std::to_string(c.sync), ptc::on_off_name(c.sync)},
+      {"sync", std::to_string(c.sync), nullptr},
       {"sync_angle", std::to_string(c.sync_angle), nullptr},
       {"start_angle", std::to_string(c.start_angle), nullptr},
       {"stop_angle", std::to_string(c.stop_angle), nullptr},
@@ -282,6 +282,7 @@ int sensor_config(PtcClient& client, bool json) {
     }
     // Text: the name in place of the code, the angles in degrees.
     std::string value = f.name != nullptr ? (f.present ? std::string(f.name) : "absent") : f.value;
+    if (key == "sync") value = ptc::on_off_name(c.sync);
     if (value.size() >= 2 && value.front() == '"') value = value.substr(1, value.size() - 2);
     if (key == "sync_angle") value = std::to_string(c.sync_angle / 100) + "." + (c.sync_angle % 100 < 10 ? "0" : "") +
                                      std::to_string(c.sync_angle % 100) + " deg";
