@@ -249,6 +249,48 @@ TEST(SensorApply, WritesOnlyWhatDiffersThenHasNothingToDo) {
   std::remove(file.c_str());
 }
 
+// Each key alone, on a QT128C2X stand-in: --dry-run says what differs and changes nothing, apply
+// changes it (read back by 'sensor config --json' in the configuration's units), a second apply
+// has nothing to do.
+TEST(SensorApply, EachKeyDryRunApplyAndAgain) {
+  StandIn s("qt128c2x_dual.pcap", "127.0.0.1", standin_options());
+  ASSERT_NE(s.port(), 0) << s.stderr_text();
+  const long long rpm = json_number(run("sensor config" + at(s) + " --json").out, "spin_rate_rpm");
+  ASSERT_NE(rpm, 1200);
+  struct Case {
+    const char* json;         // the file's one key
+    std::string line;         // "KEY BEFORE -> AFTER"
+    const char* config_key;   // what the configuration then reports
+    long long config_value;
+  };
+  const Case cases[] = {
+      {"\"rpm\": 1200", "rpm " + std::to_string(rpm) + " -> 1200", "spin_rate_rpm", 1200},
+      {"\"return_mode\": \"last_first\"", "return_mode last -> last_first", "return_mode", 4},
+      {"\"standby\": \"on\"", "standby off -> on", "standby_mode", 1},
+      {"\"sync_angle\": 359", "sync_angle off -> 359", "sync_angle", 35900},
+      {"\"destination\": \"127.0.0.9:2400,10200\"", "destination 127.0.0.1:2368,10110 -> 127.0.0.9:2400,10200",
+       "destination_port", 2400},
+      {"\"fov\": \"0.5-359.9\"", "fov 0.0-0.0 -> 0.5-359.9", "stop_angle", 3599},
+  };
+  for (const Case& c : cases) {
+    SCOPED_TRACE(c.json);
+    const std::string file = write_file("one_key.json", std::string("{") + c.json + "}\n");
+    const std::string before = run("sensor config" + at(s) + " --json").out;
+    const Ran dry = run("sensor apply" + at(s) + " " + file + " --dry-run");
+    EXPECT_EQ(dry.status, 0) << dry.err;
+    EXPECT_EQ(dry.out, "differs: " + c.line + "\ndry run: nothing written\n");
+    EXPECT_EQ(run("sensor config" + at(s) + " --json").out, before);
+    const Ran apply = run("sensor apply" + at(s) + " " + file);
+    EXPECT_EQ(apply.status, 0) << apply.err;
+    EXPECT_EQ(apply.out, "differs: " + c.line + "\nchanged: " + c.line + "\n");
+    EXPECT_EQ(json_number(run("sensor config" + at(s) + " --json").out, c.config_key), c.config_value);
+    const Ran again = run("sensor apply" + at(s) + " " + file);
+    EXPECT_EQ(again.status, 0) << again.err;
+    EXPECT_EQ(again.out, "nothing to change: the unit has every setting of " + file + "\n");
+    std::remove(file.c_str());
+  }
+}
+
 // A file that is not JSON, an unknown key, a value of the wrong type: exit 1 naming the line or
 // the key, before anything is sent (no unit listens on the port: a connection would be exit 2).
 TEST(SensorApply, BadFilesNameTheLineOrKeyBeforeAnythingIsSent) {
