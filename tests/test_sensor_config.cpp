@@ -317,9 +317,23 @@ TEST(SensorApply, BadFilesNameTheLineOrKeyBeforeAnythingIsSent) {
     EXPECT_TRUE(has(r.err, c.says)) << r.err;
     std::remove(file.c_str());
   }
-  const Ran missing = run("sensor apply 127.0.0.1 --ptc-port " + std::to_string(closed) + " " + temp_path("absent.json"));
+  const std::string to = "sensor apply 127.0.0.1 --ptc-port " + std::to_string(closed) + " --timeout 2 ";
+  const Ran missing = run(to + temp_path("absent.json"));
   EXPECT_EQ(missing.status, 1);
   EXPECT_TRUE(has(missing.err, "cannot read")) << missing.err;
+  const Ran folder = run(to + "/tmp");
+  EXPECT_EQ(folder.status, 1);
+  EXPECT_TRUE(has(folder.err, "cannot read '/tmp': Is a directory")) << folder.err;
+  const std::string empty = write_file("empty.json", "");
+  const Ran none = run(to + empty);
+  EXPECT_EQ(none.status, 1);
+  EXPECT_TRUE(has(none.err, "line 1: not JSON: expected '{', got the end of the file")) << none.err;
+  const std::string big = write_file("big.json", "{\"rpm\": 600" + std::string(70000, ' ') + "}");
+  const Ran large = run(to + big);
+  EXPECT_EQ(large.status, 1);
+  EXPECT_TRUE(has(large.err, "larger than 65536 bytes")) << large.err;
+  std::remove(empty.c_str());
+  std::remove(big.c_str());
 }
 
 // reboot --wait: 0x10, then the inventory until the unit answers again. The stand-in is down for

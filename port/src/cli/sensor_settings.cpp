@@ -5,7 +5,6 @@
 #include <cstdio>
 #include <cstring>
 #include <fstream>
-#include <sstream>
 #include <vector>
 
 #include "hesai/ptc.h"
@@ -334,15 +333,25 @@ int sensor_set(PtcClient& client, const std::vector<std::string>& pairs) {
 }
 
 int sensor_apply(PtcClient& client, const std::string& file, bool dry_run) {
+  // At most 64 KiB: a settings file holds six keys.
+  constexpr std::size_t kMaxFileBytes = 65536;
+  std::string bytes, error;
   std::ifstream in(file, std::ios::binary);
-  std::stringstream text;
-  if (!in || !(text << in.rdbuf())) {
-    std::fprintf(stderr, "hesai sensor: cannot read '%s': %s\n", file.c_str(), std::strerror(errno));
+  char buf[4096];
+  while (in && bytes.size() <= kMaxFileBytes) {
+    in.read(buf, sizeof buf);
+    bytes.append(buf, static_cast<std::size_t>(in.gcount()));
+  }
+  if (!in.is_open() || in.bad()) {
+    std::fprintf(stderr, "hesai sensor: cannot read '%s': %s (nothing written)\n", file.c_str(), std::strerror(errno));
     return kExitUsage;
   }
-  const std::string bytes = text.str();
+  if (bytes.size() > kMaxFileBytes) {
+    std::fprintf(stderr, "hesai sensor: '%s' is larger than %zu bytes: not a settings file (nothing written)\n",
+                 file.c_str(), kMaxFileBytes);
+    return kExitUsage;
+  }
   std::vector<Wanted> wanted;
-  std::string error;
   if (!read_settings_json(bytes, wanted, error)) {
     std::fprintf(stderr, "hesai sensor: %s: %s (nothing written)\n", file.c_str(), error.c_str());
     return kExitUsage;
