@@ -350,10 +350,19 @@ TEST(SensorReboot, WaitsUntilTheUnitAnswersAgain) {
   }
   StandIn s("pandar64_dual.pcap", "127.0.0.1", standin_options("--reboot-seconds 5"));
   ASSERT_NE(s.port(), 0) << s.stderr_text();
+  // Without --wait: 0x10 only; the unit is then down.
+  const Ran now = run("sensor reboot" + at(s));
+  EXPECT_EQ(now.status, 0) << now.err;
+  EXPECT_TRUE(has(now.err, "reboot requested")) << now.err;
+  EXPECT_EQ(run("sensor info" + at(s)).status, 2);
   const Ran r = run("sensor reboot" + at(s) + " --wait 2");
-  EXPECT_EQ(r.status, 2);
-  EXPECT_TRUE(has(r.err, "did not answer within 2.0 s of its reboot")) << r.err;
-  EXPECT_LT(r.seconds, 3.5);  // the wait, and at most one request's timeout beyond it... on the loopback, none
+  EXPECT_EQ(r.status, 2);  // the 0x10 itself finds the unit down
+  EXPECT_TRUE(has(r.err, "0x10")) << r.err;
+  usleep(5200000);  // up again
+  const Ran late = run("sensor reboot" + at(s) + " --wait 2");
+  EXPECT_EQ(late.status, 2);
+  EXPECT_TRUE(has(late.err, "did not answer within 2.0 s of its reboot")) << late.err;
+  EXPECT_LT(late.seconds, 3.5);  // the wait; a unit that closes connections costs no timeout
   EXPECT_EQ(run("sensor reboot" + at(s) + " --wait 0").status, 1);  // usage
 }
 
@@ -390,6 +399,19 @@ TEST(SensorTime, ListenSaysTheTimeSourceAndRequireSyncRefusesAFreeRunningUnit) {
     }
   }
   EXPECT_EQ(run("listen --port 0 --require-sync --count 1").status, 1);  // goes with --sensor
+}
+
+// The stand-in's options refuse bad values (exit 1) and go with --serve-ptc.
+TEST(SensorStandIn, OptionsAreChecked) {
+  const std::string replay = "replay " + data_path("pandar64_dual.pcap") + " --to 127.0.0.1:9 --quiet ";
+  for (const char* bad : {"--serve-ptc 127.0.0.1:0 --ptp-state synced", "--serve-ptc 127.0.0.1:0 --refuse-set 0x1FF",
+                          "--serve-ptc 127.0.0.1:0 --refuse-set 0x17:0", "--serve-ptc 127.0.0.1:0 --ignore-set x",
+                          "--serve-ptc 127.0.0.1:0 --config-bytes 48", "--serve-ptc 127.0.0.1:0 --reboot-seconds -1",
+                          "--ptp-state locked", "--refuse-set 0x17"}) {
+    SCOPED_TRACE(bad);
+    const Ran r = run(replay + bad);
+    EXPECT_EQ(r.status, 1) << r.err;
+  }
 }
 
 // The stand-in's other answers, asked by the client directly: 0x06 with the PTP status query

@@ -1,6 +1,7 @@
 // Changing a sensor: 'hesai sensor config' by name, 'set', 'apply' (a JSON file), 'reboot', and
 // the time-source check of 'listen --sensor'. The payloads, the allowed values and the names are
 // the core's (hesai/ptc_settings.h); this file parses what the user gives, talks, and prints.
+#include <algorithm>
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
@@ -402,8 +403,8 @@ int sensor_reboot(PtcClient& client, double wait_s) {
   // The unit goes down some time after its acknowledgement: the first poll waits a second.
   const std::int64_t start = port::monotonic_ns();
   const std::int64_t deadline = start + static_cast<std::int64_t>(wait_s * 1e9);
-  std::int64_t next = start + 1000000000;
-  while (next < deadline) {
+  std::int64_t next = std::min(start + 1000000000, deadline);  // a wait of a second or less: one poll at its end
+  while (next <= deadline) {
     port::sleep_until_ns(next);
     Bytes inv;
     const PtcResult result = client.request(ptc::Command::inventory, {}, inv);
