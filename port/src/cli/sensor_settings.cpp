@@ -169,18 +169,17 @@ bool parse_value(const Wanted& w, Model model, const Settings& current, Settings
 }
 
 // Reads the configuration into `out`. Exit status (kExitInput after saying why).
-int read_settings(PtcClient& client, Settings& out, ptc::Config* config = nullptr) {
+int read_settings(PtcClient& client, Settings& out) {
   Bytes r;
   if (!ask(client, ptc::Command::config, {}, r)) return kExitInput;
   ptc::Config c;
   if (const Error e = ptc::parse_config(ByteView{r.data(), r.size()}, c); e != Error::ok)
     return payload_error(client, "configuration", e, r.size());
   ptc::settings_from_config(c, out);
-  if (config != nullptr) *config = c;
   return kExitOk;
 }
 
-// Writes `w` (already in `value`), then reads the configuration back into `now`. Exit status:
+// Writes setting `s` (its value in `value`), then reads the configuration back into `now`. Exit status:
 // kExitInput, saying why, for a return code or a value that did not take.
 int write_setting(PtcClient& client, Model model, Setting s, const Settings& value, Settings& now) {
   std::uint8_t payload[ptc::kMaxSetPayloadBytes];
