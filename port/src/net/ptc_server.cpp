@@ -227,6 +227,10 @@ void PtcServer::run_tls() {
     if (poll(&p, 1, kPollMs) <= 0) continue;
     const int client = accept4(fd_, nullptr, nullptr, SOCK_CLOEXEC);
     if (client < 0) continue;
+    if (rebooting()) {  // down: not answered
+      ::close(client);
+      continue;
+    }
     serve_tls(client);
     ::close(client);
   }
@@ -269,8 +273,8 @@ void PtcServer::serve_tls(int fd) {
     std::uint8_t out[ptc::kHeaderBytes];
     ptc::encode_header(header.command, code, static_cast<std::uint32_t>(payload.size()), out);
     if (tls->send_all(out, sizeof out, wait_deadline()) != PtcTransport::Io::ok ||
-        tls->send_all(payload.data(), payload.size(), wait_deadline()) != PtcTransport::Io::ok)
-      return;
+        tls->send_all(payload.data(), payload.size(), wait_deadline()) != PtcTransport::Io::ok || rebooting())
+      return;  // after a reboot's acknowledgement, the connection too
   }
 }
 

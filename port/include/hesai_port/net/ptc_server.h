@@ -14,7 +14,7 @@
 // set_motor_speed() (0 in standby) and the PTP state of StandInContent; 0x06 with query 1 the PTP
 // status (offset 0, the state, the uptime in ms); 0x10 is acknowledged, then for
 // StandInContent::reboot_ms the unit is down: every connection, open or new, is closed unanswered
-// (plain TCP only). For tests, StandInContent can make a set command answer a return code
+// (over TLS too). For tests, StandInContent can make a set command answer a return code
 // (refuse) or be acknowledged and not applied (ignore), and cut the configuration short. 0x2E with
 // a 32-byte client random: a fresh lidar random (from /dev/urandom), 'unsupported command' without
 // a secret, 'invalid input parameter' for another payload size; 0x2D the session state; 0x2F ends
