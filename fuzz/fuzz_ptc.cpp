@@ -9,6 +9,7 @@
 
 #include "fuzz_common.h"
 #include "hesai/ptc.h"
+#include "hesai/ptc_settings.h"
 
 namespace {
 
@@ -84,5 +85,22 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   if (re == Error::ok) check(std::memcmp(random, payload.data, sizeof random) == 0);
   bool on = false;
   check((ptc::parse_signature_state(payload, on) == Error::ok) == (payload.size == 1));
+  // The settings (hesai/ptc_settings.h): a set request as the stand-in reads it, with the
+  // response's command byte; what parses encodes back to the same bytes.
+  ptc::Setting setting;
+  ptc::Settings settings;
+  const Error pe = ptc::parse_setting(response[2], payload, setting, settings);
+  hesai_fuzz::check_named(pe);
+  if (pe == Error::ok) {
+    std::uint8_t again[ptc::kMaxSetPayloadBytes];
+    std::size_t n = 0;
+    ptc::encode_setting(setting, settings, again, n);
+    check(n == payload.size && std::memcmp(again, payload.data, n) == 0);
+    check(static_cast<std::uint8_t>(ptc::set_command(setting)) == response[2]);
+  }
+  ptc::Fov fov;
+  check((ptc::parse_fov(payload, fov) == Error::ok) == (payload.size >= 5));
+  ptc::PtpDiagStatus diag;
+  check((ptc::parse_ptp_diag_status(payload, diag) == Error::ok) == (payload.size >= ptc::kPtpDiagStatusBytes));
   return 0;
 }

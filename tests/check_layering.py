@@ -35,7 +35,7 @@ CORE_HEADERS = {  # public header (under core/include/hesai/) -> concern
     'crc32.h': 'crc',
     'sha256.h': 'crypto', 'hmac.h': 'crypto', 'hkdf.h': 'crypto', 'ct.h': 'crypto',
     'calibration.h': 'calibration', 'detail/decimal.h': 'calibration',
-    'ptc.h': 'ptc', 'detail/kernel_calls.h': 'kernels',
+    'ptc.h': 'ptc', 'ptc_settings.h': 'ptc', 'detail/kernel_calls.h': 'kernels',
     'decoder.h': 'sensors', 'point.h': 'kernels', 'gps.h': 'sensors', 'detail/pandar40_packet.h': 'sensors',
     'detail/pandar64_packet.h': 'sensors', 'detail/qt128_packet.h': 'sensors', 'detail/xt_packet.h': 'sensors',
     'detail/tables/': 'sensors', 'detail/qt64_packet.h': 'sensors',

@@ -11,6 +11,7 @@
 #include "hesai/decoder.h"
 #include "hesai/hkdf.h"
 #include "hesai/ptc.h"
+#include "hesai/ptc_settings.h"
 #include "hesai/detail/qt128_packet.h"
 #include "test_support.h"
 
@@ -303,3 +304,215 @@ TEST(Ptc, Qt128SignVerifiesWithTheSessionKey) {
 }
 
 }  // namespace
+
+// ---- Settings (hesai/ptc_settings.h) ----
+
+namespace {
+
+Bytes encoded(ptc::Setting s, const ptc::Settings& v) {
+  std::uint8_t out[ptc::kMaxSetPayloadBytes];
+  std::size_t size = 0;
+  ptc::encode_setting(s, v, out, size);
+  return Bytes(out, out + size);
+}
+
+}  // namespace
+
+// The set payloads in the SDK's order (ptc_client.cc SetSpinSpeed, SetReturnMode, SetStandbyMode,
+// SetSyncAngle, SetDesIpandPort, SetAllChannelFov with fov_model 0), big-endian, the bytes written
+// by hand; and the stand-in's reading of the same bytes.
+TEST(Ptc, SetPayloadsInTheSdkOrder) {
+  ptc::Settings v;
+  v.rpm = 1200;
+  v.return_mode = 5;
+  v.standby = 1;
+  v.sync = 1;
+  v.sync_angle = 45;
+  const std::uint8_t ip[4] = {192, 168, 1, 100};
+  std::memcpy(v.destination_ip, ip, 4);
+  v.destination_port = 2368;
+  v.gps_port = 10110;
+  v.fov_start = 100;   // 10.0 degrees
+  v.fov_end = 3505;    // 350.5 degrees
+  struct Case {
+    ptc::Setting setting;
+    std::uint8_t command;
+    Bytes bytes;
+  };
+  const Case cases[] = {
+      {ptc::Setting::rpm, 0x17, {0x04, 0xB0}},
+      {ptc::Setting::return_mode, 0x1E, {0x05}},
+      {ptc::Setting::standby, 0x1C, {0x01}},
+      {ptc::Setting::sync_angle, 0x18, {0x01, 0x00, 0x2D}},
+      {ptc::Setting::destination, 0x20, {0xC0, 0xA8, 0x01, 0x64, 0x09, 0x40, 0x27, 0x7E}},
+      {ptc::Setting::fov, 0x22, {0x00, 0x00, 0x64, 0x0D, 0xB1}},
+  };
+  for (const Case& c : cases) {
+    SCOPED_TRACE(ptc::setting_name(c.setting));
+    EXPECT_EQ(static_cast<int>(ptc::set_command(c.setting)), c.command);
+    EXPECT_EQ(encoded(c.setting, v), c.bytes);
+    ptc::Setting read = ptc::Setting::rpm;
+    ptc::Settings back;
+    ASSERT_EQ(ptc::parse_setting(c.command, ByteView{c.bytes.data(), c.bytes.size()}, read, back), Error::ok);
+    EXPECT_EQ(read, c.setting);
+    EXPECT_TRUE(ptc::same_setting(c.setting, back, v));
+    Bytes longer = c.bytes;
+    longer.push_back(0);
+    EXPECT_EQ(ptc::parse_setting(c.command, ByteView{longer.data(), longer.size()}, read, back), Error::ptc_payload_length);
+    EXPECT_EQ(ptc::parse_setting(c.command, ByteView{c.bytes.data(), c.bytes.size() - 1}, read, back),
+              Error::ptc_payload_length);
+  }
+  ptc::Setting read;
+  ptc::Settings back;
+  EXPECT_EQ(ptc::parse_setting(0x08, ByteView{}, read, back), Error::ptc_command_mismatch);  // not a set command
+  const Bytes per_channel = {0x01, 0x00, 0x64, 0x0D, 0xB1};  // method 1: another layout
+  EXPECT_EQ(ptc::parse_setting(0x22, ByteView{per_channel.data(), per_channel.size()}, read, back), Error::invalid_argument);
+  EXPECT_STREQ(ptc::command_name(0x17), "set_spin_rate");
+  EXPECT_STREQ(ptc::command_name(0x10), "reboot");
+  EXPECT_STREQ(ptc::command_name(0x06), "ptp_diagnostics");
+}
+
+// A configuration in nebula's order (HesaiConfigBase, then HesaiConfig_XT_40P_64_QT128) read as
+// the settings: the sync angle from 0.01 degree to whole degrees, the FOV in 0.1 degree.
+TEST(Ptc, SettingsFromConfigInNebulaOrder) {
+  Bytes b = {10, 0, 0, 2, 255, 255, 255, 0, 10, 0, 0, 1, 10, 0, 0, 9};
+  be16(b, 2370);   // dest_LiDAR_udp_port
+  be16(b, 10111);  // dest_gps_udp_port
+  be16(b, 600);    // spin_rate
+  b.push_back(1);  // sync
+  be16(b, 9000);   // sync_angle: 90.00 degrees
+  be16(b, 305);    // start_angle: 30.5 degrees
+  be16(b, 3300);   // stop_angle: 330.0 degrees
+  for (int v : {1, 1, 0, 4, 1, 0, 0}) b.push_back(static_cast<std::uint8_t>(v));  // clock_source .. vlan_flag
+  be16(b, 0);
+  for (int v : {0, 0, 1}) b.push_back(static_cast<std::uint8_t>(v));
+  b.resize(b.size() + 6, 0);
+  ptc::Config c;
+  ASSERT_EQ(ptc::parse_config(ByteView{b.data(), b.size()}, c), Error::ok);
+  ptc::Settings s;
+  ptc::settings_from_config(c, s);
+  EXPECT_EQ(s.rpm, 600);
+  EXPECT_EQ(s.sync, 1);
+  EXPECT_EQ(s.sync_angle, 90);
+  EXPECT_EQ(s.return_mode, 4);
+  EXPECT_EQ(s.standby, 1);
+  EXPECT_EQ(s.destination_ip[0], 10);
+  EXPECT_EQ(s.destination_ip[3], 9);
+  EXPECT_EQ(s.destination_port, 2370);
+  EXPECT_EQ(s.gps_port, 10111);
+  EXPECT_EQ(s.fov_start, 305);
+  EXPECT_EQ(s.fov_end, 3300);
+  // A sync that is off equals any other that is off, whatever angle it keeps.
+  ptc::Settings off_a, off_b;
+  off_a.sync_angle = 10;
+  off_b.sync_angle = 20;
+  EXPECT_TRUE(ptc::same_setting(ptc::Setting::sync_angle, off_a, off_b));
+  off_a.sync = off_b.sync = 1;
+  EXPECT_FALSE(ptc::same_setting(ptc::Setting::sync_angle, off_a, off_b));
+  EXPECT_EQ(ptc::parse_config(ByteView{b.data(), 37}, c), Error::ptc_payload_length);
+}
+
+// nebula return_mode_from_int_hesai per model, its use_http_set_spin_rate, its FOV exclusions;
+// the manuals' spin rates.
+TEST(Ptc, AllowedValuesPerModel) {
+  struct Case {
+    Model model;
+    std::vector<const char*> modes;  // by code 0..5, "" where the model has none
+    std::vector<std::uint16_t> rates;
+    bool http, fov;
+  };
+  const std::vector<const char*> six = {"last", "strongest", "last_strongest", "first", "last_first", "first_strongest"};
+  const Case cases[] = {
+      {Model::pandar40p, {"last", "strongest", "last_strongest", "", "", ""}, {600, 1200}, true, true},
+      {Model::pandar64, {"last", "strongest", "last_strongest", "", "", ""}, {600, 1200}, true, false},
+      {Model::pandar_qt64, {"last", "", "last_first", "first", "", ""}, {300, 600, 1200}, true, true},
+      {Model::qt128c2x, six, {600, 1200}, false, true},
+      {Model::pandar_xt16, six, {300, 600, 1200}, false, true},
+      {Model::pandar_xt32, six, {300, 600, 1200}, false, true},
+      {Model::pandar_xt32m2x, six, {300, 600, 1200}, false, true},
+  };
+  for (const Case& c : cases) {
+    SCOPED_TRACE(hesai::model_name(c.model));
+    for (std::uint8_t code = 0; code < 6; ++code) {
+      const char* name = ptc::return_mode_name(c.model, code);
+      if (c.modes[code][0] == '\0') {
+        EXPECT_EQ(name, nullptr) << int(code);
+        continue;
+      }
+      ASSERT_NE(name, nullptr) << int(code);
+      EXPECT_STREQ(name, c.modes[code]);
+      std::uint8_t back = 99;
+      EXPECT_TRUE(ptc::return_mode_code(c.model, c.modes[code], std::strlen(c.modes[code]), back));
+      EXPECT_EQ(back, code);
+    }
+    EXPECT_EQ(ptc::return_mode_name(c.model, 6), nullptr);
+    std::uint16_t rates[ptc::kMaxSpinRates];
+    const std::size_t n = ptc::allowed_spin_rates(c.model, rates);
+    EXPECT_EQ(std::vector<std::uint16_t>(rates, rates + n), c.rates);
+    EXPECT_EQ(ptc::spin_rate_over_http(c.model), c.http);
+    EXPECT_EQ(ptc::fov_supported(c.model), c.fov);
+  }
+  std::uint8_t code = 0;
+  EXPECT_FALSE(ptc::return_mode_code(Model::pandar64, "first", 5, code));
+  EXPECT_FALSE(ptc::return_mode_code(Model::qt128c2x, "lastx", 5, code));
+  EXPECT_FALSE(ptc::return_mode_code(Model::qt128c2x, "las", 3, code));
+  ptc::Setting s;
+  EXPECT_TRUE(ptc::setting_from_name("sync_angle", 10, s));
+  EXPECT_EQ(s, ptc::Setting::sync_angle);
+  EXPECT_FALSE(ptc::setting_from_name("sync_angles", 11, s));
+  EXPECT_FALSE(ptc::setting_from_name("rp", 2, s));
+}
+
+TEST(Ptc, CodedFieldNames) {
+  EXPECT_STREQ(ptc::clock_source_name(0), "GPS");
+  EXPECT_STREQ(ptc::clock_source_name(1), "PTP");
+  EXPECT_STREQ(ptc::clock_source_name(2), "unknown");
+  EXPECT_STREQ(ptc::standby_name(0), "in operation");
+  EXPECT_STREQ(ptc::standby_name(1), "standby");
+  EXPECT_STREQ(ptc::trigger_method_name(1), "angle-based");
+  EXPECT_STREQ(ptc::motor_direction_name(1), "counter-clockwise");
+  EXPECT_STREQ(ptc::on_off_name(1), "on");
+  EXPECT_STREQ(ptc::on_off_name(7), "unknown");
+  EXPECT_STREQ(ptc::reflectivity_mapping_name(1), "nonlinear");
+}
+
+// Pandar64 manual, Appendix B.1: which states give synchronised times.
+TEST(Ptc, TimeSource) {
+  ptc::Status s;
+  const ptc::TimeSource by_ptp_state[4] = {ptc::TimeSource::free_run, ptc::TimeSource::ptp, ptc::TimeSource::ptp,
+                                           ptc::TimeSource::free_run};
+  for (std::uint8_t state = 0; state < 4; ++state) {
+    s.ptp_status = state;
+    EXPECT_EQ(ptc::time_source(1, s), by_ptp_state[state]) << int(state);
+  }
+  s.ptp_status = 2;
+  EXPECT_EQ(ptc::time_source(0, s), ptc::TimeSource::free_run);  // GPS clock source, GPS unlocked
+  s.gps_pps_lock = 1;
+  EXPECT_EQ(ptc::time_source(0, s), ptc::TimeSource::free_run);  // PPS without the GPRMC: no date
+  s.gprmc_status = 1;
+  EXPECT_EQ(ptc::time_source(0, s), ptc::TimeSource::gps);
+  EXPECT_EQ(ptc::time_source(7, s), ptc::TimeSource::free_run);
+  EXPECT_STREQ(ptc::time_source_name(ptc::TimeSource::free_run), "free_run");
+  EXPECT_STREQ(ptc::time_source_name(ptc::TimeSource::ptp), "ptp");
+  EXPECT_STREQ(ptc::time_source_name(ptc::TimeSource::gps), "gps");
+}
+
+// nebula HesaiPtpDiagStatus: master_offset i64, ptp_state i32, elapsed_millisec i32, big-endian.
+TEST(Ptc, PtpDiagStatus) {
+  Bytes b = {0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0xFB};  // -5
+  be32(b, 2);
+  be32(b, 1234);
+  ptc::PtpDiagStatus d;
+  ASSERT_EQ(ptc::parse_ptp_diag_status(ByteView{b.data(), b.size()}, d), Error::ok);
+  EXPECT_EQ(d.master_offset, -5);
+  EXPECT_EQ(d.ptp_state, 2);
+  EXPECT_EQ(d.elapsed_ms, 1234);
+  EXPECT_EQ(ptc::parse_ptp_diag_status(ByteView{b.data(), 15}, d), Error::ptc_payload_length);
+  const Bytes fov = {0x00, 0x01, 0x2C, 0x0B, 0xB8};  // method 0, 30.0 to 300.0 degrees
+  ptc::Fov f;
+  ASSERT_EQ(ptc::parse_fov(ByteView{fov.data(), fov.size()}, f), Error::ok);
+  EXPECT_EQ(f.method, 0);
+  EXPECT_EQ(f.start, 300);
+  EXPECT_EQ(f.end, 3000);
+  EXPECT_EQ(ptc::parse_fov(ByteView{fov.data(), 4}, f), Error::ptc_payload_length);
+}

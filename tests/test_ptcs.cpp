@@ -416,6 +416,23 @@ TEST(Ptcs, InfoAndStatusOverTls) {
   EXPECT_LT(plain.seconds, kTimeout + kSlack);
 }
 
+// The settings commands over PTCS (issue #33): a set read back, and a reboot the client waits out
+// (the stand-in closes every connection, before the handshake, while it is down).
+TEST(Ptcs, SetAndRebootOverTls) {
+  StandIn s(standin_tls("server.pem") + " --loop 100 --reboot-seconds 1.5");
+  ASSERT_NE(s.port(), 0) << s.stderr_text();
+  const Ran set = run("sensor set" + s.at() + tls_client() + " return_mode=last_strongest sync_angle=12");
+  ASSERT_EQ(set.status, 0) << set.err;
+  EXPECT_NE(set.out.find("return_mode: last -> last_strongest\nsync_angle: off -> 12\n"), std::string::npos) << set.out;
+  const Ran reboot = run("sensor reboot" + s.at() + tls_client() + " --wait 10");
+  EXPECT_EQ(reboot.status, 0) << reboot.err;
+  EXPECT_GE(reboot.seconds, 1.5);
+  EXPECT_LT(reboot.seconds, 5.0);
+  const Ran config = run("sensor config" + s.at() + tls_client() + " --json");
+  EXPECT_NE(config.out.find("\"return_mode\":2,\"return_mode_name\":\"last_strongest\""), std::string::npos) << config.out;
+  EXPECT_NE(config.out.find("\"sync_angle\":1200,"), std::string::npos) << config.out;
+}
+
 TEST(Ptcs, InfoOverMutualTls) {
   // The unit's certificate names the serial in serialNumber (CN is something else); the client's
   // key is reached through a symbolic link to a file of mode 0600 (followed, as ssh does).

@@ -34,6 +34,7 @@
 #include "hesai/ptc.h"
 #include "hesai_port/net/ptc_client.h"
 #include "packet_builder.h"
+#include "sensor_support.h"
 #include "test_support.h"
 #include "udp_support.h"
 
@@ -45,100 +46,8 @@ using hesai_test::free_udp_port;
 using hesai_test::cli;
 using hesai_test::read_text;
 
-std::string temp_path(const std::string& name) { return "/tmp/hesai_sensor_test_" + std::to_string(getpid()) + "_" + name; }
+using namespace hesai_test::sensor;
 
-struct Ran {
-  int status = -1;
-  std::string out, err;
-  double seconds = 0;
-  long max_rss_kib = 0;  // the program's own peak resident set
-};
-
-// Runs `hesai ARGS` (shell words) with the key variables of the test's own environment removed.
-Ran run(const std::string& args, const std::string& env = "") {
-  Ran r;
-  const std::string out = temp_path("stdout"), err = temp_path("stderr");
-  const std::string cmd = "exec env -u HESAI_SESSION_KEY -u HESAI_SECRET " + env + " " + cli() + " " + args + " >" + out +
-                          " 2>" + err;
-  const auto t0 = std::chrono::steady_clock::now();
-  const pid_t pid = fork();
-  if (pid == 0) {
-    execl("/bin/sh", "sh", "-c", cmd.c_str(), static_cast<char*>(nullptr));
-    _exit(127);
-  }
-  int st = 0;
-  rusage u{};
-  if (pid < 0 || wait4(pid, &st, 0, &u) != pid) return r;
-  r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  r.status = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
-  r.max_rss_kib = u.ru_maxrss;
-  r.out = read_text(out);
-  r.err = read_text(err);
-  std::remove(out.c_str());
-  std::remove(err.c_str());
-  return r;
-}
-
-// The integer after "key": in a flat JSON object; -1 when absent.
-long long json_number(const std::string& json, const std::string& key) {
-  const std::size_t at = json.find("\"" + key + "\":");
-  if (at == std::string::npos) return -1;
-  return std::stoll(json.substr(at + key.size() + 3));
-}
-
-// A stand-in sensor: 'hesai replay CAPTURE --serve-ptc ADDR:0 ...' in the background; the PTC
-// port it chose is read from its stderr.
-class StandIn {
- public:
-  StandIn(const std::string& capture, const std::string& address, const std::string& options) {
-    err_ = temp_path("standin_" + std::to_string(++count_));
-    const std::string cmd = "exec env -u HESAI_SECRET " + cli() + " replay " + data_path(capture) + " --serve-ptc " + address +
-                            ":0 " + options + " 2>" + err_;
-    pid_ = fork();
-    if (pid_ == 0) {
-      execl("/bin/sh", "sh", "-c", cmd.c_str(), static_cast<char*>(nullptr));
-      _exit(127);
-    }
-    for (int i = 0; i < 200 && port_ == 0; ++i) {
-      const std::string text = read_text(err_);
-      const std::size_t at = text.find("serving PTC on " + address + ":");
-      if (at != std::string::npos && text.find('\n', at) != std::string::npos)
-        port_ = std::stoi(text.substr(at + 16 + address.size()));
-      else usleep(25000);
-    }
-  }
-  ~StandIn() {
-    if (pid_ > 0) {
-      kill(pid_, SIGTERM);
-      waitpid(pid_, nullptr, 0);
-    }
-    std::remove(err_.c_str());
-  }
-  int port() const { return port_; }
-  std::string stderr_text() const { return read_text(err_); }
-  /// Sends SIGINT and waits (at most 10 s) for the program to end: the seconds it took, -1 when it
-  /// did not end (it is then killed).
-  double interrupt() {
-    const auto t0 = std::chrono::steady_clock::now();
-    kill(pid_, SIGINT);
-    double seconds = -1;
-    for (int i = 0; i < 10000; ++i) {
-      if (waitpid(pid_, nullptr, WNOHANG) == pid_) {
-        seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-        pid_ = -1;
-        return seconds;
-      }
-      usleep(1000);
-    }
-    return seconds;  // the destructor kills it
-  }
-
- private:
-  static inline int count_ = 0;
-  pid_t pid_ = -1;
-  int port_ = 0;
-  std::string err_;
-};
 
 std::string secret_file() {
   const std::string path = temp_path("secret");

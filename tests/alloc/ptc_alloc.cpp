@@ -7,6 +7,7 @@
 
 #include "alloc_counter.h"
 #include "hesai/ptc.h"
+#include "hesai/ptc_settings.h"
 
 TEST(ZeroAllocation, PtcCodec) {
   namespace ptc = hesai::ptc;
@@ -40,4 +41,45 @@ TEST(ZeroAllocation, PtcCodec) {
   const Error expected[9] = {Error::ok, Error::ok, Error::ptc_command_mismatch, Error::ok, Error::ok,
                              Error::ok, Error::ptc_payload_length, Error::ok, Error::ok};
   for (int i = 0; i < 9; ++i) EXPECT_EQ(e[i], expected[i]) << i;
+}
+
+// The settings (hesai/ptc_settings.h): every set payload encoded and read back, the read-back from
+// a configuration, the allowed values and the names, into caller storage.
+TEST(ZeroAllocation, PtcSettings) {
+  namespace ptc = hesai::ptc;
+  using hesai::ByteView;
+  using hesai::Error;
+  std::array<std::uint8_t, 64> config{};
+  Error e[ptc::kSettingCount + 3] = {};
+  bool same = true;
+  std::size_t named = 0;
+  const std::size_t n = hesai_test::allocations_during([&] {
+    ptc::Config cfg;
+    e[0] = ptc::parse_config(ByteView{config.data(), 47}, cfg);
+    ptc::Settings current, back;
+    ptc::settings_from_config(cfg, current);
+    for (std::size_t i = 0; i < ptc::kSettingCount; ++i) {
+      const auto s = static_cast<ptc::Setting>(i);
+      std::uint8_t payload[ptc::kMaxSetPayloadBytes];
+      std::size_t size = 0;
+      ptc::encode_setting(s, current, payload, size);
+      ptc::Setting read;
+      e[1 + i] = ptc::parse_setting(static_cast<std::uint8_t>(ptc::set_command(s)), ByteView{payload, size}, read, back);
+      same = same && ptc::same_setting(s, current, back);
+    }
+    std::uint16_t rates[ptc::kMaxSpinRates];
+    named += ptc::allowed_spin_rates(hesai::Model::qt128c2x, rates);
+    std::uint8_t code = 0;
+    named += ptc::return_mode_code(hesai::Model::pandar_xt32, "last_first", 10, code) ? std::size_t{code} : 0u;
+    named += ptc::return_mode_name(hesai::Model::pandar64, 7) == nullptr;
+    ptc::Fov fov;
+    ptc::PtpDiagStatus diag;
+    e[ptc::kSettingCount + 1] = ptc::parse_fov(ByteView{config.data(), 5}, fov);
+    e[ptc::kSettingCount + 2] = ptc::parse_ptp_diag_status(ByteView{config.data(), 15}, diag);  // too short
+  });
+  EXPECT_EQ(n, 0u);
+  for (std::size_t i = 0; i <= ptc::kSettingCount + 1; ++i) EXPECT_EQ(e[i], Error::ok) << i;
+  EXPECT_EQ(e[ptc::kSettingCount + 2], Error::ptc_payload_length);
+  EXPECT_TRUE(same);
+  EXPECT_EQ(named, 2u + 4u + 1u);  // two rates, code 4, no mode 7
 }

@@ -124,7 +124,7 @@ COMPONENTS = [
     ('streams/: frames, rotation, sequence, stream health, safety monitor, stats', 'streams',
      ['frame', 'rotation', 'sequence', 'health', 'safety', 'stats']),
     ('capi/: the C interface (hesai.h)', 'capi', ['hesai_c']),
-    ('ptc/: PTC framing and payloads (hesai/ptc.h)', 'ptc', ['ptc']),
+    ('ptc/: PTC framing and payloads (hesai/ptc.h, hesai/ptc_settings.h)', 'ptc', ['ptc', 'ptc_settings']),
 ]
 IN_BUDGET = {'sensors/: identify, validate, decode (every sensor)',
              'kernels/: the per-point code, the beam-cache rebuild, the vector path choice', 'base/: error names, x86-64 CPU features', 'crc/: CRC-32/MPEG-2',

@@ -37,9 +37,19 @@ inline constexpr std::uint8_t kMagic1 = 0x74;  ///< 't'
 /// The commands this library sends (and its stand-in sensor answers).
 enum class Command : std::uint8_t {
   calibration = 0x05,      ///< the angle-correction file
+  ptp_diagnostics = 0x06,  ///< PTP diagnostics (a query-type byte in)
   inventory = 0x07,        ///< serial number, MAC, versions, model
   config = 0x08,           ///< network, spin rate, return mode...
   status = 0x09,           ///< uptime, motor speed, temperatures, GPS/PTP state
+  reboot = 0x10,           ///< restart the unit (no payload)
+  set_spin_rate = 0x17,    ///< u16 rpm (hesai/ptc_settings.h has the set payloads)
+  set_sync_angle = 0x18,   ///< enable u8, angle u16 whole degrees
+  set_standby = 0x1C,      ///< u8: 0 in operation, 1 standby
+  set_return_mode = 0x1E,  ///< u8 return-mode code
+  set_destination = 0x20,  ///< IPv4[4], point-cloud port u16, GPS port u16
+  set_fov = 0x22,          ///< method u8 (0: all channels), start u16, end u16 (0.1 degree)
+  get_fov = 0x23,          ///< the same three fields
+  ptp_lock_offset = 0x3A,  ///< PTP lock offset
   signature_state = 0x2D,  ///< PTC_COMMAND_GET_DP_SIG_STATE: 1 byte, 0 off
   signature_start = 0x2E,  ///< PTC_COMMAND_DP_SIG_SESSION_START: client random in, lidar random out
   signature_stop = 0x2F,   ///< PTC_COMMAND_DP_SIG_SESSION_STOP

@@ -22,6 +22,16 @@ const char* command_name(std::uint8_t command) noexcept {
     case Command::inventory: return "inventory";
     case Command::config: return "config";
     case Command::status: return "status";
+    case Command::ptp_diagnostics: return "ptp_diagnostics";
+    case Command::reboot: return "reboot";
+    case Command::set_spin_rate: return "set_spin_rate";
+    case Command::set_sync_angle: return "set_sync_angle";
+    case Command::set_standby: return "set_standby";
+    case Command::set_return_mode: return "set_return_mode";
+    case Command::set_destination: return "set_destination";
+    case Command::set_fov: return "set_fov";
+    case Command::get_fov: return "get_fov";
+    case Command::ptp_lock_offset: return "ptp_lock_offset";
     case Command::signature_state: return "signature_state";
     case Command::signature_start: return "signature_start";
     case Command::signature_stop: return "signature_stop";

@@ -293,7 +293,7 @@ int cmd_listen(Args& args) {
   std::uint64_t port = 2368, gps_port = 10110, count = 0, ptc_port = ptc::kDefaultPort;
   std::string sensor_host;
   float seconds = 0, idle = 0, ptc_timeout = 3, session_poll = 1, signature_grace = 1;
-  bool json = false, quiet = false;
+  bool json = false, quiet = false, require_sync = false;
   TlsOptions tls;
   while (!args.empty()) {
     const std::string a = args.peek();
@@ -319,7 +319,10 @@ int cmd_listen(Args& args) {
                   "                          signature; a lost session is started again; the session is\n"
                   "                          stopped at the end), datagrams from any other address are\n"
                   "                          dropped and counted (foreign_packets), and packets of another\n"
-                  "                          model from its address too (foreign_model_packets)\n"
+                  "                          model from its address too (foreign_model_packets); first, its\n"
+                  "                          status and clock source say where its times come from (JSON:\n"
+                  "                          ptp_status, time_source ptp, gps or free_run)\n"
+                  "  --require-sync          with --sensor: exit 2 before recording when the unit runs free\n"
                   "  --session-poll S        ask the unit whether it still signs every S seconds (default 1)\n"
                   "  --signature-grace S     packets with no valid signature for S seconds mean the session\n"
                   "                          was lost: it is started again (default 1)\n"
@@ -340,6 +343,7 @@ int cmd_listen(Args& args) {
     std::string v;
     if (a == "--json") json = true;
     else if (a == "--quiet") quiet = true;
+    else if (a == "--require-sync") require_sync = true;
     else if (a == "--sensor") { if (!args.value(a, sensor_host)) return usage_error("listen", "--sensor needs a host"); }
     else if (a == "--ptc-port") {
       if (!args.value(a, v) || !parse_u64(v, ptc_port) || ptc_port == 0 || ptc_port > 65535)
@@ -371,6 +375,7 @@ int cmd_listen(Args& args) {
     } else return usage_error("listen", "unknown option " + a);
   }
   if (tls.tls && sensor_host.empty()) return usage_error("listen", "--tls goes with --sensor HOST");
+  if (require_sync && sensor_host.empty()) return usage_error("listen", "--require-sync goes with --sensor HOST");
   std::shared_ptr<port::TlsContext> tls_context;
   if (const int st = finish_tls_options(tls, tls_context, error); st != kExitOk) return fail("listen", st, error);
   o.session_secret_allowed = !sensor_host.empty();  // the session's randoms come from the sensor
@@ -409,7 +414,7 @@ int cmd_listen(Args& args) {
   if (!sensor_host.empty()) {
     link = std::make_unique<SensorLink>(sensor_host, sensor_address, static_cast<std::uint16_t>(ptc_port),
                                         static_cast<int>(ptc_timeout * 1000), tls_context);
-    int rc = link->fetch(o, pipeline, error);
+    int rc = link->fetch(o, pipeline, error, require_sync);
     if (rc == kExitOk && link->model() != Model::unknown) pipeline.fix_model(link->model());
     if (rc == kExitOk && !session_secret.empty() && !g_stop)
       rc = start_live_session(*link, session_secret, o.allow_unsigned, {to_ns(session_poll), to_ns(signature_grace)},
@@ -522,7 +527,10 @@ int cmd_listen(Args& args) {
     std::string j = stats_json(pipeline.stats(), pipeline.sensors());
     j.insert(j.size() - 1, ",\"foreign_packets\":" + std::to_string(foreign) + ",\"foreign_model_packets\":" +
                                std::to_string(pipeline.foreign_model_packets()) +
-                               ",\"session_restarts\":" + std::to_string(restarts));
+                               ",\"session_restarts\":" + std::to_string(restarts) +
+                               (link ? ",\"ptp_status\":" + json_string(link->ptp_status().c_str()) +
+                                           ",\"time_source\":" + json_string(link->time_source().c_str())
+                                     : std::string()));
     std::printf("%s\n", j.c_str());
   } else {
     std::printf("%s  kernel_drops          %s\n  foreign_packets       %llu\n  foreign_model_packets %llu\n"

@@ -1,6 +1,8 @@
 // hesai replay: sends a capture's UDP payloads, paced as recorded; with --serve-ptc it also stands
 // in for the sensor's PTC service (port/include/hesai_port/net/ptc_server.h) and, once a signature
 // session starts, signs each QT128 packet with the session's key, as the sensor would.
+#include <array>
+#include <cctype>
 #include <csignal>
 #include <cstdio>
 #include <thread>
@@ -72,7 +74,76 @@ struct StandIn {
   port::TlsServerOptions tls;  // --tls-cert, --tls-key, --client-ca: PTCS
   bool wait_for_session = false;
   bool never_sign = false;  // sessions accepted, no packet signed (a misbehaving unit)
+  int ptp_state = -1;       // --ptp-state: -1 none (clock source GPS, unlocked)
+  // For tests, not in --help (docs/TESTING.md): --refuse-set CMD[:CODE] (the set command CMD,
+  // 0x.. or decimal, answers CODE, default 1), --ignore-set CMD (acknowledged, not applied),
+  // --config-bytes N (the configuration answer cut to N bytes), --reboot-seconds S (down after 0x10).
+  std::array<std::uint8_t, 256> refuse{};
+  std::array<bool, 256> ignore{};
+  std::size_t config_bytes = 47;
+  int reboot_ms = 1500;
+  bool test_hooks = false;
 };
+
+// A command byte: 0x.. or decimal, 0 to 255.
+bool parse_command_byte(const std::string& text, std::uint8_t& out) {
+  std::uint64_t v = 0;
+  bool ok = false;
+  if (text.size() > 2 && text[0] == '0' && (text[1] == 'x' || text[1] == 'X')) {
+    ok = text.size() <= 4;
+    for (std::size_t i = 2; ok && i < text.size(); ++i) {
+      const char c = static_cast<char>(std::tolower(static_cast<unsigned char>(text[i])));
+      ok = (c >= '0' && c <= '9') || (c >= 'a' && c <= 'f');
+      v = v * 16 + static_cast<std::uint64_t>(c <= '9' ? c - '0' : c - 'a' + 10);
+    }
+  } else {
+    ok = parse_u64(text, v) && v <= 255;
+  }
+  if (ok) out = static_cast<std::uint8_t>(v);
+  return ok;
+}
+
+// One of the stand-in's test options (StandIn above); false when `a` is none of them. A bad value
+// sets `error`.
+bool parse_stand_in_test_option(const std::string& a, Args& args, StandIn& o, std::string& error) {
+  std::string v;
+  if (a != "--refuse-set" && a != "--ignore-set" && a != "--config-bytes" && a != "--reboot-seconds" && a != "--ptp-state")
+    return false;
+  if (!args.value(a, v)) {
+    error = a + " needs a value";
+    return true;
+  }
+  if (a == "--ptp-state") {
+    const char* names[] = {"free_run", "tracking", "locked", "frozen"};
+    o.ptp_state = -1;
+    for (int i = 0; i < 4; ++i)
+      if (v == names[i]) o.ptp_state = i;
+    if (o.ptp_state < 0) error = "--ptp-state takes free_run, tracking, locked or frozen, got '" + v + "'";
+    return true;
+  }
+  o.test_hooks = true;
+  std::uint8_t command = 0;
+  if (a == "--refuse-set") {
+    const std::size_t colon = v.find(':');
+    std::uint64_t code = 1;
+    if (!parse_command_byte(v.substr(0, colon), command) ||
+        (colon != std::string::npos && (!parse_u64(v.substr(colon + 1), code) || code == 0 || code > 255)))
+      error = "--refuse-set takes CMD[:CODE] (CODE 1 to 255), got '" + v + "'";
+    else o.refuse[command] = static_cast<std::uint8_t>(code);
+  } else if (a == "--ignore-set") {
+    if (!parse_command_byte(v, command)) error = "--ignore-set takes a command byte, got '" + v + "'";
+    else o.ignore[command] = true;
+  } else if (a == "--config-bytes") {
+    std::uint64_t n = 0;
+    if (!parse_u64(v, n) || n > 47) error = "--config-bytes takes 0 to 47, got '" + v + "'";
+    else o.config_bytes = static_cast<std::size_t>(n);
+  } else {
+    float seconds = 0;
+    if (!parse_float(v, seconds) || !(seconds >= 0) || seconds > 600) error = "--reboot-seconds takes 0 to 600, got '" + v + "'";
+    else o.reboot_ms = static_cast<int>(seconds * 1000);
+  }
+  return true;
+}
 
 // Opens the stand-in's PTC service for `capture`; `address` is the address it serves on (the
 // datagrams are sent from it too). Returns an exit status.
@@ -89,6 +160,11 @@ int open_stand_in(const StandIn& o, const std::string& capture, port::PtcServer&
   } wipe_content{content};
   std::uint16_t rpm = 0;
   content.model = first_model(capture, rpm);
+  content.ptp_state = o.ptp_state;
+  content.refuse = o.refuse;
+  content.ignore = o.ignore;
+  content.config_bytes = o.config_bytes;
+  content.reboot_ms = o.reboot_ms;
   std::string error;
   const std::pair<const std::string*, std::string*> files[] = {
       {&o.calibration, &content.calibration}, {&o.firetimes, &content.firetimes}, {&o.channel_config, &content.channel_config}};
@@ -174,6 +250,9 @@ int cmd_replay(Args& args) {
                   "  --wait-for-session      send nothing until a signature session starts\n"
                   "  --never-sign            accept signature sessions but sign no packet (a unit that\n"
                   "                          misbehaves, for tests)\n"
+                  "  --ptp-state STATE       clock source PTP, in STATE (free_run, tracking, locked, frozen)\n"
+                  "                          for the status (0x09) and PTP diagnostics (0x06); without it\n"
+                  "                          the clock source is GPS, unlocked (free running)\n"
                   "  --tls-cert FILE --tls-key FILE  PTCS: serve over TLS 1.3 with this certificate (PEM; its\n"
                   "                          subject should name the serial the inventory gives, STANDIN)\n"
                   "                          and key (mode 0600)\n"
@@ -188,6 +267,9 @@ int cmd_replay(Args& args) {
     else if (a == "--renumber") renumber_sequence = true;
     else if (a == "--wait-for-session") stand_in.wait_for_session = true;
     else if (a == "--never-sign") stand_in.never_sign = true;
+    else if (parse_stand_in_test_option(a, args, stand_in, error)) {
+      if (!error.empty()) return usage_error("replay", error);
+    }
     else if (a == "--serve-ptc" || a == "--calibration" || a == "--firetimes" || a == "--channel-config" ||
              a == "--secret-file" || a == "--tls-cert" || a == "--tls-key" || a == "--client-ca") {
       std::string& target = a == "--serve-ptc"       ? stand_in.serve
@@ -212,9 +294,10 @@ int cmd_replay(Args& args) {
 
   const bool serving = !stand_in.serve.empty();
   if (!serving && (!stand_in.calibration.empty() || !stand_in.firetimes.empty() || !stand_in.channel_config.empty() ||
-                   !stand_in.secret_file.empty() || stand_in.wait_for_session || stand_in.never_sign))
-    return usage_error("replay", "--calibration, --firetimes, --channel-config, --secret-file, --wait-for-session and "
-                                 "--never-sign go with --serve-ptc");
+                   !stand_in.secret_file.empty() || stand_in.wait_for_session || stand_in.never_sign ||
+                   stand_in.ptp_state >= 0 || stand_in.test_hooks))
+    return usage_error("replay", "--calibration, --firetimes, --channel-config, --secret-file, --wait-for-session, "
+                                 "--never-sign, --ptp-state and the stand-in's test options go with --serve-ptc");
   const port::TlsServerOptions& tls = stand_in.tls;
   if (!serving && (!tls.cert_file.empty() || !tls.key_file.empty() || !tls.client_ca_file.empty()))
     return usage_error("replay", "--tls-cert, --tls-key and --client-ca go with --serve-ptc");

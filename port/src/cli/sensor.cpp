@@ -16,45 +16,10 @@
 #include "hesai/model.h"
 
 namespace hesai::cli {
-namespace {
 
 using port::PtcClient;
 using port::PtcResult;
 using Bytes = std::vector<std::uint8_t>;
-
-constexpr const char* kSensorUsage =
-    "usage: hesai sensor COMMAND HOST [--ptc-port N] [--timeout SECONDS] [--json] [--tls --ca FILE ...]\n"
-    "\n"
-    "Talks to a sensor over PTC (Pandar TCP Commands), on plain TCP or, with --tls, over TLS (PTCS).\n"
-    "\n"
-    "commands:\n"
-    "  info                    serial, manufacture date, MAC, versions, model (0x07)\n"
-    "  config                  network, spin rate, return mode... (0x08)\n"
-    "  status                  uptime, motor speed, temperatures, GPS and PTP state (0x09)\n"
-    "  calibration --out FILE  the unit's angle-correction file, byte for byte (0x05)\n"
-    "  firetimes --out FILE    the unit's firing-time file (0xA9)\n"
-    "  channel-config --out FILE  the QT128's channel configuration (0xA8)\n"
-    "  signature start --session-key-out FILE [--secret-file FILE]\n"
-    "                          start a point-cloud signature session (0x2E); the session key (HKDF\n"
-    "                          of the shared secret, from --secret-file or HESAI_SECRET, and both\n"
-    "                          randoms) goes to FILE, mode 0600, for 'decode --session-key-file'\n"
-    "                          (written to a new file and renamed; a link, folder or FIFO at FILE\n"
-    "                          is refused)\n"
-    "  signature status        whether the unit signs its packets (0x2D)\n"
-    "  signature stop          end the session (0x2F)\n"
-    "\n"
-    "  --ptc-port N            PTC port (default 9347)\n"
-    "  --timeout SECONDS       the deadline of each request, connecting included (default 3)\n"
-    "  --json                  one JSON object (info: serial, manufacture_date, mac, software_version,\n"
-    "                          hardware_version, control_firmware, sensor_firmware, model,\n"
-    "                          product_model, lines; status: uptime_s, motor_speed_rpm, temperatures_c,\n"
-    "                          gps_pps_locked, gprmc_valid, startups, operating_time (minutes),\n"
-    "                          ptp_status)\n"
-    "\n"
-    "Exit status: 0 success, 1 usage, 2 an unreachable sensor, a timeout, a malformed answer, an\n"
-    "error code from the sensor, a TLS failure (named in the message).\n"
-    "\n"
-    "PTCS:\n";
 
 std::string json_string(const char* s) {
   std::string out = "\"";
@@ -78,13 +43,6 @@ std::string ipv4_text(const std::uint8_t a[4]) {
   return std::to_string(a[0]) + "." + std::to_string(a[1]) + "." + std::to_string(a[2]) + "." + std::to_string(a[3]);
 }
 
-std::string mac_text(const std::uint8_t m[6]) {
-  char text[18];
-  std::snprintf(text, sizeof text, "%02x:%02x:%02x:%02x:%02x:%02x", m[0], m[1], m[2], m[3], m[4], m[5]);
-  return text;
-}
-
-
 // Runs one request; on failure prints the client's message and returns false.
 bool ask(PtcClient& client, ptc::Command command, ByteView payload, Bytes& response) {
   const PtcResult r = client.request(command, payload, response);
@@ -99,6 +57,71 @@ int payload_error(const PtcClient& client, const char* what, Error e, std::size_
                client.host().c_str(), client.port(), what, size, error_name(e));
   return kExitInput;
 }
+
+// Asks the unit its model (Model::unknown when its inventory names none we know). False after
+// printing why the request failed.
+bool ask_model(PtcClient& client, Model& model) {
+  Bytes r;
+  if (!ask(client, ptc::Command::inventory, {}, r)) return false;
+  ptc::Inventory inv;
+  model = ptc::parse_inventory(ByteView{r.data(), r.size()}, inv) == Error::ok ? inv.model : Model::unknown;
+  return true;
+}
+
+namespace {
+
+constexpr const char* kSensorUsage =
+    "usage: hesai sensor COMMAND HOST [--ptc-port N] [--timeout SECONDS] [--json] [--tls --ca FILE ...]\n"
+    "\n"
+    "Talks to a sensor over PTC (Pandar TCP Commands), on plain TCP or, with --tls, over TLS (PTCS).\n"
+    "\n"
+    "commands:\n"
+    "  info                    serial, manufacture date, MAC, versions, model (0x07)\n"
+    "  config                  network, spin rate, return mode... (0x08), coded fields by name\n"
+    "  status                  uptime, motor speed, temperatures, GPS and PTP state (0x09)\n"
+    "  calibration --out FILE  the unit's angle-correction file, byte for byte (0x05)\n"
+    "  firetimes --out FILE    the unit's firing-time file (0xA9)\n"
+    "  channel-config --out FILE  the QT128's channel configuration (0xA8)\n"
+    "  signature start --session-key-out FILE [--secret-file FILE]\n"
+    "                          start a point-cloud signature session (0x2E); the session key (HKDF\n"
+    "                          of the shared secret, from --secret-file or HESAI_SECRET, and both\n"
+    "                          randoms) goes to FILE, mode 0600, for 'decode --session-key-file'\n"
+    "                          (written to a new file and renamed; a link, folder or FIFO at FILE\n"
+    "                          is refused)\n"
+    "  signature status        whether the unit signs its packets (0x2D)\n"
+    "  signature stop          end the session (0x2F)\n"
+    "  set KEY=VALUE...        write settings, each read back (0x08): rpm=600|1200 (the model's\n"
+    "                          rates), return_mode=last|strongest|last_strongest|first|last_first|\n"
+    "                          first_strongest (the model's modes), standby=on|off,\n"
+    "                          sync_angle=DEGREES|off, destination=IP:PORT[,GPS_PORT],\n"
+    "                          fov=START-END (degrees, 0.1 steps; where the model has one)\n"
+    "  apply FILE [--dry-run]  the settings of a JSON file ({\"rpm\": 600, \"return_mode\": \"last\"}):\n"
+    "                          prints what differs, writes only that, reads it back; --dry-run\n"
+    "                          writes nothing\n"
+    "  reboot [--wait SECONDS] restart the unit (0x10); with --wait, until it answers again\n"
+    "\n"
+    "  --ptc-port N            PTC port (default 9347)\n"
+    "  --timeout SECONDS       the deadline of each request, connecting included (default 3)\n"
+    "  --json                  one JSON object (info: serial, manufacture_date, mac, software_version,\n"
+    "                          hardware_version, control_firmware, sensor_firmware, model,\n"
+    "                          product_model, lines; status: uptime_s, motor_speed_rpm, temperatures_c,\n"
+    "                          gps_pps_locked, gprmc_valid, startups, operating_time (minutes),\n"
+    "                          ptp_status)\n"
+    "\n"
+    "Exit status: 0 success, 1 usage (a bad KEY=VALUE, a value the model does not allow, a FILE\n"
+    "that is not JSON or holds an unknown key or a value of the wrong type: nothing is written),\n"
+    "2 an unreachable sensor, a timeout, a malformed answer, an error code from the sensor, a\n"
+    "setting that reads back another value, a unit that does not answer within --wait, a TLS\n"
+    "failure (named in the message).\n"
+    "\n"
+    "PTCS:\n";
+
+std::string mac_text(const std::uint8_t m[6]) {
+  char text[18];
+  std::snprintf(text, sizeof text, "%02x:%02x:%02x:%02x:%02x:%02x", m[0], m[1], m[2], m[3], m[4], m[5]);
+  return text;
+}
+
 
 // Text from the unit (serial, dates, versions) for a terminal: printable ASCII as is, every other
 // byte (control bytes such as ESC, DEL, bytes of 0x80 and above) and the backslash as \xNN, so a
@@ -184,16 +207,6 @@ int write_file(const std::string& path, const Bytes& bytes, mode_t mode, std::st
   return kExitOk;
 }
 
-// Asks the unit its model (Model::unknown when its inventory names none we know). False after
-// printing why the request failed.
-bool ask_model(PtcClient& client, Model& model) {
-  Bytes r;
-  if (!ask(client, ptc::Command::inventory, {}, r)) return false;
-  ptc::Inventory inv;
-  model = ptc::parse_inventory(ByteView{r.data(), r.size()}, inv) == Error::ok ? inv.model : Model::unknown;
-  return true;
-}
-
 // Whether a downloaded file parses for `model`; `text` says so ("fits the QT128C2X (128
 // channels)") or why not. For an unknown model, whether it parses for some model we know (each
 // channel count is tried).
@@ -270,45 +283,6 @@ int sensor_info(PtcClient& client, bool json) {
     if (inv.has_model) std::printf(" (product model %u, %u lines)", inv.product_model, inv.lines);
     std::printf("\n");
   }
-  return kExitOk;
-}
-
-int sensor_config(PtcClient& client, bool json) {
-  Bytes r;
-  if (!ask(client, ptc::Command::config, {}, r)) return kExitInput;
-  ptc::Config c;
-  if (const Error e = ptc::parse_config(ByteView{r.data(), r.size()}, c); e != Error::ok)
-    return payload_error(client, "configuration", e, r.size());
-  const std::pair<const char*, std::string> fields[] = {
-      {"ip", "\"" + ipv4_text(c.ip) + "\""},
-      {"mask", "\"" + ipv4_text(c.mask) + "\""},
-      {"gateway", "\"" + ipv4_text(c.gateway) + "\""},
-      {"destination_ip", "\"" + ipv4_text(c.destination_ip) + "\""},
-      {"destination_port", std::to_string(c.destination_port)},
-      {"gps_port", std::to_string(c.gps_port)},
-      {"spin_rate_rpm", std::to_string(c.spin_rate_rpm)},
-      {"sync", std::to_string(c.sync)},
-      {"sync_angle", std::to_string(c.sync_angle)},
-      {"start_angle", std::to_string(c.start_angle)},
-      {"stop_angle", std::to_string(c.stop_angle)},
-      {"clock_source", std::to_string(c.clock_source)},
-      {"udp_sequence", std::to_string(c.udp_sequence)},
-      {"trigger_method", std::to_string(c.trigger_method)},
-      {"return_mode", std::to_string(c.return_mode)},
-      {"standby_mode", std::to_string(c.standby_mode)},
-      {"motor_status", std::to_string(c.motor_status)},
-      {"vlan_flag", std::to_string(c.vlan_flag)},
-      {"vlan_id", std::to_string(c.vlan_id)},
-      {"clock_data_format", c.has_extra ? std::to_string(c.clock_data_format) : "null"},
-      {"noise_filtering", c.has_extra ? std::to_string(c.noise_filtering) : "null"},
-      {"reflectivity_mapping", c.has_extra ? std::to_string(c.reflectivity_mapping) : "null"},
-  };
-  std::string out = json ? "{" : "";
-  for (const auto& [key, value] : fields) {
-    if (json) out += (out.size() > 1 ? ",\"" : "\"") + std::string(key) + "\":" + value;
-    else out += std::string(key) + std::string(22 - std::strlen(key), ' ') + value + "\n";
-  }
-  std::printf("%s%s", out.c_str(), json ? "}\n" : "");
   return kExitOk;
 }
 
@@ -443,9 +417,10 @@ int session_start(PtcClient& client, const std::string& secret, std::uint8_t key
 
 int cmd_sensor(Args& args) {
   std::string command, action, host, out, secret_file, key_out, v;
+  std::vector<std::string> operands;  // set: KEY=VALUE...; apply: FILE
   std::uint64_t port = ptc::kDefaultPort;
-  float timeout_s = 3;
-  bool json = false;
+  float timeout_s = 3, wait_s = 0;
+  bool json = false, dry_run = false;
   const auto usage = [](const std::string& message) {
     std::fprintf(stderr, "hesai sensor: %s\nRun 'hesai sensor --help' for usage.\n", message.c_str());
     return kExitUsage;
@@ -468,6 +443,11 @@ int cmd_sensor(Args& args) {
     } else if (a == "--timeout") {
       if (!args.value(a, v) || !parse_float(v, timeout_s) || !(timeout_s > 0) || timeout_s > 3600)
         return usage("--timeout takes seconds above 0 (at most 3600)");
+    } else if (a == "--wait") {
+      if (!args.value(a, v) || !parse_float(v, wait_s) || !(wait_s > 0) || wait_s > 3600)
+        return usage("--wait takes seconds above 0 (at most 3600)");
+    } else if (a == "--dry-run") {
+      dry_run = true;
     } else if (a == "--out") {
       if (!args.value(a, out)) return usage("--out needs a file");
     } else if (a == "--secret-file") {
@@ -482,14 +462,22 @@ int cmd_sensor(Args& args) {
       action = a;
     } else if (host.empty()) {
       host = a;
+    } else if (command == "set" || command == "apply") {
+      operands.push_back(a);
     } else {
       return usage("unexpected argument '" + a + "'");
     }
   }
   const bool file_command = command == "calibration" || command == "firetimes" || command == "channel-config";
   if (command.empty()) return usage("missing COMMAND");
-  if (!file_command && command != "info" && command != "config" && command != "status" && command != "signature")
+  const bool settings_command = command == "set" || command == "apply" || command == "reboot";
+  if (!file_command && !settings_command && command != "info" && command != "config" && command != "status" &&
+      command != "signature")
     return usage("unknown command '" + command + "'");
+  if (command == "set" && operands.empty() && !host.empty()) return usage("set needs KEY=VALUE...");
+  if (command == "apply" && operands.size() != 1 && !host.empty()) return usage("apply takes one FILE");
+  if (dry_run && command != "apply") return usage("--dry-run goes with apply");
+  if (wait_s > 0 && command != "reboot") return usage("--wait goes with reboot");
   if (command == "signature" && action != "start" && action != "status" && action != "stop")
     return usage("signature takes start, status or stop");
   if (host.empty()) return usage("missing HOST");
@@ -505,6 +493,9 @@ int cmd_sensor(Args& args) {
   client.use_tls(tls_context);
   if (command == "info") return sensor_info(client, json);
   if (command == "config") return sensor_config(client, json);
+  if (command == "set") return sensor_set(client, operands);
+  if (command == "apply") return sensor_apply(client, operands[0], dry_run);
+  if (command == "reboot") return sensor_reboot(client, wait_s);
   if (command == "status") return sensor_status(client, json);
   if (command == "signature") return sensor_signature(client, action, secret_file, key_out, json);
   const ptc::Command c = command == "calibration" ? ptc::Command::calibration
@@ -515,13 +506,15 @@ int cmd_sensor(Args& args) {
 
 // ---- listen --sensor ----
 
-int SensorLink::fetch(const DecodeOptions& options, Pipeline& pipeline, std::string& error) {
+int SensorLink::fetch(const DecodeOptions& options, Pipeline& pipeline, std::string& error, bool require_sync) {
   const std::string origin = client_.host() + ":" + std::to_string(client_.port());
   if (!ask_model(client_, model_)) {
     error = "cannot fetch the calibration from the sensor (see above)";
     return kExitInput;
   }
   std::fprintf(stderr, "sensor %s: %s\n", origin.c_str(), model_name(model_));
+  if (const int st = check_time_source(client_, model_, require_sync, ptp_status_, time_source_, error); st != kExitOk)
+    return st;
   Bytes files[3];
   const ptc::Command commands[3] = {ptc::Command::calibration, ptc::Command::firetimes, ptc::Command::channel_config};
   const bool given[3] = {!options.calibration_path.empty(), !options.firetimes_path.empty(),

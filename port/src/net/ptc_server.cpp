@@ -14,6 +14,7 @@
 #include "hesai/ct.h"
 #include "hesai/hkdf.h"
 #include "hesai/ptc.h"
+#include "hesai/ptc_settings.h"
 #include "hesai_port/base/clock.h"
 #include "hesai_port/net/ptc_client.h"  // random_bytes
 #include "hesai_port/net/tls.h"
@@ -80,6 +81,11 @@ bool PtcServer::open(const std::string& address, std::uint16_t port, StandInCont
   content_ = std::move(content);
   wipe_string(content.secret);
   opened_ns_ = monotonic_ns();
+  const std::uint8_t loopback[4] = {127, 0, 0, 1};
+  std::memcpy(settings_.destination_ip, loopback, 4);
+  settings_.destination_port = 2368;
+  settings_.gps_port = 10110;
+  if (settings_.rpm == 0) settings_.rpm = 600;
   return true;
 }
 
@@ -109,11 +115,13 @@ void PtcServer::run() {
       fds.push_back(pollfd{c.fd, static_cast<short>(c.sent < c.out.size() ? POLLOUT : POLLIN), 0});
     if (poll(fds.data(), static_cast<nfds_t>(fds.size()), kPollMs) < 0 && errno != EINTR) break;
     const std::int64_t now = monotonic_ns();
+    const bool down = rebooting();
     for (std::size_t i = connections.size(); i-- > 0;) {
       Connection& c = connections[i];
       const short events = fds[i + 1].revents;
-      bool keep = true;
-      if ((events & (POLLERR | POLLNVAL)) != 0) keep = false;
+      // Down after a reboot: every connection is closed once its acknowledgement is sent.
+      bool keep = !(down && c.sent >= c.out.size());
+      if (!keep || (events & (POLLERR | POLLNVAL)) != 0) keep = false;
       else if ((events & POLLOUT) != 0) keep = on_writable(c);
       else if ((events & (POLLIN | POLLHUP)) != 0) keep = on_readable(c);
       if (keep && c.sent < c.out.size()) keep = now - c.answer_ready_ns < ms_to_ns(kSendMs);
@@ -126,7 +134,9 @@ void PtcServer::run() {
     }
     if ((fds[0].revents & POLLIN) != 0 && connections.size() < kMaxConnections) {
       const int client = accept4(fd_, nullptr, nullptr, SOCK_CLOEXEC | SOCK_NONBLOCK);
-      if (client >= 0) {
+      if (client >= 0 && rebooting()) {
+        ::close(client);  // down: not answered
+      } else if (client >= 0) {
         Connection c;
         c.fd = client;
         c.opened_ns = c.last_ns = monotonic_ns();
@@ -181,6 +191,29 @@ bool PtcServer::answer_pending(Connection& c) {
   return true;
 }
 
+bool PtcServer::rebooting() const { return monotonic_ns() < down_until_ns_; }
+
+std::vector<std::uint8_t> PtcServer::config_answer() const {
+  std::vector<std::uint8_t> out(ptc::kConfigBytes, 0);
+  const std::uint8_t ip[4] = {127, 0, 0, 1}, mask[4] = {255, 0, 0, 0};
+  std::memcpy(out.data(), ip, 4);
+  std::memcpy(out.data() + 4, mask, 4);
+  std::memcpy(out.data() + 12, settings_.destination_ip, 4);
+  put_be16(out, 16, settings_.destination_port);
+  put_be16(out, 18, settings_.gps_port);
+  put_be16(out, 20, settings_.rpm);
+  out[22] = settings_.sync;
+  put_be16(out, 23, sync_centi_);
+  put_be16(out, 25, settings_.fov_start);
+  put_be16(out, 27, settings_.fov_end);
+  out[29] = content_.ptp_state >= 0 ? 1 : 0;  // clock source: PTP with a PTP state, else GPS
+  out[30] = 1;                                 // UDP sequence on
+  out[32] = settings_.return_mode;
+  out[33] = settings_.standby;
+  out.resize(content_.config_bytes < out.size() ? content_.config_bytes : out.size());
+  return out;
+}
+
 bool PtcServer::session_key(std::uint8_t key[32]) const {
   std::lock_guard<std::mutex> lock(session_mutex_);
   if (!session_on_) return false;
@@ -194,6 +227,10 @@ void PtcServer::run_tls() {
     if (poll(&p, 1, kPollMs) <= 0) continue;
     const int client = accept4(fd_, nullptr, nullptr, SOCK_CLOEXEC);
     if (client < 0) continue;
+    if (rebooting()) {  // down: not answered
+      ::close(client);
+      continue;
+    }
     serve_tls(client);
     ::close(client);
   }
@@ -236,8 +273,8 @@ void PtcServer::serve_tls(int fd) {
     std::uint8_t out[ptc::kHeaderBytes];
     ptc::encode_header(header.command, code, static_cast<std::uint32_t>(payload.size()), out);
     if (tls->send_all(out, sizeof out, wait_deadline()) != PtcTransport::Io::ok ||
-        tls->send_all(payload.data(), payload.size(), wait_deadline()) != PtcTransport::Io::ok)
-      return;
+        tls->send_all(payload.data(), payload.size(), wait_deadline()) != PtcTransport::Io::ok || rebooting())
+      return;  // after a reboot's acknowledgement, the connection too
   }
 }
 
@@ -249,7 +286,21 @@ std::vector<std::uint8_t> PtcServer::answer(std::uint8_t command, const std::vec
     return std::vector<std::uint8_t>(text.begin(), text.end());
   };
   const Model model = content_.model;
-  const std::uint16_t rpm = motor_rpm_ != 0 ? motor_rpm_.load() : 600;
+  {
+    ptc::Setting setting;
+    ptc::Settings asked = settings_;
+    const Error e = ptc::parse_setting(command, ByteView{request.data(), request.size()}, setting, asked);
+    if (e != Error::ptc_command_mismatch) {  // a set command
+      if (content_.refuse[command] != 0) code = content_.refuse[command];
+      else if (e != Error::ok) code = static_cast<std::uint8_t>(ptc::ReturnCode::invalid_parameter);
+      else if (!content_.ignore[command]) {
+        settings_ = asked;
+        if (setting == ptc::Setting::sync_angle) sync_centi_ = static_cast<std::uint16_t>(asked.sync_angle * 100u);
+        if (setting == ptc::Setting::rpm) motor_rpm_ = asked.rpm;
+      }
+      return {};
+    }
+  }
   switch (static_cast<Command>(command)) {
     case Command::calibration: return file(content_.calibration);
     case Command::firetimes: return file(content_.firetimes);
@@ -267,26 +318,31 @@ std::vector<std::uint8_t> PtcServer::answer(std::uint8_t command, const std::vec
       out[qt128 ? ptc::kInvQt128Lines : ptc::kInvLines] = static_cast<std::uint8_t>(channel_count(model));
       return out;
     }
-    case Command::config: {
-      std::vector<std::uint8_t> out(ptc::kConfigBytes, 0);
-      const std::uint8_t ip[4] = {127, 0, 0, 1}, mask[4] = {255, 0, 0, 0};
-      std::memcpy(out.data(), ip, 4);
-      std::memcpy(out.data() + 4, mask, 4);
-      std::memcpy(out.data() + 12, ip, 4);
-      put_be16(out, 16, 2368);
-      put_be16(out, 18, 10110);
-      put_be16(out, 20, rpm);
-      out[30] = 1;  // UDP sequence on
-      out[34] = 1;  // motor running
+    case Command::config: return config_answer();
+    case Command::get_fov: {
+      std::vector<std::uint8_t> out(5, 0);
+      put_be16(out, 1, settings_.fov_start);
+      put_be16(out, 3, settings_.fov_end);
+      return out;
+    }
+    case Command::reboot:
+      down_until_ns_ = monotonic_ns() + ms_to_ns(content_.reboot_ms);
+      return {};
+    case Command::ptp_diagnostics: {
+      if (request.size() != 1 || request[0] != ptc::kPtpQueryStatus) break;
+      std::vector<std::uint8_t> out(ptc::kPtpDiagStatusBytes, 0);
+      put_be32(out, 8, static_cast<std::uint32_t>(content_.ptp_state >= 0 ? content_.ptp_state : 0));
+      put_be32(out, 12, static_cast<std::uint32_t>((monotonic_ns() - opened_ns_) / 1000000));
       return out;
     }
     case Command::status: {
       const std::size_t temperatures = ptc::status_temperature_count(model);
       std::vector<std::uint8_t> out(ptc::status_bytes(temperatures) + 5, 0);
       put_be32(out, 0, static_cast<std::uint32_t>((monotonic_ns() - opened_ns_) / 1000000000));
-      put_be16(out, 4, motor_rpm_);
+      put_be16(out, 4, settings_.standby != 0 ? 0 : motor_rpm_.load());
       for (std::size_t i = 0; i < temperatures; ++i) put_be32(out, 6 + 4 * i, 2500);
       put_be32(out, 6 + 4 * temperatures + 2, 1);  // start-ups
+      out[6 + 4 * temperatures + 10] = static_cast<std::uint8_t>(content_.ptp_state >= 0 ? content_.ptp_state : 0);
       return out;
     }
     case Command::signature_start: {
@@ -321,6 +377,11 @@ std::vector<std::uint8_t> PtcServer::answer(std::uint8_t command, const std::vec
       secure_wipe(key_.data(), key_.size());
       return {};
     }
+    default: break;  // the set commands are answered above; the others are not served
+  }
+  if (static_cast<Command>(command) == Command::ptp_diagnostics) {
+    code = static_cast<std::uint8_t>(ptc::ReturnCode::invalid_parameter);
+    return {};
   }
   code = static_cast<std::uint8_t>(ptc::ReturnCode::unsupported_command);
   return {};

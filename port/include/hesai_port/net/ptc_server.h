@@ -5,8 +5,17 @@
 //
 // Answers: 0x05/0xA9/0xA8 the files byte for byte ('unsupported command' without one); 0x07 an
 // inventory in the model's layout (serial "STANDIN", MAC 02:00:00:00:00:01, versions "standin");
-// 0x08 a configuration with the model's spin rate; 0x09 a status with the model's temperature count
-// (each 25.00 C), the uptime since open() and the motor speed set by set_motor_speed(); 0x2E with
+// 0x08 the configuration it keeps (47 bytes: IP 127.0.0.1, mask 255.0.0.0, destination
+// 127.0.0.1:2368, GPS port 10110, the capture's spin rate (600 when unknown), UDP sequence on,
+// clock source GPS, or PTP when a PTP state was given, everything else 0); the set commands
+// 0x17, 0x1E, 0x1C, 0x18 (the angle kept in 0.01 degree), 0x20 and 0x22 change it (a payload of
+// another size: 'invalid input parameter'), 0x23 reports its FOV; 0x09 a status with the model's
+// temperature count (each 25.00 C), the uptime since open(), the motor speed set by
+// set_motor_speed() (0 in standby) and the PTP state of StandInContent; 0x06 with query 1 the PTP
+// status (offset 0, the state, the uptime in ms); 0x10 is acknowledged, then for
+// StandInContent::reboot_ms the unit is down: every connection, open or new, is closed unanswered
+// (over TLS too). For tests, StandInContent can make a set command answer a return code
+// (refuse) or be acknowledged and not applied (ignore), and cut the configuration short. 0x2E with
 // a 32-byte client random: a fresh lidar random (from /dev/urandom), 'unsupported command' without
 // a secret, 'invalid input parameter' for another payload size; 0x2D the session state; 0x2F ends
 // the session. Any other command: 'unsupported command'.
@@ -38,6 +47,7 @@
 #include <vector>
 
 #include "hesai/model.h"
+#include "hesai/ptc_settings.h"
 
 namespace hesai::port {
 
@@ -47,6 +57,11 @@ struct StandInContent {
   Model model = Model::unknown;
   std::string calibration, firetimes, channel_config;  ///< file bytes; empty: not served
   std::string secret;                                  ///< shared secret; empty: no signature sessions
+  int ptp_state = -1;            ///< 0 free run .. 3 frozen: clock source PTP; -1: clock source GPS, unlocked
+  int reboot_ms = 1500;          ///< how long the unit is down after 0x10
+  std::array<std::uint8_t, 256> refuse{};  ///< a non-zero entry: the set command of that code answers it
+  std::array<bool, 256> ignore{};          ///< true: the set command of that code is acknowledged, not applied
+  std::size_t config_bytes = 47;           ///< bytes of the configuration answer (fewer: cut short)
 };
 
 class PtcServer {
@@ -70,7 +85,12 @@ class PtcServer {
   bool session_key(std::uint8_t key[32]) const;
   /// Sessions started so far.
   std::uint64_t sessions_started() const { return sessions_started_; }
-  void set_motor_speed(std::uint16_t rpm) { motor_rpm_ = rpm; }
+  /// The motor speed the status reports, and the spin rate of the configuration (600 for 0);
+  /// call before run().
+  void set_motor_speed(std::uint16_t rpm) {
+    motor_rpm_ = rpm;
+    settings_.rpm = rpm != 0 ? rpm : 600;
+  }
 
  private:
   static constexpr std::size_t kMaxConnections = 8;
@@ -91,8 +111,16 @@ class PtcServer {
   void serve_tls(int fd);
   std::vector<std::uint8_t> answer(std::uint8_t command, const std::vector<std::uint8_t>& request, std::uint8_t& code);
 
+  /// The configuration answer, from settings_.
+  std::vector<std::uint8_t> config_answer() const;
+  /// True while the unit is down after a reboot.
+  bool rebooting() const;
+
   int fd_ = -1;
   std::uint16_t port_ = 0;
+  ptc::Settings settings_;        // what 0x08 reports; set commands change it
+  std::uint16_t sync_centi_ = 0;  // the sync angle in 0.01 degree
+  std::atomic<std::int64_t> down_until_ns_{0};
   std::shared_ptr<TlsContext> tls_;
   StandInContent content_;
   std::int64_t opened_ns_ = 0;
