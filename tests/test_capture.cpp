@@ -1086,7 +1086,7 @@ TEST(CaptureError, EveryCodeHasItsOwnName) {
                                           "capture_unsupported_link", "capture_io", "capture_not_open",
                                           "mcap_compressed_chunk", "mcap_chunk_crc_mismatch", "mcap_unknown_schema",
                                           "mcap_unknown_channel", "mcap_bad_encoding", "mcap_bad_cdr",
-                                          "mcap_bad_packet_size", "mcap_no_pandar_scan"}));
+                                          "mcap_bad_packet_size", "mcap_no_pandar_scan", "mcap_cut"}));
   EXPECT_STREQ(hesai::port::capture_error_name(CaptureError::bad_magic), "capture_bad_magic");
   EXPECT_STREQ(hesai::port::capture_error_name(CaptureError::io), "capture_io");
   EXPECT_STREQ(hesai::port::capture_error_name(

@@ -806,7 +806,7 @@ TEST(Cli, ReflectivityMapping) {
       std::stringstream ss(r.out.substr(pos, end - pos));
       for (std::string cell; std::getline(ss, cell, ',');) f.push_back(cell);
       pos = end + 1;
-      ASSERT_EQ(f.size(), 13u);
+      ASSERT_EQ(f.size(), 14u);
       const std::size_t packet = std::stoul(f[1]), block = std::stoul(f[2]), channel = std::stoul(f[3]);
       const std::uint8_t raw = packets[packet][8 + block * 194 + 2 + (channel - 1) * 3 + 2];
       const int want = !nonlinear || raw == 255 ? raw : (pandar64_manual::kNonlinearReflectivityHundredths[raw] + 50) / 100;
@@ -1283,7 +1283,7 @@ TEST(Cli, ListenReportsTheReceiveBuffer) {
 // numbers renumbered to count up). Whatever the kernel drops must show as `lost`: nothing
 // received is unaccounted for, and nothing is invented.
 // Sends one QT128 capture packet renumbered to `seq` (CRC3 covers the number) to 127.0.0.1:port.
-void send_renumbered_qt128(int port, std::uint32_t seq) {
+void send_renumbered_qt128(int port, std::uint32_t seq, int from_port) {
   const auto packets = pcap_payloads("qt128c2x_dual.pcap");
   ASSERT_FALSE(packets.empty());
   std::vector<std::uint8_t> p = packets[0];
@@ -1291,6 +1291,7 @@ void send_renumbered_qt128(int port, std::uint32_t seq) {
   store_le32(&p[qt128_offsets(p).tail + 26], seq);
   qt128_seal(p);
   hesai::port::UdpSender sender;
+  sender.set_source("", static_cast<std::uint16_t>(from_port));  // the load's sender: the same sensor
   std::string error;
   ASSERT_TRUE(sender.open("127.0.0.1:" + std::to_string(port), error)) << error;
   EXPECT_TRUE(sender.send(p.data(), p.size()));
@@ -1340,13 +1341,16 @@ TEST(Cli, LoadTestReportsLossHonestly) {
   FILE* l = popen(listen.c_str(), "r");
   ASSERT_NE(l, nullptr);
   ASSERT_TRUE(wait_for_listener(port));
+  // The load and the last packet from one port: one sensor to the listener.
+  const int from_port = free_udp_port();
+  ASSERT_NE(from_port, 0);
   const CmdResult sent = run_cli("replay " + data_path("qt128c2x_dual.pcap") + " --to 127.0.0.1:" + std::to_string(port) +
-                             " --rate max --loop 56 --renumber --quiet");
+                             " --rate max --loop 56 --renumber --quiet --from-port " + std::to_string(from_port));
   EXPECT_EQ(sent.status, 0);
   // Packets dropped after the last one received are invisible to any sequence tracker. Once the
   // receiver has drained its socket, one packet numbered after the load makes every drop a gap.
   std::this_thread::sleep_for(std::chrono::milliseconds(500));
-  send_renumbered_qt128(port, static_cast<std::uint32_t>(sent_packets));
+  send_renumbered_qt128(port, static_cast<std::uint32_t>(sent_packets), from_port);
   std::string out;
   char buf[4096];
   std::size_t n;

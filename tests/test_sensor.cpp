@@ -177,9 +177,19 @@ TEST(Sensor, ListenFetchesCalibrationAndVerifiesEverySignature) {
   const Ran decoded = run("decode " + data_path("qt128c2x_dual.pcap") + " --calibration " + kQtAngles + " --firetimes " +
                           kQtFiretimes + " --format csv");
   ASSERT_EQ(decoded.status, 0);
+  // Row for row but the sensor column (the stand-in's address and port; the capture's).
+  const auto without_sensor = [](const std::string& text) {
+    std::string out;
+    for (std::size_t at = 0, end; at < text.size(); at = end + 1) {
+      end = text.find('\n', at);
+      if (end == std::string::npos) end = text.size();
+      out.append(text, at, text.rfind(',', end) - at).push_back('\n');
+    }
+    return out;
+  };
   const std::string live = read_text(csv);
   EXPECT_GT(live.size(), 1000000u);
-  EXPECT_TRUE(live == decoded.out) << "listen's CSV differs from decode's with the downloaded files";
+  EXPECT_TRUE(without_sensor(live) == without_sensor(decoded.out)) << "listen's CSV differs from decode's with the downloaded files";
   std::remove(csv.c_str());
   std::remove(listen_err.c_str());
   std::remove(secret.c_str());

@@ -223,6 +223,7 @@ int cmd_replay(Args& args) {
   std::string capture, to, multicast_if, error, rate_text = "1";
   std::uint64_t loops = 1;
   bool quiet = false, renumber_sequence = false;
+  std::uint64_t from_port = 0;  // --from-port; 0: the kernel's choice
   StandIn stand_in;
   while (!args.empty()) {
     const std::string a = args.take();
@@ -235,6 +236,8 @@ int cmd_replay(Args& args) {
                   "                          local IPv4 address (default: the kernel's route to the group)\n"
                   "  --rate 1|N|max          the recorded pace (1), N times faster, or as fast as possible\n"
                   "  --loop N                play the capture N times (default 1)\n"
+                  "  --from-port PORT        send from this UDP port, as a unit sends from a fixed one (a\n"
+                  "                          listener keeps each sender apart; default: one the kernel picks)\n"
                   "  --renumber              rewrite UDP sequence numbers to count up across loops (QT128:\n"
                   "                          CRC3 re-sealed; signatures then no longer verify)\n"
                   "  --quiet                 no summary\n\n"
@@ -263,6 +266,10 @@ int cmd_replay(Args& args) {
     else if (a == "--multicast-if") { if (!args.value(a, multicast_if)) return usage_error("replay", "--multicast-if needs an address"); }
     else if (a == "--rate") { if (!args.value(a, rate_text)) return usage_error("replay", "--rate needs 1, N or max"); }
     else if (a == "--loop") { if (!args.value(a, v) || !parse_u64(v, loops) || loops == 0) return usage_error("replay", "--loop needs N >= 1"); }
+    else if (a == "--from-port") {
+      if (!args.value(a, v) || !parse_u64(v, from_port) || from_port == 0 || from_port > 65535)
+        return usage_error("replay", "--from-port needs a UDP port, 1 to 65535");
+    }
     else if (a == "--quiet") quiet = true;
     else if (a == "--renumber") renumber_sequence = true;
     else if (a == "--wait-for-session") stand_in.wait_for_session = true;
@@ -316,7 +323,7 @@ int cmd_replay(Args& args) {
     if (const int st = open_stand_in(stand_in, capture, server, address); st != kExitOk) return st;
   }
   port::UdpSender sender;
-  if (serving && address != "0.0.0.0") sender.set_source(address);
+  sender.set_source(serving && address != "0.0.0.0" ? address : "", static_cast<std::uint16_t>(from_port));
   if (!sender.open(to, multicast_if, error)) return usage_error("replay", error);
   std::signal(SIGINT, on_signal);
   std::signal(SIGTERM, on_signal);

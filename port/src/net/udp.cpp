@@ -273,12 +273,16 @@ bool UdpSender::open(const std::string& host_port, const std::string& multicast_
   }
   const int sndbuf = 4 * 1024 * 1024;
   if (fd_ >= 0) setsockopt(fd_, SOL_SOCKET, SO_SNDBUF, &sndbuf, sizeof sndbuf);
-  if (fd_ >= 0 && !source_.empty()) {
+  if (fd_ >= 0 && (!source_.empty() || source_port_ != 0)) {
+    const std::string address = source_.empty() ? "0.0.0.0" : source_;
     sockaddr_in from{};
     from.sin_family = AF_INET;
-    if (inet_pton(AF_INET, source_.c_str(), &from.sin_addr) != 1 ||
+    from.sin_port = htons(source_port_);
+    errno = 0;
+    if (inet_pton(AF_INET, address.c_str(), &from.sin_addr) != 1 ||
         bind(fd_, reinterpret_cast<const sockaddr*>(&from), sizeof from) != 0) {
-      error = "cannot send from " + source_ + ": " + (errno != 0 ? std::strerror(errno) : "not an IPv4 address");
+      error = "cannot send from " + address + ":" + std::to_string(source_port_) + ": " +
+              (errno != 0 ? std::strerror(errno) : "not an IPv4 address");
       freeaddrinfo(res);
       close(fd_);
       fd_ = -1;

@@ -108,8 +108,12 @@ class UdpSender {
   /// back to listeners on this host.
   bool open(const std::string& host_port, const std::string& multicast_if, std::string& error);
   /// Before open(): send from this local IPv4 address (as a sensor sends from its own address)
-  /// instead of the one the kernel picks.
-  void set_source(const std::string& address) { source_ = address; }
+  /// instead of the one the kernel picks, and from UDP port `port` (0: one the kernel picks), as a
+  /// unit sends from a fixed port.
+  void set_source(const std::string& address, std::uint16_t port = 0) {
+    source_ = address;
+    source_port_ = port;
+  }
   /// Sends one datagram; returns false on a socket error (retries briefly when the send
   /// buffer is full).
   bool send(const std::uint8_t* data, std::size_t size);
@@ -117,6 +121,7 @@ class UdpSender {
  private:
   int fd_ = -1;
   std::string source_;
+  std::uint16_t source_port_ = 0;
 };
 
 }  // namespace hesai::port
