@@ -42,7 +42,17 @@ void put_message(char* message, std::size_t size, const std::string& text) {
 // Rows as the CSV sink would write them, and where each frame closed among them.
 class RowSink : public hesai::cli::Sink {
  public:
-  void point(const OutPoint& p) override {
+  void points(const OutPoint* p, std::size_t count) override {
+    for (std::size_t i = 0; i < count; ++i) add(p[i]);
+  }
+  void frame_closed(const hesai::FrameInfo& frame) override { closures.emplace_back(rows.size(), frame.id); }
+
+  std::vector<hesai_capture_row> rows;                         // from `taken` on: not yet given
+  std::size_t taken = 0;
+  std::deque<std::pair<std::size_t, std::uint64_t>> closures;  // (rows before the close, frame id)
+
+ private:
+  void add(const OutPoint& p) {
     hesai_capture_row r;
     r.frame = p.frame;
     r.packet = p.packet;
@@ -59,11 +69,6 @@ class RowSink : public hesai::cli::Sink {
     r.intensity = p.point.intensity;
     rows.push_back(r);
   }
-  void frame_closed(const hesai::FrameInfo& frame) override { closures.emplace_back(rows.size(), frame.id); }
-
-  std::vector<hesai_capture_row> rows;                         // from `taken` on: not yet given
-  std::size_t taken = 0;
-  std::deque<std::pair<std::size_t, std::uint64_t>> closures;  // (rows before the close, frame id)
 };
 
 }  // namespace

@@ -54,12 +54,14 @@ struct OutPoint {
 };
 
 /// Receives what the pipeline produces. Frames close in order; every point of a frame is given
-/// to point() before its frame_closed(). Points come in packet order, so near a cut the points
-/// of two frames interleave (a packet that straddles the cut gives points to both).
+/// to points() before its frame_closed(). Points come in packet order, so near a cut the points
+/// of two frames interleave (a packet that straddles the cut gives points to both). points()
+/// gets a packet's kept points at a time (fewer where a frame closes inside the packet): one
+/// call per packet, not per point.
 class Sink {
  public:
   virtual ~Sink() = default;
-  virtual void point(const OutPoint& p) = 0;
+  virtual void points(const OutPoint* p, std::size_t count) = 0;
   virtual void frame_closed(const FrameInfo& frame) = 0;
 };
 
@@ -190,7 +192,11 @@ class Pipeline {
   std::map<Error, std::uint64_t> rejections_;
   std::uint64_t point_packet_index_ = 0;
   std::string error_;
+  // Gives the sink the points gathered in batch_ (before a frame closes, and at a packet's end).
+  void flush_points();
+
   PacketPoints points_;  // one packet's points (reused)
+  std::vector<OutPoint> batch_;  // its kept points for the sink (reused: no allocation per packet)
   UnitScan scan_;        // and what its units say beyond them
 };
 

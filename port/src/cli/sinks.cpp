@@ -11,6 +11,14 @@
 
 namespace hesai::cli {
 
+OutputSink::OutputSink(const OutputOptions& o) : options_(o) {
+  if (o.format == "pcd") format_ = Format::pcd;
+  else if (o.format == "ply") format_ = Format::ply;
+  else if (o.format == "png") format_ = Format::png;
+  else if (o.format == "mcap") format_ = Format::mcap;
+  else format_ = Format::csv;  // options.cpp accepts no other
+}
+
 int OutputSink::open(std::string& error) {
   const bool to_stdout = options_.out.empty() || options_.out == "-";
   if (options_.format == "png") {
@@ -58,7 +66,10 @@ std::string OutputSink::frame_path(std::uint64_t id) const {
 
 OutputSink::Frame& OutputSink::open_frame(std::uint64_t id) {
   const auto [it, fresh] = open_.try_emplace(id);
-  if (fresh && options_.format == "png") it->second.png = png_;  // empty, with the options
+  if (fresh && format_ == Format::png) it->second.png = png_;  // empty, with the options
+  // MCAP: room for as many points as the largest frame so far (grown a point at a time, a frame's
+  // 40-byte points were copied about twice over).
+  if (fresh && format_ == Format::mcap) it->second.points.reserve(mcap_frame_points_);
   return it->second;
 }
 
@@ -93,6 +104,7 @@ int OutputSink::open_mcap(std::string& error) {
 
 void OutputSink::write_mcap_frame(std::uint64_t id, const std::vector<Point>& points) {
   if (points.empty() || !mcap_.is_open()) return;  // no point, no stamp: no message
+  mcap_frame_points_ = std::max(mcap_frame_points_, points.size());
   // header.stamp: the frame's earliest point, so that every time_stamp offset is >= 0.
   std::int64_t stamp = points[0].time_ns;
   for (const Point& p : points) stamp = std::min(stamp, p.time_ns);
@@ -113,30 +125,48 @@ void OutputSink::write_mcap_frame(std::uint64_t id, const std::vector<Point>& po
   if (!r && deferred_error_.empty()) deferred_error_ = r.message();
 }
 
-void OutputSink::point(const OutPoint& p) {
-  ++points_written_;
-  if (options_.format == "mcap") {
-    open_frame(p.frame).points.push_back(p.point);
-    return;
-  }
-  if (options_.per_frame) {
-    // Near a cut the points of two frames interleave: each goes to its own frame.
-    Frame& f = open_frame(p.frame);
-    if (options_.format == "png") {
-      f.png.add(p.point);
-      return;
+void OutputSink::points(const OutPoint* pts, std::size_t count) {
+  points_written_ += count;
+  if (format_ == Format::mcap || options_.per_frame) {
+    // Near a cut the points of two frames interleave: each goes to its own frame (looked up when
+    // the frame changes; no frame closes during this call, so the pointer stays valid).
+    Frame* f = nullptr;
+    std::uint64_t id = 0;
+    for (std::size_t i = 0; i < count; ++i) {
+      if (f == nullptr || pts[i].frame != id) {
+        id = pts[i].frame;
+        f = &open_frame(id);
+      }
+      if (format_ == Format::png) {
+        f->png.add(pts[i].point);
+        continue;
+      }
+      f->points.push_back(pts[i].point);
+      if (format_ == Format::csv) f->packets.push_back(pts[i].packet);
     }
-    f.points.push_back(p.point);
-    if (options_.format == "csv") f.packets.push_back(p.packet);
     return;
   }
-  if (options_.format == "png") {
-    png_.add(p.point);
-  } else if (csv_open_) {
-    const port::WriteResult r = csv_.write(p.point, static_cast<std::uint32_t>(p.frame), p.packet);
-    if (!r && deferred_error_.empty()) deferred_error_ = r.message();
-  } else {
-    stream_.write(p.point);
+  // The one file: the points of each run of one frame (a packet's, but where it straddles a cut)
+  // go to the writer in one call.
+  for (std::size_t i = 0; i < count;) {
+    std::size_t end = i + 1;
+    while (end < count && pts[end].frame == pts[i].frame && pts[end].packet == pts[i].packet) ++end;
+    run_.clear();
+    for (std::size_t k = i; k < end; ++k) run_.push_back(pts[k].point);
+    switch (format_) {
+      case Format::png: png_.add(run_.data(), run_.size()); break;
+      case Format::csv:
+        if (csv_open_) {
+          const port::WriteResult r =
+              csv_.write(run_.data(), run_.size(), static_cast<std::uint32_t>(pts[i].frame), pts[i].packet);
+          if (!r && deferred_error_.empty()) deferred_error_ = r.message();
+        }
+        break;
+      case Format::pcd:
+      case Format::ply: stream_.write(run_.data(), run_.size()); break;
+      case Format::mcap: break;
+    }
+    i = end;
   }
 }
 

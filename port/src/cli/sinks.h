@@ -19,13 +19,13 @@ namespace hesai::cli {
 /// Writes the points in the chosen format. open() checks the destination before any decoding.
 class OutputSink : public Sink {
  public:
-  explicit OutputSink(const OutputOptions& o) : options_(o) {}
+  explicit OutputSink(const OutputOptions& o);
   /// Prepares the destination: creates the --per-frame directory, opens the CSV file or the PCD/PLY
   /// file (written as a stream, its header's count rewritten by close()). Returns kExitOk,
   /// kExitUsage (no --out where one is needed; a pipe for PCD/PLY) or kExitInput (the output
   /// cannot be created), with a message.
   int open(std::string& error);
-  void point(const OutPoint& p) override;
+  void points(const OutPoint* p, std::size_t count) override;
   void frame_closed(const FrameInfo& frame) override;
   /// Writes what is still held (the single PNG), closes the file. Returns false with a message.
   /// Memory: the open frames' points or PNG views with --per-frame, and the open frames' points
@@ -50,14 +50,20 @@ class OutputSink : public Sink {
   void write_mcap_frame(std::uint64_t id, const std::vector<Point>& points);
   Frame& open_frame(std::uint64_t id);
 
+  // options_.format, read once (not compared as text at every point).
+  enum class Format : std::uint8_t { csv, pcd, ply, png, mcap };
+
   OutputOptions options_;
+  Format format_ = Format::csv;
   port::CsvWriter csv_;
   bool csv_open_ = false;
   port::CloudWriter stream_;    // the single PCD or PLY file
   port::McapWriter mcap_;      // --format mcap
   std::uint16_t mcap_channel_ = 0;
+  std::size_t mcap_frame_points_ = 0;  // the largest frame written to the MCAP file so far
   port::BirdseyeView png_;      // the PNG of every point; with --per-frame, the empty view each frame starts from
   std::map<std::uint64_t, Frame> open_;  // --per-frame and MCAP: the frames not yet closed, by id
+  std::vector<Point> run_;  // the points of one frame of a packet, for the one file's writer (reused)
   std::vector<std::string> files_;
   std::uint64_t points_written_ = 0;
   std::string deferred_error_;

@@ -410,14 +410,18 @@ WriteResult CloudWriter::open(const std::string& path, CloudFormat format) {
   return {};
 }
 
-void CloudWriter::write(const Point& p) {
+void CloudWriter::write(const Point& p) { write(&p, 1); }
+
+void CloudWriter::write(const Point* points, std::size_t count) {
   if (!file_) return;
   const std::size_t n = format_ == CloudFormat::pcd ? kPcdPointBytes : kPlyPointBytes;
-  std::uint8_t* q = file_->sink.reserve(n);
-  if (format_ == CloudFormat::pcd) encode_pcd(q, p);
-  else encode_ply(q, p);
-  file_->sink.commit(n);
-  ++count_;
+  void (*const encode)(std::uint8_t*, const Point&) = format_ == CloudFormat::pcd ? encode_pcd : encode_ply;
+  FileSink& sink = file_->sink;
+  for (std::size_t i = 0; i < count; ++i) {
+    encode(sink.reserve(n), points[i]);
+    sink.commit(n);
+  }
+  count_ += count;
 }
 
 WriteResult CloudWriter::close() {
