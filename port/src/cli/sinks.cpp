@@ -69,7 +69,13 @@ OutputSink::Frame& OutputSink::open_frame(std::uint64_t id) {
   if (fresh && format_ == Format::png) it->second.png = png_;  // empty, with the options
   // MCAP: room for as many points as the largest frame so far (grown a point at a time, a frame's
   // 40-byte points were copied about twice over).
-  if (fresh && format_ == Format::mcap) it->second.points.reserve(mcap_frame_points_);
+  // The storage of the last frame written is taken over: no fresh pages (and their faults) a frame.
+  if (fresh && format_ == Format::mcap) {
+    it->second.points = std::move(spare_points_);
+    spare_points_ = std::vector<Point>();
+    it->second.points.clear();
+    it->second.points.reserve(mcap_frame_points_);
+  }
   return it->second;
 }
 
@@ -175,6 +181,7 @@ void OutputSink::frame_closed(const FrameInfo& frame) {
     const auto it = open_.find(frame.id);
     if (it == open_.end()) return;  // no point was kept
     write_mcap_frame(frame.id, it->second.points);
+    if (it->second.points.capacity() > spare_points_.capacity()) spare_points_ = std::move(it->second.points);
     open_.erase(it);
     return;
   }

@@ -61,6 +61,7 @@ class OutputSink : public Sink {
   port::McapWriter mcap_;      // --format mcap
   std::uint16_t mcap_channel_ = 0;
   std::size_t mcap_frame_points_ = 0;  // the largest frame written to the MCAP file so far
+  std::vector<Point> spare_points_;     // a written MCAP frame's storage, for the next frame
   port::BirdseyeView png_;      // the PNG of every point; with --per-frame, the empty view each frame starts from
   std::map<std::uint64_t, Frame> open_;  // --per-frame and MCAP: the frames not yet closed, by id
   std::vector<Point> run_;  // the points of one frame of a packet, for the one file's writer (reused)
