@@ -23,6 +23,7 @@
 #include "hesai/detail/qt64_packet.h"
 #include "hesai/detail/xt_packet.h"
 #include "hesai/sha256.h"
+#include "hesai_port/base/crc32_ieee.h"
 
 #ifdef HESAI_BENCH_OPENSSL
 #include <openssl/evp.h>
@@ -485,6 +486,7 @@ int main(int argc, char** argv) {
   benchmark::AddCustomContext("crc32_hardware", hesai::crc32_hardware_available() ? "yes" : "no");
   benchmark::AddCustomContext("sha256_hardware", hesai::sha256_hardware_available() ? "yes" : "no");
   benchmark::AddCustomContext("decode_simd", hesai::decode_simd_name());
+  benchmark::AddCustomContext("crc32_ieee", hesai::port::crc32_ieee_path_name(hesai::port::crc32_ieee_best_path()));
   register_all();
   benchmark::RunSpecifiedBenchmarks();
   benchmark::Shutdown();

@@ -47,6 +47,9 @@ def baseline_of(name, names):
     m = re.match(r'BM_(Pandar40P|Pandar40|Pandar64|QT128C2X|PandarQT64|PandarXT16|PandarXT32M2X|PandarXT32)_', name)
     if m:
         return 'BM_Baseline_copy_' + m.group(1)
+    m = re.match(r'BM_CRC32IEEE_(\w+)/(\d+)$', name)
+    if m and m.group(1) != 'bytewise':
+        return 'BM_CRC32IEEE_bytewise/' + m.group(2)
     m = re.match(r'BM_CRC32_(\w+)/(\d+)$', name)
     if m and m.group(1) != 'bitwise':
         return 'BM_CRC32_bitwise/' + m.group(2)
@@ -161,6 +164,15 @@ def markdown(context, rows, reps):
     if any(get('BM_CRC32_%s/1028' % c) for c in crc):
         prim.append('| CRC-32/MPEG-2, 1028 B (a QT128 body): slicing / hardware_128 / hardware, ns '
                     '(`BM_CRC32_<path>/1028`) | %s | |' % ' / '.join(t('BM_CRC32_%s/1028' % c) for c in crc[2:]))
+
+    ieee = [c for c in ('bytewise', 'slicing', 'pclmul', 'armv8') if get('BM_CRC32IEEE_%s/65536' % c)]
+    for size, label in ((65536, '64 KiB'), (1048576, '1 MiB')):
+        if ieee and get('BM_CRC32IEEE_bytewise/%d' % size):
+            base = ns(get('BM_CRC32IEEE_bytewise/%d' % size))
+            cells = [get('BM_CRC32IEEE_%s/%d' % (c, size)) for c in ieee]
+            prim.append('| CRC-32 (IEEE: MCAP, PNG), %s: %s, GB/s (`BM_CRC32IEEE_<path>/%d`) | %s | bytewise = 1×: %s |' % (
+                label, ' / '.join(ieee), size, ' / '.join(gbs('BM_CRC32IEEE_%s/%d' % (c, size)) for c in ieee),
+                ' / '.join('%.1f×' % (base / ns(c)) if c else '-' for c in cells)))
 
     def versus(ours, ref):
         a, b = get(ours), get(ref)

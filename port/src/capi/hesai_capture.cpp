@@ -42,7 +42,21 @@ void put_message(char* message, std::size_t size, const std::string& text) {
 // Rows as the CSV sink would write them, and where each frame closed among them.
 class RowSink : public hesai::cli::Sink {
  public:
-  void point(const OutPoint& p) override {
+  void points(const OutPoint* p, std::size_t count) override {
+    for (std::size_t i = 0; i < count; ++i) add(p[i]);
+  }
+  // The rows do not name their sensor yet (hesai_capture_row has no such field): frames of several
+  // sensors are told apart only by their ids.
+  void sensor_added(std::uint32_t, const std::string&) override {}
+  void receive_time(std::uint64_t) override {}
+  void frame_closed(const hesai::FrameInfo& frame, std::uint32_t) override { closures.emplace_back(rows.size(), frame.id); }
+
+  std::vector<hesai_capture_row> rows;                         // from `taken` on: not yet given
+  std::size_t taken = 0;
+  std::deque<std::pair<std::size_t, std::uint64_t>> closures;  // (rows before the close, frame id)
+
+ private:
+  void add(const OutPoint& p) {
     hesai_capture_row r;
     r.frame = p.frame;
     r.packet = p.packet;
@@ -59,15 +73,6 @@ class RowSink : public hesai::cli::Sink {
     r.intensity = p.point.intensity;
     rows.push_back(r);
   }
-  // The rows do not name their sensor yet (hesai_capture_row has no such field): frames of several
-  // sensors are told apart only by their ids.
-  void sensor_added(std::uint32_t, const std::string&) override {}
-  void receive_time(std::uint64_t) override {}
-  void frame_closed(const hesai::FrameInfo& frame, std::uint32_t) override { closures.emplace_back(rows.size(), frame.id); }
-
-  std::vector<hesai_capture_row> rows;                         // from `taken` on: not yet given
-  std::size_t taken = 0;
-  std::deque<std::pair<std::size_t, std::uint64_t>> closures;  // (rows before the close, frame id)
 };
 
 }  // namespace

@@ -351,17 +351,27 @@ bool Pipeline::process(Source& src, std::uint64_t index, const PacketInfo& info)
   frames.begin_packet(index, lost_before);
   std::size_t next = 0;
   for (std::size_t b = 0; b < info.blocks; ++b) {
-    if (frames.block(info.block_azimuth[b])) close_frames(src);
+    if (frames.block(info.block_azimuth[b])) {
+      flush_points();  // every point of a frame before its frame_closed()
+      close_frames(src);
+    }
     for (; next < points_.count && points_.points[next].block == b; ++next) {
       const Point& p = points_.points[next];
       saturating_increment(stats_.points);
       if (!keep || p.distance_m < options_.min_range || p.distance_m > options_.max_range) continue;
       if (!frames.in_fov(p.azimuth_deg)) continue;
       const std::uint64_t frame_id = frames.point(p.azimuth_deg);
-      if (sink_) sink_->point(OutPoint{p, frame_id, index, static_cast<std::uint32_t>(src.order)});
+      if (sink_) batch_.push_back(OutPoint{p, frame_id, index, static_cast<std::uint32_t>(src.order)});
     }
   }
+  flush_points();
   return true;
+}
+
+void Pipeline::flush_points() {
+  if (batch_.empty()) return;
+  sink_->points(batch_.data(), batch_.size());
+  batch_.clear();
 }
 
 std::vector<SensorReport> Pipeline::sensors() const {

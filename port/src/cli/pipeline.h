@@ -56,9 +56,11 @@ struct OutPoint {
 
 /// Receives what the pipeline produces. A sensor is one source (an address and port, or a bag
 /// topic): sensor_added() names it before its first point. Each sensor's frames close in order;
-/// every point of a frame is given to point() before its frame_closed(). Points come in packet
+/// every point of a frame is given to points() before its frame_closed(). Points come in packet
 /// order, so near a cut the points of two frames interleave (a packet that straddles the cut gives
-/// points to both), and the points of several sensors interleave as their packets do.
+/// points to both), and the points of several sensors interleave as their packets do. points()
+/// gets a packet's kept points at a time (fewer where a frame closes inside the packet): one call
+/// per packet, not per point.
 class Sink {
  public:
   virtual ~Sink() = default;
@@ -68,7 +70,7 @@ class Sink {
   /// The receive time (ns since 1970) of the datagram now being fed: the capture's record time, or
   /// the kernel's for a live socket. Frames that close while it is processed closed at this time.
   virtual void receive_time(std::uint64_t ns) = 0;
-  virtual void point(const OutPoint& p) = 0;
+  virtual void points(const OutPoint* p, std::size_t count) = 0;
   virtual void frame_closed(const FrameInfo& frame, std::uint32_t sensor) = 0;
 };
 
@@ -203,7 +205,11 @@ class Pipeline {
   std::map<Error, std::uint64_t> rejections_;
   std::uint64_t point_packet_index_ = 0;
   std::string error_;
+  // Gives the sink the points gathered in batch_ (before a frame closes, and at a packet's end).
+  void flush_points();
+
   PacketPoints points_;  // one packet's points (reused)
+  std::vector<OutPoint> batch_;  // its kept points for the sink (reused: no allocation per packet)
   UnitScan scan_;        // and what its units say beyond them
 };
 

@@ -18,6 +18,14 @@ namespace {
 constexpr const char* kQosProfiles = "";
 }  // namespace
 
+OutputSink::OutputSink(const OutputOptions& o) : options_(o) {
+  if (o.format == "pcd") format_ = Format::pcd;
+  else if (o.format == "ply") format_ = Format::ply;
+  else if (o.format == "png") format_ = Format::png;
+  else if (o.format == "mcap") format_ = Format::mcap;
+  else format_ = Format::csv;  // options.cpp accepts no other
+}
+
 int OutputSink::open(std::string& error) {
   const bool to_stdout = options_.out.empty() || options_.out == "-";
   if (options_.format == "png") {
@@ -65,7 +73,16 @@ std::string OutputSink::frame_path(FrameKey key) const {
 
 OutputSink::Frame& OutputSink::open_frame(FrameKey key) {
   const auto [it, fresh] = open_.try_emplace(key);
-  if (fresh && options_.format == "png") it->second.png = png_;  // empty, with the options
+  if (fresh && format_ == Format::png) it->second.png = png_;  // empty, with the options
+  // MCAP: room for as many points as the largest frame so far (grown a point at a time, a frame's
+  // 40-byte points were copied about twice over). The storage of the last frame written is taken
+  // over: no fresh pages (and their faults) a frame.
+  if (fresh && format_ == Format::mcap) {
+    it->second.points = std::move(spare_points_);
+    spare_points_ = std::vector<Point>();
+    it->second.points.clear();
+    it->second.points.reserve(mcap_frame_points_);
+  }
   return it->second;
 }
 
@@ -182,6 +199,7 @@ void OutputSink::write_mcap_frame(FrameKey key, const std::vector<Point>& points
   if (points.empty() || !mcap_.is_open()) return;  // no point, no stamp: no message
   const SensorOut& s = sensor(key.first);
   if (s.frame_id.empty()) return;  // its topic was refused (deferred_error_)
+  mcap_frame_points_ = std::max(mcap_frame_points_, points.size());
   // header.stamp: the frame's earliest point, so that every time_stamp offset is >= 0.
   std::int64_t stamp = points[0].time_ns;
   for (const Point& p : points) stamp = std::min(stamp, p.time_ns);
@@ -206,40 +224,59 @@ void OutputSink::write_mcap_frame(FrameKey key, const std::vector<Point>& points
   if (!r && deferred_error_.empty()) deferred_error_ = r.message();
 }
 
-void OutputSink::point(const OutPoint& p) {
-  ++points_written_;
-  const FrameKey key{p.sensor, p.frame};
-  if (options_.format == "mcap") {
-    open_frame(key).points.push_back(p.point);
-    return;
-  }
-  if (options_.per_frame) {
-    // Near a cut the points of two frames interleave: each goes to its own frame.
-    Frame& f = open_frame(key);
-    if (options_.format == "png") {
-      f.png.add(p.point);
-      return;
+void OutputSink::points(const OutPoint* pts, std::size_t count) {
+  points_written_ += count;
+  if (format_ == Format::mcap || options_.per_frame) {
+    // Near a cut the points of two frames interleave: each goes to its own frame (looked up when
+    // the frame changes; no frame closes during this call, so the pointer stays valid).
+    Frame* f = nullptr;
+    FrameKey key{};
+    for (std::size_t i = 0; i < count; ++i) {
+      const FrameKey k{pts[i].sensor, pts[i].frame};
+      if (f == nullptr || k != key) {
+        key = k;
+        f = &open_frame(key);
+      }
+      if (format_ == Format::png) {
+        f->png.add(pts[i].point);
+        continue;
+      }
+      f->points.push_back(pts[i].point);
+      if (format_ == Format::csv) f->packets.push_back(pts[i].packet);
     }
-    f.points.push_back(p.point);
-    if (options_.format == "csv") f.packets.push_back(p.packet);
     return;
   }
-  if (options_.format == "png") {
-    png_.add(p.point);
-  } else if (csv_open_) {
-    const port::WriteResult r = csv_.write(p.point, static_cast<std::uint32_t>(p.frame), p.packet, sensor(p.sensor).label);
-    if (!r && deferred_error_.empty()) deferred_error_ = r.message();
-  } else {
-    stream_.write(p.point);
+  // The one file: the points of each run of one frame (a packet's, but where it straddles a cut)
+  // go to the writer in one call; a packet is one sensor's.
+  for (std::size_t i = 0; i < count;) {
+    std::size_t end = i + 1;
+    while (end < count && pts[end].frame == pts[i].frame && pts[end].packet == pts[i].packet) ++end;
+    run_.clear();
+    for (std::size_t k = i; k < end; ++k) run_.push_back(pts[k].point);
+    switch (format_) {
+      case Format::png: png_.add(run_.data(), run_.size()); break;
+      case Format::csv:
+        if (csv_open_) {
+          const port::WriteResult r = csv_.write(run_.data(), run_.size(), static_cast<std::uint32_t>(pts[i].frame),
+                                                 pts[i].packet, sensor(pts[i].sensor).label);
+          if (!r && deferred_error_.empty()) deferred_error_ = r.message();
+        }
+        break;
+      case Format::pcd:
+      case Format::ply: stream_.write(run_.data(), run_.size()); break;
+      case Format::mcap: break;
+    }
+    i = end;
   }
 }
 
 void OutputSink::frame_closed(const FrameInfo& frame, std::uint32_t sensor_index) {
   const FrameKey key{sensor_index, frame.id};
-  if (options_.format == "mcap") {
+  if (format_ == Format::mcap) {
     const auto it = open_.find(key);
     if (it == open_.end()) return;  // no point was kept
     write_mcap_frame(key, it->second.points);
+    if (it->second.points.capacity() > spare_points_.capacity()) spare_points_ = std::move(it->second.points);
     open_.erase(it);
     return;
   }

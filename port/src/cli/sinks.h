@@ -25,7 +25,7 @@ namespace hesai::cli {
 /// Writes the points in the chosen format. open() checks the destination before any decoding.
 class OutputSink : public Sink {
  public:
-  explicit OutputSink(const OutputOptions& o) : options_(o) {}
+  explicit OutputSink(const OutputOptions& o);
   /// Prepares the destination: creates the --per-frame directory, opens the CSV file or the PCD/PLY
   /// file (written as a stream, its header's count rewritten by close()). Returns kExitOk,
   /// kExitUsage (no --out where one is needed; a pipe for PCD/PLY) or kExitInput (the output
@@ -33,7 +33,7 @@ class OutputSink : public Sink {
   int open(std::string& error);
   void sensor_added(std::uint32_t sensor, const std::string& label) override;
   void receive_time(std::uint64_t ns) override { receive_ns_ = ns; }
-  void point(const OutPoint& p) override;
+  void points(const OutPoint* p, std::size_t count) override;
   void frame_closed(const FrameInfo& frame, std::uint32_t sensor) override;
   /// Writes what is still held (the single PNG), closes the file. Returns false with a message.
   /// Memory: the open frames' points or PNG views with --per-frame, and the open frames' points
@@ -68,7 +68,11 @@ class OutputSink : public Sink {
   Frame& open_frame(FrameKey key);
   const SensorOut& sensor(std::uint32_t s) const;
 
+  // options_.format, read once (not compared as text at every point).
+  enum class Format : std::uint8_t { csv, pcd, ply, png, mcap };
+
   OutputOptions options_;
+  Format format_ = Format::csv;
   port::CsvWriter csv_;
   bool csv_open_ = false;
   port::CloudWriter stream_;    // the single PCD or PLY file
@@ -78,8 +82,11 @@ class OutputSink : public Sink {
   std::uint64_t receive_ns_ = 0;   // receive_time()
   std::uint64_t last_log_ns_ = 0;  // the last message's log_time (they never go back)
   std::vector<SensorOut> sensors_;  // by sensor
+  std::size_t mcap_frame_points_ = 0;  // the largest frame written to the MCAP file so far
+  std::vector<Point> spare_points_;     // a written MCAP frame's storage, for the next frame
   port::BirdseyeView png_;      // the PNG of every point; with --per-frame, the empty view each frame starts from
   std::map<FrameKey, Frame> open_;  // --per-frame and MCAP: the frames not yet closed
+  std::vector<Point> run_;  // the points of one frame of a packet, for the one file's writer (reused)
   std::vector<std::string> files_;
   std::uint64_t points_written_ = 0;
   std::string deferred_error_;

@@ -5,31 +5,13 @@
 #include <cstdlib>
 #include <cstring>
 
+#include "hesai_port/base/crc32_ieee.h"
+
 namespace hesai {
 namespace port {
 namespace {
 
-// ---- CRC-32 (reflected, poly 0xEDB88320) and Adler-32 ----
-
-constexpr std::array<std::uint32_t, 256> make_crc_table() {
-  std::array<std::uint32_t, 256> t{};
-  for (std::uint32_t n = 0; n < 256; ++n) {
-    std::uint32_t c = n;
-    for (int k = 0; k < 8; ++k) c = (c & 1u) ? (0xEDB88320u ^ (c >> 1)) : (c >> 1);
-    t[n] = c;
-  }
-  return t;
-}
-constexpr std::array<std::uint32_t, 256> kCrcTable = make_crc_table();
-
-constexpr std::uint32_t crc_update(std::uint32_t crc, const char* s, std::size_t n) {
-  std::uint32_t c = crc ^ 0xFFFFFFFFu;
-  for (std::size_t i = 0; i < n; ++i) c = kCrcTable[(c ^ static_cast<std::uint8_t>(s[i])) & 0xFFu] ^ (c >> 8);
-  return c ^ 0xFFFFFFFFu;
-}
-// The catalogue check value of CRC-32/ISO-HDLC, and the CRC of an IEND chunk (type only).
-static_assert(crc_update(0, "123456789", 9) == 0xCBF43926u, "CRC-32 check value");
-static_assert(crc_update(0, "IEND", 4) == 0xAE426082u, "CRC of the IEND chunk");
+// ---- big-endian fields (the chunks' CRC-32: png_crc32(), hesai_port/base/crc32_ieee.h) ----
 
 void put_be32(std::vector<std::uint8_t>& out, std::uint32_t v) {
   out.push_back(static_cast<std::uint8_t>(v >> 24));
@@ -253,9 +235,7 @@ RgbImage::RgbImage(std::uint32_t w, std::uint32_t h, std::uint8_t r, std::uint8_
 }
 
 std::uint32_t png_crc32(const std::uint8_t* data, std::size_t size, std::uint32_t crc) {
-  std::uint32_t c = crc ^ 0xFFFFFFFFu;
-  for (std::size_t i = 0; i < size; ++i) c = kCrcTable[(c ^ data[i]) & 0xFFu] ^ (c >> 8);
-  return c ^ 0xFFFFFFFFu;
+  return crc32_ieee(data, size, crc);
 }
 
 std::uint32_t adler32(const std::uint8_t* data, std::size_t size, std::uint32_t adler) {

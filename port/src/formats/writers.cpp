@@ -22,7 +22,29 @@ std::string os_message(const char* what, const std::string& name, int err) {
 // ---- number formatting for CSV ----
 
 char* put_uint(char* p, char* end, std::uint64_t v) { return std::to_chars(p, end, v).ptr; }
-char* put_int(char* p, char* end, std::int64_t v) { return std::to_chars(p, end, v).ptr; }
+
+// Exactly 9 digits of v < 10^9, leading zeros kept: four independent pairs and one digit in
+// 32-bit arithmetic (not one chain of 64-bit divisions).
+void put_9digits(char* p, std::uint32_t v) {
+  const std::uint32_t top = v / 100000000u;
+  v %= 100000000u;
+  const std::uint32_t hi = v / 10000u, lo = v % 10000u;
+  const std::uint32_t d[4] = {hi / 100u, hi % 100u, lo / 100u, lo % 100u};
+  p[0] = static_cast<char>('0' + top);
+  for (int i = 0; i < 4; ++i) {
+    p[1 + 2 * i] = static_cast<char>('0' + d[i] / 10u);
+    p[2 + 2 * i] = static_cast<char>('0' + d[i] % 10u);
+  }
+}
+
+// A signed integer; one of 10 digits or more (time_ns: 19) as its leading part and the last 9.
+char* put_int(char* p, char* end, std::int64_t v) {
+  if (v < 1000000000) return std::to_chars(p, end, v).ptr;  // negative or short: as before
+  const auto u = static_cast<std::uint64_t>(v);
+  p = std::to_chars(p, end, u / 1000000000u).ptr;
+  put_9digits(p, static_cast<std::uint32_t>(u % 1000000000u));
+  return p + 9;
+}
 
 // Fixed-point with `decimals` (0..4) decimals, rounded to nearest with ties to even as printf
 // rounds; a value that rounds to zero loses its minus sign.
@@ -415,14 +437,18 @@ WriteResult CloudWriter::open(const std::string& path, CloudFormat format) {
   return {};
 }
 
-void CloudWriter::write(const Point& p) {
+void CloudWriter::write(const Point& p) { write(&p, 1); }
+
+void CloudWriter::write(const Point* points, std::size_t count) {
   if (!file_) return;
   const std::size_t n = format_ == CloudFormat::pcd ? kPcdPointBytes : kPlyPointBytes;
-  std::uint8_t* q = file_->sink.reserve(n);
-  if (format_ == CloudFormat::pcd) encode_pcd(q, p);
-  else encode_ply(q, p);
-  file_->sink.commit(n);
-  ++count_;
+  void (*const encode)(std::uint8_t*, const Point&) = format_ == CloudFormat::pcd ? encode_pcd : encode_ply;
+  FileSink& sink = file_->sink;
+  for (std::size_t i = 0; i < count; ++i) {
+    encode(sink.reserve(n), points[i]);
+    sink.commit(n);
+  }
+  count_ += count;
 }
 
 WriteResult CloudWriter::close() {

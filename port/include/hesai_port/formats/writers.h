@@ -157,6 +157,8 @@ class CloudWriter {
   WriteResult open(const std::string& path, CloudFormat format);
   /// One record. A failed block write is kept and reported by close().
   void write(const Point& p);
+  /// `count` records, as many write(p) calls.
+  void write(const Point* points, std::size_t count);
   /// Writes what is buffered, rewrites the header with count() and closes; reports any failure.
   WriteResult close();
 
