@@ -81,6 +81,9 @@ class HesaiError(Exception):
         self.columns: Optional[Dict[str, np.ndarray]] = None
         """For decode_columns(): the points before the damage of a damaged capture."""
 
+    def __reduce__(self):  # pickled whole (a dask worker's failure reaches the client with its status)
+        return (HesaiError, (str(self), self.status, self.code, self.stats))
+
 
 def _path_bytes(p: Optional[PathArg]) -> Optional[bytes]:
     """The file name as the C library takes it (os.fsencode: str, bytes or os.PathLike; TypeError

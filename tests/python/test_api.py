@@ -278,3 +278,10 @@ def test_bound_is_the_packets_times_their_points():
             datagrams, most = cap.bound()
         assert datagrams == len(payloads), name
         assert most == sum(points_by_length[len(p)] for p in payloads), name
+
+
+def test_errors_pickle_whole():
+    """A worker process's HesaiError reaches the client (dask pickles it) with its status, code and stats."""
+    import pickle
+    e = pickle.loads(pickle.dumps(hesai.HesaiError("x.pcap: cut", status=2, code="bad_length", stats={"packets": 3})))
+    assert (type(e), str(e), e.status, e.code, e.stats) == (hesai.HesaiError, "x.pcap: cut", 2, "bad_length", {"packets": 3})
