@@ -106,6 +106,7 @@ def main(argv=None) -> int:
         return 2
     if a.scheduler:
         with Client(a.scheduler) as client:
+            client.upload_file(__file__)  # the workers import capture_task from this file
             result = run(client, captures)
     else:
         with LocalCluster(n_workers=a.workers, threads_per_worker=1, processes=False, dashboard_address=None) as cluster, \

@@ -33,7 +33,7 @@ import numpy as np
 from . import _lib
 from ._version import __version__
 
-__all__ = ["decode_file", "decode_columns", "frames", "stats", "Decoder", "HesaiError", "LayoutError", "ROW_DTYPE",
+__all__ = ["decode_file", "decode_columns", "ColumnBuffer", "frames", "stats", "Decoder", "HesaiError", "LayoutError", "ROW_DTYPE",
            "POINT_DTYPE", "COLUMNS", "library_path", "__version__"]
 
 PathArg = Union[str, bytes, "os.PathLike[str]", "os.PathLike[bytes]"]
@@ -269,10 +269,26 @@ def decode_file(path: PathArg, calibration: Optional[PathArg] = None, firetimes:
         return out.view(ROW_DTYPE)
 
 
+class ColumnBuffer:
+    """Memory decode_columns fills again and again (its `buffer` argument): the arrays are made
+    (or made larger) only when a capture needs more room than they have, so a loop over many
+    captures touches new memory once. The dict decode_columns returns is then views of it, valid
+    until the buffer's next use."""
+
+    def __init__(self) -> None:
+        self.columns: Dict[str, np.ndarray] = {name: np.empty(0, dtype=dt) for name, dt in COLUMNS.items()}
+
+    def room(self, size: int) -> Dict[str, np.ndarray]:
+        if len(self.columns["x"]) < size:
+            self.columns = {name: np.empty(size, dtype=dt) for name, dt in COLUMNS.items()}
+        return self.columns
+
+
 def decode_columns(path: PathArg, calibration: Optional[PathArg] = None, firetimes: Optional[PathArg] = None,
                    channel_config: Optional[PathArg] = None, *, rotation: str = "auto",
                    packets: Optional[Tuple[int, int]] = None, reflectivity: str = "raw", firetime_azimuth: bool = True,
-                   session_key: Optional[bytes] = None, allow_unsigned: bool = False) -> Dict[str, np.ndarray]:
+                   session_key: Optional[bytes] = None, allow_unsigned: bool = False,
+                   buffer: Optional[ColumnBuffer] = None) -> Dict[str, np.ndarray]:
     """Every point of a capture as columns: {"packet", "channel", "return", "x", "y", "z",
     "intensity", "time_ns"} (the CSV's column names; COLUMNS gives each dtype), element i of each
     the CSV's row i with the same options. Filled in place by the core's columnar decode
@@ -280,33 +296,51 @@ def decode_columns(path: PathArg, calibration: Optional[PathArg] = None, firetim
     counters: no frame, block, angle or distance columns, and no cut_angle, fov, range or returns
     options (decode_file has them). Options as decode_file's; raises HesaiError where the program
     fails; for a capture damaged part-way its `columns` holds the points before the damage (the
-    rows the program writes before it exits 2)."""
+    rows the program writes before it exits 2).
+
+    Without `buffer` the arrays are new, sized once for the most points the capture can hold and
+    trimmed. With a ColumnBuffer they are views of its arrays (overwritten by its next use): no new
+    memory to touch, the cheaper way through many captures."""
     with _Capture(path, calibration=calibration, firetimes=firetimes, channel_config=channel_config,
                   rotation=rotation, packets=packets, reflectivity=reflectivity, firetime_azimuth=firetime_azimuth,
                   session_key=session_key, allow_unsigned=allow_unsigned) as cap:
         # Room for the most points the capture can give, and the library's margin (it stops
         # COLUMNS_MIN points short of the end, where the next packets might not fit).
         size = cap.bound()[1] + _lib.COLUMNS_MIN
-        cols = {name: np.empty(size, dtype=dt) for name, dt in COLUMNS.items()}
+        if buffer is not None:
+            cols = buffer.room(size)
+            size = len(cols["x"])
+        else:
+            cols = {name: np.empty(size, dtype=dt) for name, dt in COLUMNS.items()}
         n = 0
+
+        def trimmed() -> Dict[str, np.ndarray]:
+            if buffer is not None:
+                return {name: a[:n] for name, a in cols.items()}
+            for a in cols.values():
+                a.resize(n, refcheck=False)
+            return cols
+
         while True:
             if size - n < _lib.COLUMNS_MIN:  # the file grew since its bound: not expected
                 size *= 2
-                for name in cols:
-                    cols[name].resize(size, refcheck=False)
+                if buffer is not None:
+                    old = cols
+                    cols = buffer.room(size)
+                    for name in cols:
+                        cols[name][:n] = old[name][:n]
+                else:
+                    for name in cols:
+                        cols[name].resize(size, refcheck=False)
             try:
                 got = cap.read_columns(cols, n)
             except HesaiError as e:  # the points before the damage go with the error
-                for a in cols.values():
-                    a.resize(n, refcheck=False)
-                e.columns = cols
+                e.columns = trimmed()
                 raise
             if got == 0:
                 break
             n += got
-        for a in cols.values():
-            a.resize(n, refcheck=False)
-        return cols
+        return trimmed()
 
 
 def stats(path: PathArg, calibration: Optional[PathArg] = None, firetimes: Optional[PathArg] = None,

@@ -61,6 +61,20 @@ def test_decode_columns_equals_csv(name, unit, csv):
     assert_columns_equal(hesai.decode_columns(DATA / f"{name}.pcap", **kw), want)
 
 
+def test_decode_columns_into_a_buffer(csv):
+    """One ColumnBuffer through captures of more, then fewer, points: each result the CSV's, the
+    buffer's memory made once for the largest (Pandar64 first: no capture after it needs more)."""
+    buf = hesai.ColumnBuffer()
+    first = None
+    for name in ["pandar64_dual", "pandar_xt16", "qt128c2x_dual", "pandar_xt32m2x"]:
+        got = hesai.decode_columns(DATA / f"{name}.pcap", buffer=buf)
+        assert_columns_equal(got, csv(name))
+        if first is None:
+            first = buf.columns["x"]
+        assert buf.columns["x"] is first
+        assert np.shares_memory(got["x"], first)
+
+
 COLUMN_OPTIONS = [
     ("pandar40p_dual", ["--rotation", "ccw", "--no-firetime-azimuth"], {"rotation": "ccw", "firetime_azimuth": False}),
     ("pandar_xt32", ["--packets", "100:900"], {"packets": (100, 900)}),
