@@ -14,7 +14,10 @@ programs: their rusage).
   hesai decode csv   the same writing the CSV to /dev/null
   decode_file        the package: the same pipeline, rows into numpy (one array sized once)
   frames             the package, one array per frame
-  Decoder            the package's Decoder, one Python call per packet (payloads already in memory)
+  Decoder            the package's Decoder, one Python call per packet (payloads already in memory),
+                     each packet's points dropped at once (they stay in cache)
+  Decoder kept       the same, each packet's points kept (a list of arrays): the capture's points in
+                     memory at the end, as decode_file leaves them
   columns            decode_columns: the core's columnar decode of the capture into new arrays
   columns buf        decode_columns(buffer=ColumnBuffer()): into the same arrays each run
   C whole            hesai_columns_baseline (bench/columns_baseline.c, built with the release
@@ -25,7 +28,7 @@ programs: their rusage).
                      setting of Google Benchmark's BM_<model>_decode_columns)
 
 and the ratios: columns buf / C whole, columns / C whole, columns buf / C hot (each of medians, and
-of worst runs), and decode_file / Decoder.
+of worst runs), decode_file / Decoder and decode_file / Decoder kept.
 """
 
 import argparse
@@ -104,11 +107,11 @@ def main():
     captures = a.captures or sorted(str(p) for p in (ROOT / "data").glob("*.pcap"))
     print(f"library {hesai.library_path}\nprogram {a.hesai}\nbaseline {a.baseline}\n"
           f"{a.runs} runs; ns of CPU time per packet, median/worst")
-    names = ["hesai stats", "decode csv", "decode_file", "frames", "Decoder", "columns", "columns buf", "C whole",
-             "C hot"]
+    names = ["hesai stats", "decode csv", "decode_file", "frames", "Decoder", "Decoder kept", "columns", "columns buf",
+             "C whole", "C hot"]
     print(f"{'capture':<16}{'packets':>8}{'points':>10}  " + "".join(f"{n:>14}" for n in names))
     ratios = {"columns buf / C whole": [], "columns / C whole": [], "columns buf / C hot": [],
-              "decode_file / Decoder": []}
+              "decode_file / Decoder": [], "decode_file / Decoder kept": []}
     buf = hesai.ColumnBuffer()
     with tempfile.TemporaryDirectory() as tmp:
         for cap in captures:
@@ -139,6 +142,17 @@ def main():
                     except hesai.HesaiError:
                         pass
             t["Decoder"] = cpu(decoder, a.runs)
+
+            def decoder_kept():
+                d = hesai.Decoder()
+                kept = []
+                for p in pl:
+                    try:
+                        kept.append(d.decode(p))
+                    except hesai.HesaiError:
+                        pass
+                return kept
+            t["Decoder kept"] = cpu(decoder_kept, a.runs)
             t["columns"] = cpu(lambda: hesai.decode_columns(big), a.runs)
             hesai.decode_columns(big, buffer=buf)  # its memory made (and touched) once, as C whole's
             t["columns buf"] = cpu(lambda: hesai.decode_columns(big, buffer=buf), a.runs)
@@ -151,7 +165,9 @@ def main():
                 ratios["columns / C whole"].append((name, t["columns"], t["C whole"]))
                 ratios["columns buf / C hot"].append((name, t["columns buf"], t["C hot"]))
             ratios["decode_file / Decoder"].append((name, t["decode_file"], t["Decoder"]))
+            ratios["decode_file / Decoder kept"].append((name, t["decode_file"], t["Decoder kept"]))
             print(f"{name:<16}{n:>8}{points[0]:>10}  " + "".join(f"{cell(k):>14}" for k in names), flush=True)
+            del pl
     print("\nratios (median of runs; worst run against worst run), per capture, then their median and largest:")
     for label, rows in ratios.items():
         if not rows:

@@ -62,12 +62,17 @@ class RowSink : public hesai::cli::Sink {
     r.channel = p.point.channel;
     r.return_index = p.point.return_index;
     r.intensity = p.point.intensity;
-    rows.push_back(r);
+    if (direct_n < direct_capacity) direct[direct_n++] = r;
+    else rows.push_back(r);
   }
   void frame_closed(const hesai::FrameInfo& frame) override {
-    if (!discard) closures.emplace_back(rows.size(), frame.id);
+    if (!discard) closures.emplace_back(direct_n + rows.size(), frame.id);
   }
 
+  // While hesai_capture_read has nothing staged, rows go straight into the caller's array (one
+  // copy less); those beyond its capacity are staged in `rows`.
+  hesai_capture_row* direct = nullptr;
+  std::size_t direct_capacity = 0, direct_n = 0;
   std::vector<hesai_capture_row> rows;                         // from `taken` on: not yet given
   std::size_t taken = 0;
   std::deque<std::pair<std::size_t, std::uint64_t>> closures;  // (rows before the close, frame id)
@@ -109,6 +114,30 @@ struct hesai_capture {
 };
 
 namespace {
+
+// The next datagram to the pipeline, as run_capture feeds it; at the end (or the damage) the
+// pipeline is finished.
+void feed_next(hesai_capture* c) {
+  using namespace hesai::cli;
+  hesai::port::UdpDatagram d;
+  const hesai::port::CaptureStatus st = c->file.next(d);
+  if (st == hesai::port::CaptureStatus::datagram) {
+    const std::uint64_t key = source_key(d);
+    if (!c->pipeline->has_label(key)) c->pipeline->label_source(key, source_text(d));
+    if (!c->pipeline->feed(d.payload, key)) {  // the program stops here, unfinished
+      c->status = kExitUsage;
+      c->error = c->pipeline->error();
+      c->ended = true;
+    }
+    return;
+  }
+  if (st == hesai::port::CaptureStatus::error) {
+    c->status = kExitInput;
+    c->error = c->file.message();
+  }
+  c->pipeline->finish();
+  c->ended = true;
+}
 
 // Feeds the pipeline the rest of the capture, as run_capture does. Returns false when the
 // pipeline stops (a configuration error: c->status kExitUsage).
@@ -288,6 +317,34 @@ int hesai_capture_read(hesai_capture* c, hesai_capture_row* rows, std::size_t ca
   c->mode = hesai_capture::Mode::rows;
   RowSink& s = c->sink;
   try {
+    if (s.taken == s.rows.size() && s.closures.empty() && !c->ended) {
+      // Nothing staged: the pipeline writes into the caller's rows until they are full or a
+      // frame closes.
+      s.rows.clear();
+      s.taken = 0;
+      s.direct = rows;
+      s.direct_capacity = capacity;
+      s.direct_n = 0;
+      while (!c->ended && s.direct_n < capacity && s.closures.empty()) feed_next(c);
+      const std::size_t made = s.direct_n;
+      s.direct = nullptr;
+      s.direct_capacity = s.direct_n = 0;
+      std::size_t n = made;
+      bool closes = false;
+      if (!s.closures.empty() && s.closures.front().first <= made) {
+        n = s.closures.front().first;
+        closes = true;
+        if (closed_frame != nullptr) *closed_frame = s.closures.front().second;
+        s.closures.pop_front();
+      }
+      // What came after the rows given (the next frame's first rows, those beyond the capacity)
+      // is staged for the next call, in order.
+      s.rows.insert(s.rows.begin(), rows + n, rows + made);
+      for (auto& closure : s.closures) closure.first -= n;
+      *count = n;
+      if (n != 0 || closes || made != 0) return kExitOk;
+      // Nothing made: the end or a failure, said below.
+    }
     for (;;) {
       const std::size_t available = s.rows.size() - s.taken;
       const bool closes = !s.closures.empty() && s.closures.front().first - s.taken <= capacity;
@@ -311,25 +368,7 @@ int hesai_capture_read(hesai_capture* c, hesai_capture_row* rows, std::size_t ca
         }
         return kExitOk;
       }
-      // More rows are wanted: the next datagram, as run_capture feeds it.
-      hesai::port::UdpDatagram d;
-      const hesai::port::CaptureStatus st = c->file.next(d);
-      if (st == hesai::port::CaptureStatus::datagram) {
-        const std::uint64_t key = source_key(d);
-        if (!c->pipeline->has_label(key)) c->pipeline->label_source(key, source_text(d));
-        if (!c->pipeline->feed(d.payload, key)) {  // the program stops here, unfinished
-          c->status = kExitUsage;
-          c->error = c->pipeline->error();
-          c->ended = true;
-        }
-        continue;
-      }
-      if (st == hesai::port::CaptureStatus::error) {
-        c->status = kExitInput;
-        c->error = c->file.message();
-      }
-      c->pipeline->finish();
-      c->ended = true;
+      feed_next(c);  // more rows are wanted
     }
   } catch (const std::bad_alloc&) {
     put_message(message, message_size, "out of memory");
