@@ -269,10 +269,13 @@ def decode_file(path: PathArg, calibration: Optional[PathArg] = None, firetimes:
         return out.view(ROW_DTYPE)
 
 
+_BUFFER_MIN = 1 << 16  # points a ColumnBuffer holds at least
+
+
 class ColumnBuffer:
     """Memory decode_columns fills again and again (its `buffer` argument): the arrays are made
-    (or made larger) only when a capture needs more room than they have, so a loop over many
-    captures touches new memory once. The dict decode_columns returns is then views of it, valid
+    (or made twice as large, the points so far copied) only when a capture needs more room than
+    they have, so a loop over many captures touches new memory a few times at most. The dict decode_columns returns is then views of it, valid
     until the buffer's next use."""
 
     def __init__(self) -> None:
@@ -299,18 +302,21 @@ def decode_columns(path: PathArg, calibration: Optional[PathArg] = None, firetim
     rows the program writes before it exits 2).
 
     Without `buffer` the arrays are new, sized once for the most points the capture can hold and
-    trimmed. With a ColumnBuffer they are views of its arrays (overwritten by its next use): no new
-    memory to touch, the cheaper way through many captures."""
+    trimmed. With a ColumnBuffer they are views of its arrays (overwritten by its next use), grown
+    when a capture needs more: no pass to size them, no new memory to touch once the buffer is as
+    large as the largest capture, the cheaper way through many captures."""
     with _Capture(path, calibration=calibration, firetimes=firetimes, channel_config=channel_config,
                   rotation=rotation, packets=packets, reflectivity=reflectivity, firetime_azimuth=firetime_azimuth,
                   session_key=session_key, allow_unsigned=allow_unsigned) as cap:
         # Room for the most points the capture can give, and the library's margin (it stops
         # COLUMNS_MIN points short of the end, where the next packets might not fit).
-        size = cap.bound()[1] + _lib.COLUMNS_MIN
         if buffer is not None:
-            cols = buffer.room(size)
+            # The buffer's room as it is (no pass over the capture to size it), grown below when
+            # the capture needs more: a loop over many captures grows it a few times at most.
+            cols = buffer.room(_BUFFER_MIN)
             size = len(cols["x"])
         else:
+            size = cap.bound()[1] + _lib.COLUMNS_MIN
             cols = {name: np.empty(size, dtype=dt) for name, dt in COLUMNS.items()}
         n = 0
 
@@ -322,7 +328,7 @@ def decode_columns(path: PathArg, calibration: Optional[PathArg] = None, firetim
             return cols
 
         while True:
-            if size - n < _lib.COLUMNS_MIN:  # the file grew since its bound: not expected
+            if size - n < _lib.COLUMNS_MIN:  # a buffer too small, or a file grown since its bound
                 size *= 2
                 if buffer is not None:
                     old = cols

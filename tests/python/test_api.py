@@ -62,8 +62,9 @@ def test_decode_columns_equals_csv(name, unit, csv):
 
 
 def test_decode_columns_into_a_buffer(csv):
-    """One ColumnBuffer through captures of more, then fewer, points: each result the CSV's, the
-    buffer's memory made once for the largest (Pandar64 first: no capture after it needs more)."""
+    """One ColumnBuffer through captures of more, then fewer, points: each result the CSV's. The
+    buffer starts at 65 536 points and doubles, its points copied, while the Pandar64 capture is
+    read (716 622 points); no capture after it needs more, so its memory stays."""
     buf = hesai.ColumnBuffer()
     first = None
     for name in ["pandar64_dual", "pandar_xt16", "qt128c2x_dual", "pandar_xt32m2x"]:
@@ -71,6 +72,7 @@ def test_decode_columns_into_a_buffer(csv):
         assert_columns_equal(got, csv(name))
         if first is None:
             first = buf.columns["x"]
+            assert len(first) == 1 << 20  # 65 536 doubled four times
         assert buf.columns["x"] is first
         assert np.shares_memory(got["x"], first)
 
