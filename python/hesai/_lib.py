@@ -1,8 +1,12 @@
 """libhesai_c through ctypes: where it is found, and the C declarations the package calls.
 
-The library is looked for, in order: at the path in the environment variable HESAI_LIBRARY; where
-`cmake --install` recorded it (hesai/_installed.py); in the checkout's build trees
-(build/release/lib, then any build/*/lib); by the system's loader (ctypes.util.find_library).
+The library is looked for, in order: at the path in the environment variable HESAI_LIBRARY; the
+copy `pip install` put beside this file (hesai/libhesai_c.so); where `cmake --install` recorded it
+(hesai/_installed.py); in the checkout's build trees (build/release/lib, then any build/*/lib); by
+the system's loader (ctypes.util.find_library).
+
+At import the layouts of hesai_capture_row and hesai_point, as the loaded library was compiled
+(hesai_capture_layout), are compared with ROW_DTYPE and POINT_DTYPE: a mismatch raises LayoutError.
 """
 
 import ctypes
@@ -20,6 +24,9 @@ def _candidates():
     if env:
         yield env
         return
+    here = pathlib.Path(__file__).resolve().parent
+    if (here / "libhesai_c.so").exists():  # pip install copies it here
+        yield str(here / "libhesai_c.so")
     try:
         from . import _installed  # written by cmake --install
         yield _installed.LIBRARY
@@ -96,6 +103,34 @@ lib.hesai_capture_packets.argtypes = [ctypes.c_void_p]
 lib.hesai_capture_packets.restype = ctypes.c_uint64
 lib.hesai_capture_close.argtypes = [ctypes.c_void_p]
 lib.hesai_capture_close.restype = None
+lib.hesai_capture_bound.argtypes = [ctypes.c_void_p, ctypes.POINTER(ctypes.c_uint64), ctypes.POINTER(ctypes.c_uint64),
+                                    ctypes.c_char_p, ctypes.c_size_t]
+lib.hesai_capture_bound.restype = ctypes.c_int
+
+
+class CaptureColumns(ctypes.Structure):
+    _fields_ = [
+        ("x", ctypes.c_void_p),
+        ("y", ctypes.c_void_p),
+        ("z", ctypes.c_void_p),
+        ("time_ns", ctypes.c_void_p),
+        ("intensity", ctypes.c_void_p),
+        ("channel", ctypes.c_void_p),
+        ("return_index", ctypes.c_void_p),
+        ("packet", ctypes.c_void_p),
+        ("capacity", ctypes.c_size_t),
+    ]
+
+
+COLUMNS_MIN = 4000  # HESAI_CAPTURE_COLUMNS_MIN
+lib.hesai_capture_read_columns.argtypes = [ctypes.c_void_p, ctypes.POINTER(CaptureColumns),
+                                           ctypes.POINTER(ctypes.c_size_t), ctypes.c_char_p, ctypes.c_size_t]
+lib.hesai_capture_read_columns.restype = ctypes.c_int
+lib.hesai_capture_stats_json.argtypes = [ctypes.c_void_p, ctypes.c_char_p, ctypes.c_size_t,
+                                         ctypes.POINTER(ctypes.c_size_t), ctypes.c_char_p, ctypes.c_size_t]
+lib.hesai_capture_stats_json.restype = ctypes.c_int
+lib.hesai_capture_layout.argtypes = [ctypes.c_int, ctypes.c_char_p]
+lib.hesai_capture_layout.restype = ctypes.c_size_t
 
 # ---- hesai/hesai.h ------------------------------------------------------------------------------
 
@@ -140,5 +175,33 @@ lib.hesai_decoder_decode.argtypes = [_u8p, ctypes.c_char_p, ctypes.c_size_t, cty
 lib.hesai_decoder_decode.restype = ctypes.c_int
 
 
-def error_name(code):
+def error_name(code: int) -> str:
     return lib.hesai_error_name(code).decode()
+
+
+class LayoutError(ImportError):
+    """The loaded libhesai_c lays out a record otherwise than the package's dtype: a library of
+    another version. Reading its records through the dtype would give wrong values."""
+
+
+def check_layout(library=None) -> None:
+    """Compares ROW_DTYPE and POINT_DTYPE with the layouts the library was compiled with
+    (hesai_capture_layout): the record size and each field's offset. Raises LayoutError naming
+    every difference."""
+    layout = (library or lib).hesai_capture_layout
+    wrong = []
+    for which, name, dtype in ((0, "hesai_capture_row", ROW_DTYPE), (1, "hesai_point", POINT_DTYPE)):
+        size = layout(which, None)
+        if size != dtype.itemsize:
+            wrong.append(f"{name} is {size} bytes, the dtype {dtype.itemsize}")
+        for field in dtype.names:
+            offset = layout(which, field.encode())
+            if offset != dtype.fields[field][1]:
+                where = "absent" if offset == ctypes.c_size_t(-1).value else f"at {offset}"
+                wrong.append(f"{name}.{field} is {where}, the dtype's at {dtype.fields[field][1]}")
+    if wrong:
+        raise LayoutError(f"hesai: {path} does not match this package ({'; '.join(wrong)}): "
+                          "install the library and the package from the same version")
+
+
+check_layout()

@@ -92,6 +92,65 @@ int hesai_capture_read(hesai_capture* capture, hesai_capture_row* rows, size_t c
 /* UDP payloads the pipeline has examined so far (point-cloud, GPS and rejected ones). */
 uint64_t hesai_capture_packets(const hesai_capture* capture) HESAI_CAPTURE_NOEXCEPT;
 
+/* An upper bound on what the capture can give, from one pass over its records that decodes
+ * nothing (a second mapping of the file, so the capture's own reading is not moved): *datagrams
+ * the UDP datagrams up to the end or the first damage, *points the sum over them of
+ * hesai_model_max_points() of each point-cloud packet's model (hesai_identify). Neither
+ * hesai_capture_read nor hesai_capture_read_columns gives more rows than *points. Returns 0, or 2
+ * (with a message) when the file cannot be mapped again; NULL arguments: 1. */
+int hesai_capture_bound(const hesai_capture* capture, uint64_t* datagrams, uint64_t* points, char* message,
+                        size_t message_size) HESAI_CAPTURE_NOEXCEPT;
+
+/* Caller-owned columns for hesai_capture_read_columns: element i of each is one point, as the
+ * CSV's row i gives it. Each pointer addresses `capacity` elements; `packet` may be NULL. */
+typedef struct hesai_capture_columns {
+  float* x;              /* metres */
+  float* y;              /* metres */
+  float* z;              /* metres */
+  int64_t* time_ns;      /* firing time, ns since the Unix epoch */
+  uint8_t* intensity;    /* the CSV's intensity */
+  uint8_t* channel;      /* 1-based laser channel */
+  uint8_t* return_index; /* the CSV's "return" */
+  uint64_t* packet;      /* the CSV's packet (NULL: not written) */
+  size_t capacity;
+} hesai_capture_columns;
+
+/* The capture's points by the core's columnar decode (hesai_decoder_decode_columns: the vector
+ * path the CPU has) straight into the caller's columns, without the program's Pipeline: no
+ * frames, no stream accounting. The points and their order are the CSV's with the same options
+ * (held packets until each source's rotation is known included), for the options it takes:
+ * calibration, firetimes, channel_config, reflectivity, firetime_azimuth, rotation, packets,
+ * session_key, allow_unsigned. A capture opened with another option away from its default
+ * (cut_angle, fov, ranges, returns distinct) is refused with 1, as is one already read with
+ * hesai_capture_read or counted: a capture is read one way.
+ * Writes up to columns->capacity points (fewer: it stops where the next packet might not fit) and
+ * sets *count; *count == 0 is the end. columns->capacity must be at least
+ * HESAI_CAPTURE_COLUMNS_MIN points, else 1. Returns 0, or the status of a failure (1: a
+ * calibration file that does not fit the model; 2: a damaged capture, after its points up to the
+ * damage have been given) with a message. */
+#define HESAI_CAPTURE_COLUMNS_MIN 4000
+int hesai_capture_read_columns(hesai_capture* capture, const hesai_capture_columns* columns, size_t* count,
+                               char* message, size_t message_size) HESAI_CAPTURE_NOEXCEPT;
+
+/* The counters `hesai stats CAPTURE --json` prints for the capture with the same options: reads
+ * what is left of it without keeping rows (a capture not read before: the whole of it), then
+ * writes the JSON object (the same text as the program's, without its newline) to
+ * json[0 .. size), cut and terminated when it does not fit; *length gets its full length (call
+ * again with a larger buffer: the counts stay). Returns 0; 1 (a calibration file that does not fit
+ * the model, no JSON, as the program prints none) or 2 (a damaged capture: the counts up to the
+ * damage are written, as the program prints them) with a message. NULL capture, json or length, or
+ * size 0: 1. A capture read with hesai_capture_read_columns has no counts: 1. */
+int hesai_capture_stats_json(hesai_capture* capture, char* json, size_t size, size_t* length, char* message,
+                             size_t message_size) HESAI_CAPTURE_NOEXCEPT;
+
+/* The layout this library was compiled with, for bindings that read its structs as records (the
+ * Python package checks its numpy dtypes against it at import): of hesai_capture_row (which 0) or
+ * hesai_point (which 1, hesai/hesai.h), the offset of the member that holds the CSV column `name`
+ * ("frame", "packet", "block", "channel", "return", "azimuth_deg", "elevation_deg", "distance_m",
+ * "x", "y", "z", "intensity", "time_ns"; hesai_point has no frame or packet, and has
+ * "confidence"), or with name NULL the struct's size. SIZE_MAX for another name or `which`. */
+size_t hesai_capture_layout(int which, const char* name) HESAI_CAPTURE_NOEXCEPT;
+
 /* Releases the capture (NULL: nothing). */
 void hesai_capture_close(hesai_capture* capture) HESAI_CAPTURE_NOEXCEPT;
 

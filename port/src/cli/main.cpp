@@ -67,31 +67,6 @@ int fail(const std::string& command, int status, const std::string& message) {
 }
 
 // Feeds every datagram of an open capture to the pipeline. Returns an exit status.
-// The sender of a captured datagram, for the per-sensor report: "192.168.1.201:10000",
-// "[fe80::1]:10000", or "mcap channel N" (MCAP packets carry no address).
-std::string source_text(const port::UdpDatagram& d, const port::CaptureFile& file) {
-  char buf[64];
-  if (d.ip_version == 4) {
-    std::snprintf(buf, sizeof buf, "%u.%u.%u.%u:%u", d.src_addr[0], d.src_addr[1], d.src_addr[2], d.src_addr[3], d.src_port);
-  } else if (d.ip_version == 6) {
-    std::string a = "[";
-    for (std::size_t i = 0; i < 16; i += 2) {
-      std::snprintf(buf, sizeof buf, "%s%x", i ? ":" : "", (d.src_addr[i] << 8) | d.src_addr[i + 1]);
-      a += buf;
-    }
-    return a + "]:" + std::to_string(d.src_port);
-  } else {
-    // A bag: the channel's topic, when it is printable and short enough to name a sensor.
-    const ByteView topic =
-        d.interface_id <= 0xFFFF ? file.mcap_parser().topic(static_cast<std::uint16_t>(d.interface_id)) : ByteView{};
-    bool printable = topic.size > 0 && topic.size <= 200;
-    for (std::size_t i = 0; printable && i < topic.size; ++i) printable = topic[i] > 0x20 && topic[i] < 0x7F;
-    if (printable) return std::string(reinterpret_cast<const char*>(topic.data), topic.size);
-    std::snprintf(buf, sizeof buf, "mcap channel %u", d.interface_id);
-  }
-  return buf;
-}
-
 int run_capture(port::CaptureFile& file, Pipeline& pipeline, bool quiet) {
   const bool progress = !quiet && isatty(STDERR_FILENO);
   const std::size_t total = file.bytes().size;

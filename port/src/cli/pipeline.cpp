@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cerrno>
+#include <cstdio>
 #include <cstring>
 #include <fstream>
 #include <sstream>
@@ -19,6 +20,29 @@ std::uint64_t source_key(const port::UdpDatagram& d) {
   std::uint64_t h = 1469598103934665603ull;  // FNV-1a over the address, then the port
   for (std::uint8_t b : d.src_addr) h = (h ^ b) * 1099511628211ull;
   return h ^ d.src_port;
+}
+
+std::string source_text(const port::UdpDatagram& d, const port::CaptureFile& file) {
+  char buf[64];
+  if (d.ip_version == 4) {
+    std::snprintf(buf, sizeof buf, "%u.%u.%u.%u:%u", d.src_addr[0], d.src_addr[1], d.src_addr[2], d.src_addr[3], d.src_port);
+  } else if (d.ip_version == 6) {
+    std::string a = "[";
+    for (std::size_t i = 0; i < 16; i += 2) {
+      std::snprintf(buf, sizeof buf, "%s%x", i ? ":" : "", (d.src_addr[i] << 8) | d.src_addr[i + 1]);
+      a += buf;
+    }
+    return a + "]:" + std::to_string(d.src_port);
+  } else {
+    // A bag: the channel's topic, when it is printable and short enough to name a sensor.
+    const ByteView topic =
+        d.interface_id <= 0xFFFF ? file.mcap_parser().topic(static_cast<std::uint16_t>(d.interface_id)) : ByteView{};
+    bool printable = topic.size > 0 && topic.size <= 200;
+    for (std::size_t i = 0; printable && i < topic.size; ++i) printable = topic[i] > 0x20 && topic[i] < 0x7F;
+    if (printable) return std::string(reinterpret_cast<const char*>(topic.data), topic.size);
+    std::snprintf(buf, sizeof buf, "mcap channel %u", d.interface_id);
+  }
+  return buf;
 }
 
 bool read_text_file(const std::string& path, std::string& out, std::string& error) {
@@ -102,6 +126,60 @@ void Pipeline::allow_unsigned_for(Source& src, bool pre_session) {
   if (session_) src.decoder->set_allow_unsigned(options_.allow_unsigned || pre_session);
 }
 
+bool Pipeline::configure_decoder(Decoder& d) {
+  const Model model = d.model();
+  const std::size_t channels = channel_count(model);
+  const std::string fits = "the capture holds " + std::string(model_name(model)) + " packets, " +
+                           std::to_string(channels) + " channels";
+  if (!angles_text_.empty()) {
+    AngleCorrection a;
+    const ParseResult r = parse_angle_csv(text_view(angles_text_), channels, a);
+    const Error e = r.error != Error::ok ? r.error : d.set_angles(a);
+    if (e != Error::ok) {
+      error_ = calibration_error(options_.calibration_path, r.line, e,
+                                 e == Error::invalid_argument
+                                     ? "an elevation outside [-90, 90] degrees or an azimuth offset outside [-360, 360] degrees"
+                                     : fits);
+      return false;
+    }
+  }
+  if (!firetimes_text_.empty()) {
+    FiretimeCorrection f;
+    const ParseResult r = parse_firetime_csv(text_view(firetimes_text_), channels, f);
+    const Error e = r.error != Error::ok ? r.error : d.set_firetimes(f);
+    if (e != Error::ok) {
+      error_ = calibration_error(options_.firetimes_path, r.line, e,
+                                 e == Error::invalid_argument ? "a firing time outside [-1000, 1000] us" : fits);
+      return false;
+    }
+  }
+  if (channel_config_) {
+    const Error e = d.set_channel_config(*channel_config_);
+    if (e != Error::ok) {
+      error_ = calibration_error(options_.channel_config_path, 0, e,
+                                 model == Model::qt128c2x ? "BlockNum must be the QT128C2X's 2"
+                                                          : "a QT128C2X channel configuration; " + fits);
+      return false;
+    }
+  }
+  if (d.set_reflectivity(options_.reflectivity) != Error::ok) {
+    error_ = std::string("--reflectivity nonlinear: only the Pandar64 manual gives that mapping (the capture holds ") +
+             model_name(model) + " packets)";
+    return false;
+  }
+  d.set_firetime_correction(options_.firetime_azimuth);
+  if (options_.has_key) {
+    if (const Error e = d.set_session_key(options_.session_key.data()); e != Error::ok) {
+      error_ = std::string("--session-key: ") + error_name(e);
+      return false;
+    }
+  }
+  d.set_allow_unsigned(options_.allow_unsigned);
+  if (have_gps_) d.update_gps(last_gps_);
+  d.set_rotation(options_.rotation);
+  return true;
+}
+
 Pipeline::Source* Pipeline::source_for(std::uint64_t key, Model model) {
   auto it = sources_.find(key);
   if (it != sources_.end()) {
@@ -118,57 +196,8 @@ Pipeline::Source* Pipeline::source_for(std::uint64_t key, Model model) {
   s.key = key;
   s.order = sources_made_++;
   s.decoder = std::make_unique<Decoder>(model);
-  Decoder& d = *s.decoder;
-  const std::size_t channels = channel_count(model);
-  const std::string fits = "the capture holds " + std::string(model_name(model)) + " packets, " +
-                           std::to_string(channels) + " channels";
-  if (!angles_text_.empty()) {
-    AngleCorrection a;
-    const ParseResult r = parse_angle_csv(text_view(angles_text_), channels, a);
-    const Error e = r.error != Error::ok ? r.error : d.set_angles(a);
-    if (e != Error::ok) {
-      error_ = calibration_error(options_.calibration_path, r.line, e,
-                                 e == Error::invalid_argument
-                                     ? "an elevation outside [-90, 90] degrees or an azimuth offset outside [-360, 360] degrees"
-                                     : fits);
-      return nullptr;
-    }
-  }
-  if (!firetimes_text_.empty()) {
-    FiretimeCorrection f;
-    const ParseResult r = parse_firetime_csv(text_view(firetimes_text_), channels, f);
-    const Error e = r.error != Error::ok ? r.error : d.set_firetimes(f);
-    if (e != Error::ok) {
-      error_ = calibration_error(options_.firetimes_path, r.line, e,
-                                 e == Error::invalid_argument ? "a firing time outside [-1000, 1000] us" : fits);
-      return nullptr;
-    }
-  }
-  if (channel_config_) {
-    const Error e = d.set_channel_config(*channel_config_);
-    if (e != Error::ok) {
-      error_ = calibration_error(options_.channel_config_path, 0, e,
-                                 model == Model::qt128c2x ? "BlockNum must be the QT128C2X's 2"
-                                                          : "a QT128C2X channel configuration; " + fits);
-      return nullptr;
-    }
-  }
-  if (d.set_reflectivity(options_.reflectivity) != Error::ok) {
-    error_ = std::string("--reflectivity nonlinear: only the Pandar64 manual gives that mapping (the capture holds ") +
-             model_name(model) + " packets)";
-    return nullptr;
-  }
-  d.set_firetime_correction(options_.firetime_azimuth);
-  if (options_.has_key) {
-    if (const Error e = d.set_session_key(options_.session_key.data()); e != Error::ok) {
-      error_ = std::string("--session-key: ") + error_name(e);
-      return nullptr;
-    }
-  }
-  d.set_allow_unsigned(options_.allow_unsigned);
-  if (have_gps_) d.update_gps(last_gps_);
+  if (!configure_decoder(*s.decoder)) return nullptr;
   s.frames = options_.frames;
-  d.set_rotation(options_.rotation);
   s.frames.set_rotation(options_.rotation);
   if (sink_) {
     const auto label = labels_.find(key);

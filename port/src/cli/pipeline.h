@@ -138,6 +138,12 @@ class Pipeline {
   /// Decodes the packets still held and closes the open frames at the end of the input.
   void finish();
 
+  /// Sets up a fresh decoder as the pipeline sets up each source's: the calibration files (parsed
+  /// for its model's channels), the channel configuration, reflectivity, firing-time correction,
+  /// session key, the last GPS packet and the --rotation given. False with a message in error()
+  /// when a file or setting does not fit the model (feed() fails the same way).
+  bool configure_decoder(Decoder& decoder);
+
   const Stats& stats() const { return stats_; }
   /// Names the sender `key` in the per-sensor report (once; later calls for the key change nothing).
   void label_source(std::uint64_t key, const std::string& label) { labels_.emplace(key, label); }
@@ -215,6 +221,10 @@ class Pipeline {
 
 /// The source a captured datagram comes from, for Pipeline::feed: its sender's address and port.
 std::uint64_t source_key(const port::UdpDatagram& d);
+
+/// The sender of a captured datagram, for the per-sensor report: "192.168.1.201:10000",
+/// "[fe80::1]:10000", or "mcap channel N" (MCAP packets carry no address).
+std::string source_text(const port::UdpDatagram& d, const port::CaptureFile& file);
 
 /// Reads a whole file into a string. False with a message when it cannot be read.
 bool read_text_file(const std::string& path, std::string& out, std::string& error);
