@@ -179,13 +179,13 @@ TEST(Sensor, ListenFetchesCalibrationAndVerifiesEverySignature) {
   ASSERT_EQ(decoded.status, 0);
   // Row for row but the sensor column (the stand-in's address and port; the capture's).
   const auto without_sensor = [](const std::string& text) {
-    std::string out;
+    std::string kept;
     for (std::size_t at = 0, end; at < text.size(); at = end + 1) {
       end = text.find('\n', at);
       if (end == std::string::npos) end = text.size();
-      out.append(text, at, text.rfind(',', end) - at).push_back('\n');
+      kept.append(text, at, text.rfind(',', end) - at).push_back('\n');
     }
-    return out;
+    return kept;
   };
   const std::string live = read_text(csv);
   EXPECT_GT(live.size(), 1000000u);

@@ -25,7 +25,7 @@ ROOT = pathlib.Path(__file__).resolve().parents[2]
 BUILD = os.environ.get("HESAI_BUILD_DIR", str(ROOT / "build" / "release"))
 CLI = os.environ.get("HESAI_CLI", str(ROOT / "build" / "release" / "bin" / "hesai"))
 DATA = pathlib.Path(os.environ.get("HESAI_DATA", str(ROOT / "data")))
-HEADER = "frame,packet,block,channel,return,azimuth_deg,elevation_deg,distance_m,x,y,z,intensity,time_ns"
+HEADER = "frame,packet,block,channel,return,azimuth_deg,elevation_deg,distance_m,x,y,z,intensity,time_ns,sensor"
 # The columns decode_columns has, and the decimals the CSV prints for the float ones.
 INTS = ["packet", "channel", "return", "intensity", "time_ns"]
 FLOATS = {"x": 4, "y": 4, "z": 4}
