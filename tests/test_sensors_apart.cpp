@@ -158,7 +158,7 @@ TEST_F(SensorsApart, PerFrameFilesAreNamedBySensor) {
     std::set<std::string> want;
     // Five frames each (tests/test_cli.cpp: XT16 and XT32 rotations 0..4).
     for (int n = 1; n <= 5; ++n) {
-      char number[16];
+      char number[32];
       std::snprintf(number, sizeof number, "_%06d.pcd", n);
       want.insert(std::string("frame_ip_192_168_1_201") + number);
       want.insert(std::string(same_address ? "frame_ip_192_168_1_201_10001" : "frame_ip_192_168_1_202") + number);
