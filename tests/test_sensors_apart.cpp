@@ -27,7 +27,7 @@ std::vector<std::vector<std::uint8_t>> pcap_frames(const std::string& name) {
   const std::vector<std::uint8_t> f = read_file(data_path(name));
   std::vector<std::vector<std::uint8_t>> out;
   for (std::size_t at = 24; at + 16 <= f.size();) {
-    const std::size_t incl = le(f, at + 8, 4);
+    const auto incl = static_cast<std::size_t>(le(f, at + 8, 4));
     out.emplace_back(f.begin() + static_cast<std::ptrdiff_t>(at + 16),
                      f.begin() + static_cast<std::ptrdiff_t>(at + 16 + incl));
     at += 16 + incl;
@@ -178,11 +178,11 @@ struct Cloud {
 Cloud cloud(const std::vector<std::uint8_t>& m) {
   Cloud c;
   c.stamp = le(m, 4, 4) * 1000000000ull + le(m, 8, 4);
-  const std::size_t n = le(m, 12, 4);
+  const auto n = static_cast<std::size_t>(le(m, 12, 4));
   c.frame_id.assign(m.begin() + 16, m.begin() + 16 + static_cast<std::ptrdiff_t>(n - 1));
   const std::size_t after = 16 + (n + 3) / 4 * 4;
   c.width = le(m, after + 4, 4);
-  const std::size_t points = m.size() - 1 - 32 * c.width;
+  const std::size_t points = m.size() - 1 - 32 * static_cast<std::size_t>(c.width);
   for (std::size_t i = 0; i < c.width; ++i)
     c.max_time_stamp = std::max(c.max_time_stamp, static_cast<std::uint32_t>(le(m, points + 32 * i + 28, 4)));
   return c;
