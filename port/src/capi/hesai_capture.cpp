@@ -151,29 +151,8 @@ void feed_next(hesai_capture* c) {
 // Feeds the pipeline the rest of the capture, as run_capture does. Returns false when the
 // pipeline stops (a configuration error: c->status kExitUsage).
 bool feed_all(hesai_capture* c) {
-  using namespace hesai::cli;
-  while (!c->ended) {
-    hesai::port::UdpDatagram d;
-    const hesai::port::CaptureStatus st = c->file.next(d);
-    if (st == hesai::port::CaptureStatus::datagram) {
-      const std::uint64_t key = source_key(d);
-      if (!c->pipeline->has_label(key)) c->pipeline->label_source(key, source_text(d, c->file));
-      if (!c->pipeline->feed(d.payload, key)) {
-        c->status = kExitUsage;
-        c->error = c->pipeline->error();
-        c->ended = true;
-        return false;
-      }
-      continue;
-    }
-    if (st == hesai::port::CaptureStatus::error) {
-      c->status = kExitInput;
-      c->error = c->file.message();
-    }
-    c->pipeline->finish();
-    c->ended = true;
-  }
-  return c->status != kExitUsage;
+  while (!c->ended) feed_next(c);
+  return c->status != hesai::cli::kExitUsage;
 }
 
 // Decodes `payload` of `src` into the columns at `at` (room for a packet checked by the caller);
