@@ -221,14 +221,26 @@ Error Decoder::decode(ByteView payload, PacketInfo& info, PacketPoints& out, Uni
   return decode(payload, info, out.points.data(), out.points.size(), out.count, scan, returns, path);
 }
 
+Error Decoder::decode(ByteView payload, PacketInfo& info, PacketPoints& out, UnitScan& scan,
+                      ReturnComparison& compare, Returns returns, DecodePath path) noexcept {
+  return decode_points(payload, info, out.points.data(), out.points.size(), out.count, scan, &compare, returns, path);
+}
+
 Error Decoder::decode(ByteView payload, PacketInfo& info, Point* points, std::size_t capacity, std::size_t& count,
                       UnitScan& scan, Returns returns, DecodePath path) noexcept {
+  return decode_points(payload, info, points, capacity, count, scan, nullptr, returns, path);
+}
+
+Error Decoder::decode_points(ByteView payload, PacketInfo& info, Point* points, std::size_t capacity,
+                             std::size_t& count, UnitScan& scan, ReturnComparison* compare, Returns returns,
+                             DecodePath path) noexcept {
   scan = UnitScan{};
+  if (compare != nullptr) *compare = ReturnComparison{};
   if (points == nullptr) {
     count = 0;
     return Error::invalid_argument;
   }
-  const Error e = decode_into(payload, info, points, nullptr, capacity, count, path, &scan);
+  const Error e = decode_into(payload, info, points, nullptr, capacity, count, path, &scan, compare);
   if (e != Error::ok || returns != Returns::distinct || scan.duplicate_returns == 0) return e;
   // Leave out the second returns the scan found repeated, keeping the order of the rest.
   std::size_t kept = 0;
@@ -276,7 +288,8 @@ bool decode_simd_available() noexcept {
 const char* decode_simd_name() noexcept { return kernels::vector_isa_name(kernels::vector_isa(DecodePath::best)); }
 
 Error Decoder::decode_into(ByteView payload, PacketInfo& info, Point* points, const PointColumns* columns,
-                           std::size_t capacity, std::size_t& count, DecodePath path, UnitScan* scan) noexcept {
+                           std::size_t capacity, std::size_t& count, DecodePath path, UnitScan* scan,
+                           ReturnComparison* compare) noexcept {
   count = 0;
   if (capacity < max_points(model_)) return Error::buffer_too_small;
   const Error e = validate(payload, info);
@@ -286,6 +299,7 @@ Error Decoder::decode_into(ByteView payload, PacketInfo& info, Point* points, co
   if (columns != nullptr) out.columns = *columns;
   out.path = path;
   out.scan = scan;
+  out.compare = compare;
   sensor_of(model_)->walk(*this, payload.data, info, out);  // validate() found model_'s packet
   count = out.count;
   return Error::ok;
