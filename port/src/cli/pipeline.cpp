@@ -248,7 +248,7 @@ bool Pipeline::feed(ByteView payload, std::uint64_t source_key, bool pre_session
 
   allow_unsigned_for(*src, pre_session);
   PacketInfo info;
-  e = src->decoder->decode(payload, info, points_, scan_, options_.returns);
+  e = src->decoder->decode(payload, info, points_, scan_, compare_, options_.returns);
   if (e != Error::ok) {
     count_error(stats_, e);
     ++rejections_[e];
@@ -272,7 +272,7 @@ bool Pipeline::feed(ByteView payload, std::uint64_t source_key, bool pre_session
         while (!src->held.empty())
           if (!release_held(*src)) return false;
         allow_unsigned_for(*src, pre_session);
-        e = src->decoder->decode(payload, info, points_, scan_, options_.returns);
+        e = src->decoder->decode(payload, info, points_, scan_, compare_, options_.returns);
         if (e != Error::ok) {  // the packet decoded once: a fault of ours, but counted as bad input
           count_error(stats_, e);
           ++rejections_[e];
@@ -289,7 +289,7 @@ bool Pipeline::release_held(Source& src) {
   const std::uint64_t index = src.held.front_tag() & ~kPreSessionTag;
   allow_unsigned_for(src, (src.held.front_tag() & kPreSessionTag) != 0);
   PacketInfo info;
-  const Error e = src.decoder->decode(payload, info, points_, scan_, options_.returns);
+  const Error e = src.decoder->decode(payload, info, points_, scan_, compare_, options_.returns);
   src.held.pop_front();
   if (e != Error::ok) {  // it decoded when it came: a fault of ours, but counted as bad input
     count_error(stats_, e);
@@ -390,7 +390,9 @@ bool Pipeline::process(Source& src, std::uint64_t index, const PacketInfo& info)
       if (!keep || p.distance_m < options_.min_range || p.distance_m > options_.max_range) continue;
       if (!frames.in_fov(p.azimuth_deg)) continue;
       const std::uint64_t frame_id = frames.point(p.azimuth_deg);
-      if (sink_) batch_.push_back(OutPoint{p, frame_id, index, static_cast<std::uint32_t>(src.order)});
+      if (sink_)
+        batch_.push_back(OutPoint{p, frame_id, index, static_cast<std::uint32_t>(src.order),
+                                  port::nebula_return_type(info, compare_, p)});
     }
   }
   flush_points();

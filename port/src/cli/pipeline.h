@@ -19,6 +19,7 @@
 #include "hesai/sequence.h"
 #include "hesai/stats.h"
 #include "hesai_port/capture/capture.h"
+#include "hesai_port/formats/pointcloud2.h"
 
 namespace hesai::cli {
 
@@ -52,6 +53,9 @@ struct OutPoint {
   std::uint64_t frame = 0;   ///< frame id (1-based) within its sensor's frames
   std::uint64_t packet = 0;  ///< 0-based index of the point-cloud packet in the input
   std::uint32_t sensor = 0;  ///< its sensor, as Sink::sensor_added named it
+  /// nebula's ReturnType for the MCAP's return_type, from the packet's return mode and the other
+  /// returns of the point's firing (port::nebula_return_type)
+  port::NebulaReturnType return_type = port::NebulaReturnType::unknown;
 };
 
 /// Receives what the pipeline produces. A sensor is one source (an address and port, or a bag
@@ -217,6 +221,7 @@ class Pipeline {
   PacketPoints points_;  // one packet's points (reused)
   std::vector<OutPoint> batch_;  // its kept points for the sink (reused: no allocation per packet)
   UnitScan scan_;        // and what its units say beyond them
+  ReturnComparison compare_;  // and how each of its returns compares with its firing's others
 };
 
 /// The source a captured datagram comes from, for Pipeline::feed: its sender's address and port.
