@@ -65,6 +65,10 @@
 
 namespace hesai {
 
+namespace kernels {
+struct BlockRef;  // a packet's block as the per-point code sees it (internal: core/src/kernels/)
+}  // namespace kernels
+
 /// What kind of payload identify() found.
 enum class PacketKind : std::uint8_t { point_cloud, gps };
 
@@ -412,6 +416,7 @@ class Decoder {
   // the state below: SensorBase holds what every sensor shares, each sensor's functions are the
   // members of its SensorCode<tag> (sensors/sensor.h).
   friend struct SensorBase;
+  friend struct DecodeOutput;  // holds a CompareReturns
   template <class Tag>
   friend struct SensorCode;
 
@@ -424,15 +429,20 @@ class Decoder {
   // in `loops` (the others' arrays when a later packet uses them). Const: SensorBase::emit_blocks
   // calls it, which sees the decoder const; spin_ is a cache of the geometry.
   void update_spin(std::uint16_t rpm, unsigned loops, DecodePath path) const noexcept;
+  // What fills a ReturnComparison (compare_returns, sensors/decoder.cpp). Only the decode() form
+  // that takes one hands it down, by address: a program that never calls that form links none of
+  // its code (the Cortex-M0+ image's 48 KiB of flash, tests/firmware).
+  // (No member initializers: a default argument below value-initializes it, both null.)
+  struct CompareReturns {
+    ReturnComparison* into;
+    void (*fill)(const kernels::BlockRef* blocks, std::size_t block_count, std::size_t unit_count,
+                 std::size_t unit_bytes, const PacketInfo& info, ReturnComparison& into) noexcept;
+  };
   // Every decode() form: the capacity check, validate(), the sensor's walk into `points` (when not
-  // null) or `columns`; count 0 on error.
-  // The Points forms with a UnitScan, and a ReturnComparison when `compare` is not null.
-  [[nodiscard]] Error decode_points(ByteView payload, PacketInfo& info, Point* points, std::size_t capacity,
-                                    std::size_t& count, UnitScan& scan, ReturnComparison* compare, Returns returns,
-                                    DecodePath path) noexcept;
+  // null) or `columns`; count 0 on error. (The form with a ReturnComparison has its own copy.)
   [[nodiscard]] Error decode_into(ByteView payload, PacketInfo& info, Point* points, const PointColumns* columns,
                                   std::size_t capacity, std::size_t& count, DecodePath path,
-                                  UnitScan* scan = nullptr, ReturnComparison* compare = nullptr) noexcept;
+                                  UnitScan* scan = nullptr) noexcept;
 
   Model model_;
   bool firetime_correction_ = true;

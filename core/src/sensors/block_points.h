@@ -31,7 +31,7 @@ struct DecodeOutput {
   DecodePath path = DecodePath::best;
   std::size_t count = 0;
   UnitScan* scan = nullptr;  // when set, the units are scanned too (scan_units)
-  ReturnComparison* compare = nullptr;  // when set, each return compared with its firing's others (compare_returns)
+  Decoder::CompareReturns compare{};  // when set, each return compared with its firing's others
 
   // Replaces the intensity of points [first, count) by table[intensity].
   void map_intensity(std::size_t first, const std::uint8_t* table) noexcept {
@@ -91,35 +91,6 @@ HESAI_NOINLINE_FOR_SIZE void scan_units(const kernels::BlockRef* blocks, std::si
   scan.duplicate_returns = static_cast<std::uint16_t>(duplicates);
 }
 
-// Each unit against the other returns of its firing, raw (ReturnComparison, decoder.h); `compare`
-// was reset by the caller.
-template <std::size_t kUnitBytes>
-HESAI_NOINLINE_FOR_SIZE void compare_returns(const kernels::BlockRef* blocks, std::size_t block_count,
-                                             std::size_t unit_count, const PacketInfo& info,
-                                             ReturnComparison& compare) noexcept {
-  const std::size_t returns = info.returns;
-  if (returns < 2 || block_count > kMaxBlocksPerPacket) return;
-  for (std::size_t first = 0; first + returns <= block_count; first += returns) {
-    for (std::size_t b = first; b < first + returns; ++b) {
-      const std::uint8_t* u = blocks[b].units;
-      for (std::size_t j = 0; j < unit_count; ++j, u += kUnitBytes) {
-        bool same = false, below = false;
-        for (std::size_t o = first; o < first + returns; ++o) {
-          if (o == b) continue;
-          const std::uint8_t* v = blocks[o].units + j * kUnitBytes;
-          same = same || (load_le16(u) == load_le16(v) && u[2] == v[2]);
-          below = below || u[2] < v[2];
-        }
-        const std::uint8_t ch = blocks[b].channel_of != nullptr ? blocks[b].channel_of[j] : static_cast<std::uint8_t>(j);
-        const std::size_t byte = (ch % kMaxChannels) / 8;
-        const auto bit = static_cast<std::uint8_t>(1u << (ch % 8));
-        if (same) compare.identical[b][byte] |= bit;
-        if (below) compare.weaker[b][byte] |= bit;
-      }
-    }
-  }
-}
-
 // Optimising for size (-Os, the firmware builds), every sensor calls one shared copy per unit
 // size: inlined into each sensor's block walk it took 0.8 KB more flash on the Cortex-M0+.
 // Optimising for speed it is inlined, where the constant channel count and the absent map of the
@@ -146,7 +117,7 @@ HESAI_NOINLINE_FOR_SIZE void SensorBase::emit_blocks(const Decoder& d, const ker
   const float unit_m = static_cast<float>(info.dis_unit_mm) * 0.001f;
   const std::uint16_t min_distance = sensor_of(d.model_)->min_distance;
   if (out.scan != nullptr) scan_units<kUnitBytes>(blocks, block_count, unit_count, info, min_distance, *out.scan);
-  if (out.compare != nullptr) compare_returns<kUnitBytes>(blocks, block_count, unit_count, info, *out.compare);
+  if (out.compare.into != nullptr) out.compare.fill(blocks, block_count, unit_count, kUnitBytes, info, *out.compare.into);
 #if defined(HESAI_KERNELS_VECTOR)
   const kernels::VectorIsa isa = kernels::vector_isa(out.path);  // none for DecodePath::portable
   if (isa != kernels::VectorIsa::none && block_count <= kernels::kMaxBlocks) {

@@ -35,6 +35,7 @@ class OutputSink : public Sink {
   void receive_time(std::uint64_t ns) override { receive_ns_ = ns; }
   void points(const OutPoint* p, std::size_t count) override;
   void frame_closed(const FrameInfo& frame, std::uint32_t sensor) override;
+  bool wants_return_types() const override { return format_ == Format::mcap; }
   /// Writes what is still held (the single PNG), closes the file. Returns false with a message.
   /// Memory: the open frames' points or PNG views with --per-frame, and the open frames' points
   /// for MCAP (two frames near a cut, where a packet gives points to both); otherwise a block of
