@@ -10,6 +10,7 @@
 #include <cstdio>
 #include <cstring>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "hesai_port/formats/mcap.h"
@@ -203,13 +204,13 @@ TEST(PointCloud2, PointRecordCheckedByHand) {
   p.distance_m = 8.0f;   // 0x41000000
   p.time_ns = 1000000000 + 70000;
   std::uint8_t r[32];
-  port::encode_point(p, 1000000000, r);
+  port::encode_point(p, port::NebulaReturnType::last_strongest, 1000000000, r);
   const std::vector<std::uint8_t> v(r, r + 32);
   EXPECT_EQ(le(v, 0, 4), 0x3FC00000u);
   EXPECT_EQ(le(v, 4, 4), 0xC0000000u);
   EXPECT_EQ(le(v, 8, 4), 0x3E800000u);
   EXPECT_EQ(v[12], 200);
-  EXPECT_EQ(v[13], 1);
+  EXPECT_EQ(v[13], 10);  // nebula's LAST_STRONGEST, as given (not the return_index)
   EXPECT_EQ(le(v, 14, 2), 4u);
   EXPECT_EQ(le(v, 16, 4), 0x40490FDBu);
   EXPECT_EQ(le(v, 20, 4), 0x3FC90FDBu);
@@ -233,6 +234,145 @@ TEST(PointCloud2, DefinitionAsRosbag2WritesIt) {
   for (const char* line : {"\nstd_msgs/Header header\n", "\nPointField[] fields\n", "\nuint8[] data ",
                            "\nuint8 FLOAT32 = 7\n", "\nbuiltin_interfaces/Time stamp\n", "\nuint32 nanosec\n"})
     EXPECT_NE(d.find(line), std::string::npos) << line;
+}
+
+
+// nebula's ReturnType values (tier4/nebula nebula_core_common/nebula_common.hpp, enum ReturnType:
+// UNKNOWN, LAST, FIRST, STRONGEST, FIRST_WEAK, LAST_WEAK, IDENTICAL, SECOND, SECONDSTRONGEST,
+// FIRST_STRONGEST, LAST_STRONGEST from 0), written out here as numbers.
+constexpr unsigned kUnknown = 0, kLast = 1, kFirst = 2, kStrongest = 3, kIdentical = 6, kSecond = 7,
+                   kSecondStrongest = 8, kFirstStrongest = 9, kLastStrongest = 10;
+
+unsigned nebula(Model m, std::uint8_t mode, std::uint8_t index, bool identical = false, bool weaker = false) {
+  return static_cast<unsigned>(port::nebula_return_type(m, mode, index, identical, weaker));
+}
+
+// The table of docs/CLI.md (MCAP), row by row: the mode bytes of the manuals (Pandar64 3.1.2.2
+// and 3.1.2.3; QT128C2X 3.1.2.2 "Return Mode field / Block 1 / Block 2", 3.1.2 Tail) and the
+// labels of nebula's hesai_sensor.hpp get_return_type, pandar_xt16.hpp, pandar_xt32.hpp.
+TEST(NebulaReturnType, TableByHand) {
+  // Single return: one label per mode, whatever the reflectivity.
+  EXPECT_EQ(nebula(Model::qt128c2x, 0x33, 0), kFirst);
+  EXPECT_EQ(nebula(Model::qt128c2x, 0x34, 0), kSecond);
+  EXPECT_EQ(nebula(Model::pandar64, 0x37, 0), kStrongest);
+  EXPECT_EQ(nebula(Model::pandar64, 0x38, 0), kLast);
+  EXPECT_EQ(nebula(Model::pandar40, 0x37, 0), kStrongest);
+  EXPECT_EQ(nebula(Model::pandar40p, 0x38, 0), kLast);
+  // 0x39 last (block 1), strongest (block 2): "If the last return is also the strongest, then the
+  // even-numbered block stores the second strongest return".
+  EXPECT_EQ(nebula(Model::pandar64, 0x39, 0, false, false), kLastStrongest);
+  EXPECT_EQ(nebula(Model::pandar64, 0x39, 0, false, true), kLast);
+  EXPECT_EQ(nebula(Model::pandar64, 0x39, 1, false, false), kStrongest);
+  EXPECT_EQ(nebula(Model::pandar64, 0x39, 1, false, true), kSecondStrongest);
+  EXPECT_EQ(nebula(Model::pandar64, 0x39, 0, true, false), kIdentical);
+  EXPECT_EQ(nebula(Model::pandar64, 0x39, 1, true, false), kIdentical);
+  // 0x3A first, second; 0x3E strongest, second strongest.
+  EXPECT_EQ(nebula(Model::qt128c2x, 0x3A, 0), kFirst);
+  EXPECT_EQ(nebula(Model::qt128c2x, 0x3A, 1), kSecond);
+  EXPECT_EQ(nebula(Model::qt128c2x, 0x3E, 0), kStrongest);
+  EXPECT_EQ(nebula(Model::qt128c2x, 0x3E, 1), kSecondStrongest);
+  EXPECT_EQ(nebula(Model::qt128c2x, 0x3E, 1, true), kIdentical);
+  // 0x3B first, last; the XT16 and XT32 send last in block 1 (nebula swaps the two for them).
+  EXPECT_EQ(nebula(Model::qt128c2x, 0x3B, 0), kFirst);
+  EXPECT_EQ(nebula(Model::qt128c2x, 0x3B, 1), kLast);
+  EXPECT_EQ(nebula(Model::pandar_qt64, 0x3B, 0), kFirst);
+  EXPECT_EQ(nebula(Model::pandar_xt32m2x, 0x3B, 1), kLast);
+  EXPECT_EQ(nebula(Model::pandar_xt16, 0x3B, 0), kLast);
+  EXPECT_EQ(nebula(Model::pandar_xt16, 0x3B, 1), kFirst);
+  EXPECT_EQ(nebula(Model::pandar_xt32, 0x3B, 0), kLast);
+  EXPECT_EQ(nebula(Model::pandar_xt32, 0x3B, 1), kFirst);
+  EXPECT_EQ(nebula(Model::pandar_xt32, 0x3B, 1, true), kIdentical);
+  // 0x3C first, strongest.
+  EXPECT_EQ(nebula(Model::pandar_xt32m2x, 0x3C, 0, false, false), kFirstStrongest);
+  EXPECT_EQ(nebula(Model::pandar_xt32m2x, 0x3C, 0, false, true), kFirst);
+  EXPECT_EQ(nebula(Model::pandar_xt32m2x, 0x3C, 1, false, false), kStrongest);
+  EXPECT_EQ(nebula(Model::pandar_xt32m2x, 0x3C, 1, false, true), kSecondStrongest);
+  // 0x3D triple: first, last, strongest.
+  EXPECT_EQ(nebula(Model::pandar_xt32m2x, 0x3D, 0), kFirst);
+  EXPECT_EQ(nebula(Model::pandar_xt32m2x, 0x3D, 1), kLast);
+  EXPECT_EQ(nebula(Model::pandar_xt32m2x, 0x3D, 2, false, true), kStrongest);
+  EXPECT_EQ(nebula(Model::pandar_xt32m2x, 0x3D, 2, true), kIdentical);
+  // A byte no manual names.
+  EXPECT_EQ(nebula(Model::pandar64, 0x00, 0), kUnknown);
+  EXPECT_EQ(nebula(Model::pandar64, 0x3F, 1, true), kUnknown);
+}
+
+// The points of one packet with their nebula ReturnType, as the hesai program labels them.
+struct Labelled {
+  std::vector<Point> points;
+  std::vector<unsigned> types;
+  unsigned of(std::size_t block, std::size_t channel) const {
+    for (std::size_t i = 0; i < points.size(); ++i)
+      if (points[i].block == block && points[i].channel == channel) return types[i];
+    ADD_FAILURE() << "no point at block " << block << " channel " << channel;
+    return 99;
+  }
+  bool has(std::size_t block, std::size_t channel) const {
+    for (const Point& p : points)
+      if (p.block == block && p.channel == channel) return true;
+    return false;
+  }
+};
+Labelled label(const std::vector<std::uint8_t>& payload) {
+  Decoder dec(Model::pandar64);
+  PacketInfo info;
+  PacketPoints pts;
+  UnitScan scan;
+  ReturnComparison compare;
+  Labelled out;
+  EXPECT_EQ(dec.decode(view(payload), info, pts, scan, compare), Error::ok);
+  for (const Point& p : pts) {
+    out.points.push_back(p);
+    out.types.push_back(static_cast<unsigned>(port::nebula_return_type(info, compare, p)));
+  }
+  return out;
+}
+
+// pandar64_dual.pcap, return mode 0x39 (the tail byte at 1186: Pandar64 manual 3.1.2.3). Units
+// read from the capture's bytes (block, 1-based channel: distance, reflectivity), labels by the
+// table: blocks 1 and 2 of a firing are the returns of one firing (3.1.2.2).
+TEST(NebulaReturnType, Pandar64DualCaptureByHand) {
+  const auto packets = pcap_payloads("pandar64_dual.pcap");
+  ASSERT_GT(packets.size(), 84u);
+  ASSERT_EQ(packets[0][1186], 0x39);
+  const Labelled p0 = label(packets[0]);
+  // Packet 0, blocks 0/1, channel 1: (173, 0) and (173, 0): one echo sent twice, both IDENTICAL.
+  EXPECT_EQ(p0.of(0, 1), kIdentical);
+  EXPECT_EQ(p0.of(1, 1), kIdentical);
+  // Channel 20: last (539, 2), strongest block (112, 0): the last reflects more, so it is the
+  // strongest too and block 2 holds the second strongest.
+  EXPECT_EQ(p0.of(0, 20), kLastStrongest);
+  EXPECT_EQ(p0.of(1, 20), kSecondStrongest);
+  // Blocks 4/5, channel 25: (529, 0) and (133, 0): equal reflectivity, both count as strongest.
+  EXPECT_EQ(p0.of(4, 25), kLastStrongest);
+  EXPECT_EQ(p0.of(5, 25), kStrongest);
+  // Packet 1, blocks 0/1, channel 26: (535, 0) and (0, 0): block 2 has no return and no point;
+  // the last is not weaker (0 vs 0), and not identical (the distances differ).
+  const Labelled p1 = label(packets[1]);
+  EXPECT_EQ(p1.of(0, 26), kLastStrongest);
+  EXPECT_FALSE(p1.has(1, 26));
+  // Packet 84, blocks 0/1, channel 11: (673, 0) and (423, 4): block 2 reflects more.
+  const Labelled p84 = label(packets[84]);
+  EXPECT_EQ(p84.of(0, 11), kLast);
+  EXPECT_EQ(p84.of(1, 11), kStrongest);
+}
+
+// The same packet sent in a single-return mode (the tail byte set to 0x37, then 0x38): every
+// block is a firing of its own, every point STRONGEST, then LAST (Pandar64 manual 3.1.2.3).
+TEST(NebulaReturnType, Pandar64SingleReturnByHand) {
+  const auto packets = pcap_payloads("pandar64_dual.pcap");
+  ASSERT_FALSE(packets.empty());
+  for (const auto& [mode, want] : {std::pair<std::uint8_t, unsigned>{0x37, kStrongest}, {0x38, kLast}}) {
+    std::vector<std::uint8_t> p = packets[0];
+    p[1186] = mode;
+    const Labelled l = label(p);
+    ASSERT_FALSE(l.points.empty());
+    for (std::size_t i = 0; i < l.points.size(); ++i) {
+      EXPECT_EQ(l.points[i].return_index, 0);
+      EXPECT_EQ(l.types[i], want) << "block " << int{l.points[i].block} << " channel " << int{l.points[i].channel};
+    }
+    EXPECT_EQ(l.of(0, 1), want);  // identical to block 1's unit, but single return: no IDENTICAL
+  }
 }
 
 }  // namespace

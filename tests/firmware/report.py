@@ -202,10 +202,13 @@ def linked_sizes(map_file):
     return sizes
 
 
-# The functions a SensorDescriptor points to (group 1: the member; qt128::seal is a `seal`), and
-# which members each function that calls through a descriptor calls (core/src/sensors/).
-REGISTRY_TARGET = re.compile(r'hesai::SensorCode<[^>]*>::(identify|design|validate|walk|sequence_at)\b|hesai::qt128::seal\b')
+# The functions a SensorDescriptor points to (group 1: the member; qt128::seal is a `seal`), the
+# one a Decoder::CompareReturns points to (group 2, sensors/decoder.cpp), and which of them each
+# function that calls through a pointer calls (core/src/sensors/).
+REGISTRY_TARGET = re.compile(r'hesai::SensorCode<[^>]*>::(identify|design|validate|walk|sequence_at)\b|hesai::qt128::seal\b'
+                             r'|hesai::\{anonymous\}::(compare_returns)\b')
 INDIRECT_CALLS = {
+    'hesai::SensorBase::emit_blocks': ('compare_returns',),
     'hesai::Decoder::Decoder': ('design',),
     'hesai::identify': ('identify',),
     'hesai::Decoder::validate': ('identify', 'validate'),
@@ -246,7 +249,7 @@ def call_graph(objects):
     for t, n in names.items():
         m = REGISTRY_TARGET.search(n)
         if m:
-            targets.setdefault(m.group(1) or 'seal', set()).add(t)
+            targets.setdefault(m.group(1) or m.group(2) or 'seal', set()).add(t)
     for fn, callees in edges.items():
         members = INDIRECT_CALLS.get(short_name(names.get(fn, fn)))
         if '__indirect_call' in callees and members:

@@ -7,7 +7,10 @@ HESAI_RUN_PREFIX (environment): words put before HESAI (cross builds: the qemu-u
 
 Per frame (the CSV's frame column): one message, its sequence the frame number, its width the
 frame's rows, its points the rows in the same order: channel = CSV channel - 1 (nebula counts
-from 0), return_type = return, intensity exactly; x, y, z, distance within the CSV's 4 decimals
+from 0), intensity exactly; return_type = nebula's ReturnType, derived here from the capture's own
+bytes (nebula_return_type.py: the packet's return-mode byte and the other returns of the point's
+firing, by the CSV's packet, block and channel), and the CSV's return = the block's index in its
+firing, as before; x, y, z, distance within the CSV's 4 decimals
 (0.00005 m) plus float32 rounding; azimuth and elevation (radians) within the CSV's 3 decimals
 of a degree; time_ns (stamp + time_stamp) exactly. stamp = the frame's earliest time_ns.
 Topic and frame_id: /hesai/<token>/points and hesai_<token>, the token made here from the CSV's
@@ -24,6 +27,7 @@ import sys
 sys.dont_write_bytecode = True  # no __pycache__ in the source tree
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import make_pandarscan  # noqa: E402  (its pcap reader: the capture's datagram times)
+import nebula_return_type  # noqa: E402  (the expected return_type, from the packet bytes)
 
 
 def fail(msg):
@@ -54,11 +58,15 @@ def main():
         last_row = {}
         for i, row in enumerate(reader_csv):
             last_row[int(row[0])] = i
-    col = {k: header.index(k) for k in ("frame", "packet", "channel", "return", "intensity", "x", "y", "z",
+    col = {k: header.index(k) for k in ("frame", "packet", "block", "channel", "return", "intensity", "x", "y", "z",
                                          "azimuth_deg", "elevation_deg", "distance_m", "time_ns", "sensor")}
     # The capture's datagram times, by point-cloud packet index (every bundled capture's datagrams
     # are point-cloud packets).
-    times = [t for t, _ in make_pandarscan.pcap_payloads(capture)]
+    datagrams = make_pandarscan.pcap_payloads(capture)
+    times = [t for t, _ in datagrams]
+    payloads = [p for _, p in datagrams]
+    models = {}  # packet index -> model
+    type_counts = {}
     last_log = -1
     frames = sorted(last_row)
 
@@ -115,10 +123,20 @@ def main():
                     fail_read(f"{where}: no point line")
                 ch, ret, inten = int(p[1]), int(p[2]), int(p[3])
                 x, y, z, az, el, dist = (float(v) for v in p[4:10])
-                if (ch != int(row[col["channel"]]) - 1 or ret != int(row[col["return"]])
-                        or inten != int(row[col["intensity"]])):
-                    fail(f"{where}: channel/return/intensity {ch},{ret},{inten} vs CSV "
-                         f"{row[col['channel']]},{row[col['return']]},{row[col['intensity']]}")
+                if ch != int(row[col["channel"]]) - 1 or inten != int(row[col["intensity"]]):
+                    fail(f"{where}: channel/intensity {ch},{inten} vs CSV "
+                         f"{row[col['channel']]},{row[col['intensity']]}")
+                packet = int(row[col["packet"]])
+                payload = payloads[packet]
+                model = models.get(packet) or models.setdefault(packet, nebula_return_type.identify(payload))
+                want, index_in_firing = nebula_return_type.expected(model, payload, int(row[col["block"]]), ch)
+                if ret != want:
+                    fail(f"{where} (packet {packet} block {row[col['block']]} channel {ch}): return_type {ret}, "
+                         f"nebula's ReturnType from the packet's bytes is {want}")
+                if int(row[col["return"]]) != index_in_firing:
+                    fail(f"{where}: the CSV's return {row[col['return']]}, the block's index in its firing "
+                         f"{index_in_firing}")
+                type_counts[ret] = type_counts.get(ret, 0) + 1
                 if int(p[10]) != int(row[col["time_ns"]]):
                     fail(f"{where}: time {p[10]} vs CSV {row[col['time_ns']]}")
                 for key, v in (("x", x), ("y", y), ("z", z), ("distance_m", dist)):
@@ -142,7 +160,12 @@ def main():
     # Every bundled capture has points: a decode that wrote none would compare nothing and pass.
     if points == 0 or not frames:
         fail(f"nothing compared: {len(frames)} frames, {points} points (the CSV has no rows)")
-    print(f"{name}: {len(frames)} messages = {len(frames)} frames, {points} points match the CSV")
+    # Every point has a ReturnType nebula defines, never UNKNOWN (0) on these captures.
+    if type_counts.get(0):
+        fail(f"{type_counts[0]} points with return_type 0 (UNKNOWN)")
+    counts = ", ".join(f"{t}: {n}" for t, n in sorted(type_counts.items()))
+    print(f"{name}: {len(frames)} messages = {len(frames)} frames, {points} points match the CSV; "
+          f"return_type {{{counts}}} as the packets' bytes give")
 
 if __name__ == "__main__":
     main()

@@ -65,6 +65,10 @@
 
 namespace hesai {
 
+namespace kernels {
+struct BlockRef;  // a packet's block as the per-point code sees it (internal: core/src/kernels/)
+}  // namespace kernels
+
 /// What kind of payload identify() found.
 enum class PacketKind : std::uint8_t { point_cloud, gps };
 
@@ -233,6 +237,29 @@ struct UnitScan {
   std::array<std::array<std::uint8_t, kMaxChannels / 8>, kMaxDualFirings> repeated{};
 };
 
+/// How each unit compares with the other returns of its firing (PacketInfo::returns adjacent
+/// blocks; all clear in single return), filled by the decode() form that takes one: bit (c % 8)
+/// of byte c / 8 of block b's row, for 0-based channel c (as UnitScan::repeated). Raw units,
+/// whatever their distance (a distance-0 unit too), as nebula's Hesai decoder compares them
+/// (tier4/nebula hesai_sensor.hpp) to give a point its ReturnType. 320 bytes.
+struct ReturnComparison {
+  /// Its distance and reflectivity equal those of another return of the firing.
+  std::array<std::array<std::uint8_t, kMaxChannels / 8>, kMaxBlocksPerPacket> identical{};
+  /// Its reflectivity is below another return's of the firing (clear: it is the strongest, or
+  /// ties with the strongest).
+  std::array<std::array<std::uint8_t, kMaxChannels / 8>, kMaxBlocksPerPacket> weaker{};
+
+  bool is_identical(std::size_t block, std::size_t channel) const noexcept { return bit(identical, block, channel); }
+  bool is_weaker(std::size_t block, std::size_t channel) const noexcept { return bit(weaker, block, channel); }
+
+ private:
+  using Rows = std::array<std::array<std::uint8_t, kMaxChannels / 8>, kMaxBlocksPerPacket>;
+  static bool bit(const Rows& rows, std::size_t block, std::size_t channel) noexcept {
+    return block < kMaxBlocksPerPacket && channel < kMaxChannels &&
+           (static_cast<unsigned>(rows[block][channel / 8]) >> (channel % 8) & 1u) != 0;
+  }
+};
+
 /// What Point::intensity holds (Decoder::set_reflectivity).
 enum class Reflectivity : std::uint8_t {
   raw,        ///< the reflectivity byte as sent (default; with the sensors' default linear mapping it is the percentage)
@@ -324,6 +351,11 @@ class Decoder {
   /// scan.duplicate_returns); the others keep their order.
   [[nodiscard]] Error decode(ByteView payload, PacketInfo& info, PacketPoints& out, UnitScan& scan,
                              Returns returns = Returns::all, DecodePath path = DecodePath::best) noexcept;
+  /// The same, and how each unit compares with the other returns of its firing into `compare`
+  /// (reset first; left reset on error): what a nebula ReturnType needs. A pass over the units more.
+  [[nodiscard]] Error decode(ByteView payload, PacketInfo& info, PacketPoints& out, UnitScan& scan,
+                             ReturnComparison& compare, Returns returns = Returns::all,
+                             DecodePath path = DecodePath::best) noexcept;
   /// The same into caller-owned storage for `capacity` points (as the Point* form of decode()).
   [[nodiscard]] Error decode(ByteView payload, PacketInfo& info, Point* points, std::size_t capacity, std::size_t& count,
                              UnitScan& scan, Returns returns = Returns::all,
@@ -384,6 +416,7 @@ class Decoder {
   // the state below: SensorBase holds what every sensor shares, each sensor's functions are the
   // members of its SensorCode<tag> (sensors/sensor.h).
   friend struct SensorBase;
+  friend struct DecodeOutput;  // holds a CompareReturns
   template <class Tag>
   friend struct SensorCode;
 
@@ -396,8 +429,17 @@ class Decoder {
   // in `loops` (the others' arrays when a later packet uses them). Const: SensorBase::emit_blocks
   // calls it, which sees the decoder const; spin_ is a cache of the geometry.
   void update_spin(std::uint16_t rpm, unsigned loops, DecodePath path) const noexcept;
+  // What fills a ReturnComparison (compare_returns, sensors/decoder.cpp). Only the decode() form
+  // that takes one hands it down, by address: a program that never calls that form links none of
+  // its code (the Cortex-M0+ image's 48 KiB of flash, tests/firmware).
+  // (No member initializers: a default argument below value-initializes it, both null.)
+  struct CompareReturns {
+    ReturnComparison* into;
+    void (*fill)(const kernels::BlockRef* blocks, std::size_t block_count, std::size_t unit_count,
+                 std::size_t unit_bytes, const PacketInfo& info, ReturnComparison& into) noexcept;
+  };
   // Every decode() form: the capacity check, validate(), the sensor's walk into `points` (when not
-  // null) or `columns`; count 0 on error.
+  // null) or `columns`; count 0 on error. (The form with a ReturnComparison has its own copy.)
   [[nodiscard]] Error decode_into(ByteView payload, PacketInfo& info, Point* points, const PointColumns* columns,
                                   std::size_t capacity, std::size_t& count, DecodePath path,
                                   UnitScan* scan = nullptr) noexcept;

@@ -64,14 +64,19 @@ constexpr std::size_t packets_per_rotation(Model m, std::size_t returns) {
 /// unknown). Storage for this many points suffices for any packet the model sends.
 constexpr std::size_t max_points(Model m) { return block_count(m) * channel_count(m); }
 
-/// The most channels of any model, and the most points one packet can hold (10 x 40).
+/// The most channels of any model, the most blocks a packet holds (the Pandar40's 10) and the
+/// most points one packet can hold (10 x 40).
 inline constexpr std::size_t kMaxChannels = 128;
+inline constexpr std::size_t kMaxBlocksPerPacket = 10;
 inline constexpr std::size_t kMaxPointsPerPacket = 400;
 constexpr bool every_model_fits() {
   for (std::size_t i = 0; i < kModelCount; ++i)
-    if (model_facts::kFacts[i].channels > kMaxChannels || max_points(static_cast<Model>(i)) > kMaxPointsPerPacket) return false;
+    if (model_facts::kFacts[i].channels > kMaxChannels || model_facts::kFacts[i].blocks > kMaxBlocksPerPacket ||
+        max_points(static_cast<Model>(i)) > kMaxPointsPerPacket)
+      return false;
   return true;
 }
-static_assert(every_model_fits(), "kMaxChannels and kMaxPointsPerPacket bound every model of model_list.h");
+static_assert(every_model_fits(),
+              "kMaxChannels, kMaxBlocksPerPacket and kMaxPointsPerPacket bound every model of model_list.h");
 
 }  // namespace hesai

@@ -31,6 +31,7 @@ struct DecodeOutput {
   DecodePath path = DecodePath::best;
   std::size_t count = 0;
   UnitScan* scan = nullptr;  // when set, the units are scanned too (scan_units)
+  Decoder::CompareReturns compare{};  // when set, each return compared with its firing's others
 
   // Replaces the intensity of points [first, count) by table[intensity].
   void map_intensity(std::size_t first, const std::uint8_t* table) noexcept {
@@ -116,6 +117,7 @@ HESAI_NOINLINE_FOR_SIZE void SensorBase::emit_blocks(const Decoder& d, const ker
   const float unit_m = static_cast<float>(info.dis_unit_mm) * 0.001f;
   const std::uint16_t min_distance = sensor_of(d.model_)->min_distance;
   if (out.scan != nullptr) scan_units<kUnitBytes>(blocks, block_count, unit_count, info, min_distance, *out.scan);
+  if (out.compare.into != nullptr) out.compare.fill(blocks, block_count, unit_count, kUnitBytes, info, *out.compare.into);
 #if defined(HESAI_KERNELS_VECTOR)
   const kernels::VectorIsa isa = kernels::vector_isa(out.path);  // none for DecodePath::portable
   if (isa != kernels::VectorIsa::none && block_count <= kernels::kMaxBlocks) {

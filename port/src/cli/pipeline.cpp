@@ -57,7 +57,8 @@ bool read_text_file(const std::string& path, std::string& out, std::string& erro
   return true;
 }
 
-Pipeline::Pipeline(const DecodeOptions& options, Sink* sink) : options_(options), sink_(sink) {}
+Pipeline::Pipeline(const DecodeOptions& options, Sink* sink)
+    : options_(options), sink_(sink), return_types_(sink != nullptr && sink->wants_return_types()) {}
 
 Pipeline::~Pipeline() {
   secure_wipe(options_.session_key.data(), options_.session_key.size());
@@ -248,7 +249,7 @@ bool Pipeline::feed(ByteView payload, std::uint64_t source_key, bool pre_session
 
   allow_unsigned_for(*src, pre_session);
   PacketInfo info;
-  e = src->decoder->decode(payload, info, points_, scan_, options_.returns);
+  e = decode(*src, payload, info);
   if (e != Error::ok) {
     count_error(stats_, e);
     ++rejections_[e];
@@ -272,7 +273,7 @@ bool Pipeline::feed(ByteView payload, std::uint64_t source_key, bool pre_session
         while (!src->held.empty())
           if (!release_held(*src)) return false;
         allow_unsigned_for(*src, pre_session);
-        e = src->decoder->decode(payload, info, points_, scan_, options_.returns);
+        e = decode(*src, payload, info);
         if (e != Error::ok) {  // the packet decoded once: a fault of ours, but counted as bad input
           count_error(stats_, e);
           ++rejections_[e];
@@ -284,12 +285,17 @@ bool Pipeline::feed(ByteView payload, std::uint64_t source_key, bool pre_session
   return process(*src, index, info);
 }
 
+Error Pipeline::decode(Source& src, ByteView payload, PacketInfo& info) {
+  if (return_types_) return src.decoder->decode(payload, info, points_, scan_, compare_, options_.returns);
+  return src.decoder->decode(payload, info, points_, scan_, options_.returns);
+}
+
 bool Pipeline::release_held(Source& src) {
   const ByteView payload = src.held.front();
   const std::uint64_t index = src.held.front_tag() & ~kPreSessionTag;
   allow_unsigned_for(src, (src.held.front_tag() & kPreSessionTag) != 0);
   PacketInfo info;
-  const Error e = src.decoder->decode(payload, info, points_, scan_, options_.returns);
+  const Error e = decode(src, payload, info);
   src.held.pop_front();
   if (e != Error::ok) {  // it decoded when it came: a fault of ours, but counted as bad input
     count_error(stats_, e);
@@ -390,7 +396,10 @@ bool Pipeline::process(Source& src, std::uint64_t index, const PacketInfo& info)
       if (!keep || p.distance_m < options_.min_range || p.distance_m > options_.max_range) continue;
       if (!frames.in_fov(p.azimuth_deg)) continue;
       const std::uint64_t frame_id = frames.point(p.azimuth_deg);
-      if (sink_) batch_.push_back(OutPoint{p, frame_id, index, static_cast<std::uint32_t>(src.order)});
+      if (sink_)
+        batch_.push_back(OutPoint{p, frame_id, index, static_cast<std::uint32_t>(src.order),
+                                  return_types_ ? port::nebula_return_type(info, compare_, p)
+                                                : port::NebulaReturnType::unknown});
     }
   }
   flush_points();

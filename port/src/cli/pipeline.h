@@ -19,6 +19,7 @@
 #include "hesai/sequence.h"
 #include "hesai/stats.h"
 #include "hesai_port/capture/capture.h"
+#include "hesai_port/formats/pointcloud2.h"
 
 namespace hesai::cli {
 
@@ -52,6 +53,9 @@ struct OutPoint {
   std::uint64_t frame = 0;   ///< frame id (1-based) within its sensor's frames
   std::uint64_t packet = 0;  ///< 0-based index of the point-cloud packet in the input
   std::uint32_t sensor = 0;  ///< its sensor, as Sink::sensor_added named it
+  /// nebula's ReturnType for the MCAP's return_type, from the packet's return mode and the other
+  /// returns of the point's firing (port::nebula_return_type)
+  port::NebulaReturnType return_type = port::NebulaReturnType::unknown;
 };
 
 /// Receives what the pipeline produces. A sensor is one source (an address and port, or a bag
@@ -72,6 +76,9 @@ class Sink {
   virtual void receive_time(std::uint64_t ns) = 0;
   virtual void points(const OutPoint* p, std::size_t count) = 0;
   virtual void frame_closed(const FrameInfo& frame, std::uint32_t sensor) = 0;
+  /// Whether OutPoint::return_type is wanted (the MCAP's return_type): it costs the decoder a pass
+  /// more over each packet's units, so it is left unknown otherwise.
+  virtual bool wants_return_types() const { return false; }
 };
 
 /// One sensor's stream health, for the per-sensor report (`sensors` in stats --json).
@@ -189,12 +196,15 @@ class Pipeline {
   int parse_channel_config(const std::string& text, std::string& error);
   // Decodes the oldest held packet in the decoder's direction and processes it.
   bool release_held(Source& src);
+  // src's decoder on the payload into points_ and scan_, and compare_ when return_types_.
+  Error decode(Source& src, ByteView payload, PacketInfo& info);
   // Accounts one decoded packet (points_ holds its points) and gives its points to the frames.
   bool process(Source& src, std::uint64_t index, const PacketInfo& info);
   void close_frames(Source& src);
 
   DecodeOptions options_;
   Sink* sink_;
+  bool return_types_;  // the sink wants OutPoint::return_type
   std::string angles_text_, firetimes_text_;
   std::unique_ptr<ChannelConfig> channel_config_;  // --channel-config, parsed once
   std::map<std::uint64_t, Source> sources_;
@@ -217,6 +227,7 @@ class Pipeline {
   PacketPoints points_;  // one packet's points (reused)
   std::vector<OutPoint> batch_;  // its kept points for the sink (reused: no allocation per packet)
   UnitScan scan_;        // and what its units say beyond them
+  ReturnComparison compare_;  // and how each of its returns compares with its firing's others
 };
 
 /// The source a captured datagram comes from, for Pipeline::feed: its sender's address and port.

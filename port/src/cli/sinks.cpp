@@ -82,6 +82,10 @@ OutputSink::Frame& OutputSink::open_frame(FrameKey key) {
     spare_points_ = std::vector<Point>();
     it->second.points.clear();
     it->second.points.reserve(mcap_frame_points_);
+    it->second.return_types = std::move(spare_return_types_);
+    spare_return_types_ = std::vector<port::NebulaReturnType>();
+    it->second.return_types.clear();
+    it->second.return_types.reserve(mcap_frame_points_);
   }
   return it->second;
 }
@@ -195,7 +199,8 @@ int OutputSink::open_mcap(std::string& error) {
   return kExitOk;
 }
 
-void OutputSink::write_mcap_frame(FrameKey key, const std::vector<Point>& points) {
+void OutputSink::write_mcap_frame(FrameKey key, const std::vector<Point>& points,
+                                  const std::vector<port::NebulaReturnType>& return_types) {
   if (points.empty() || !mcap_.is_open()) return;  // no point, no stamp: no message
   const SensorOut& s = sensor(key.first);
   if (s.frame_id.empty()) return;  // its topic was refused (deferred_error_)
@@ -216,7 +221,8 @@ void OutputSink::write_mcap_frame(FrameKey key, const std::vector<Point>& points
   std::uint8_t block[2048 * port::kPointStep];
   for (std::size_t i = 0; r && i < points.size();) {
     std::size_t n = 0;
-    for (; n < 2048 && i < points.size(); ++n, ++i) port::encode_point(points[i], stamp, block + n * port::kPointStep);
+    for (; n < 2048 && i < points.size(); ++n, ++i)
+      port::encode_point(points[i], return_types[i], stamp, block + n * port::kPointStep);
     r = mcap_.append(block, n * port::kPointStep);
   }
   if (r) r = mcap_.append(&port::kPointCloud2Tail, 1);
@@ -243,6 +249,7 @@ void OutputSink::points(const OutPoint* pts, std::size_t count) {
       }
       f->points.push_back(pts[i].point);
       if (format_ == Format::csv) f->packets.push_back(pts[i].packet);
+      if (format_ == Format::mcap) f->return_types.push_back(pts[i].return_type);
     }
     return;
   }
@@ -275,8 +282,10 @@ void OutputSink::frame_closed(const FrameInfo& frame, std::uint32_t sensor_index
   if (format_ == Format::mcap) {
     const auto it = open_.find(key);
     if (it == open_.end()) return;  // no point was kept
-    write_mcap_frame(key, it->second.points);
+    write_mcap_frame(key, it->second.points, it->second.return_types);
     if (it->second.points.capacity() > spare_points_.capacity()) spare_points_ = std::move(it->second.points);
+    if (it->second.return_types.capacity() > spare_return_types_.capacity())
+      spare_return_types_ = std::move(it->second.return_types);
     open_.erase(it);
     return;
   }
@@ -316,7 +325,7 @@ bool OutputSink::write_cloud(const std::string& path, const std::vector<Point>& 
 
 bool OutputSink::close(std::string& error) {
   if (mcap_.is_open()) {
-    for (const auto& [key, frame] : open_) write_mcap_frame(key, frame.points);  // frames never closed
+    for (const auto& [key, frame] : open_) write_mcap_frame(key, frame.points, frame.return_types);  // frames never closed
     open_.clear();
     // The rosbag2 metadata record, as rosbag2's MCAP storage plugin writes it (the distribution
     // under ROS_DISTRO), so that `ros2 bag info` names it.

@@ -35,6 +35,7 @@ class OutputSink : public Sink {
   void receive_time(std::uint64_t ns) override { receive_ns_ = ns; }
   void points(const OutPoint* p, std::size_t count) override;
   void frame_closed(const FrameInfo& frame, std::uint32_t sensor) override;
+  bool wants_return_types() const override { return format_ == Format::mcap; }
   /// Writes what is still held (the single PNG), closes the file. Returns false with a message.
   /// Memory: the open frames' points or PNG views with --per-frame, and the open frames' points
   /// for MCAP (two frames near a cut, where a packet gives points to both); otherwise a block of
@@ -49,6 +50,7 @@ class OutputSink : public Sink {
   struct Frame {
     std::vector<Point> points;           // CSV, PCD, PLY
     std::vector<std::uint64_t> packets;  // packet index of each point (CSV)
+    std::vector<port::NebulaReturnType> return_types;  // nebula's ReturnType of each point (MCAP)
     port::BirdseyeView png;              // PNG
   };
   // What each sensor's outputs need.
@@ -64,7 +66,8 @@ class OutputSink : public Sink {
                    std::string& error);
   std::string frame_path(FrameKey key) const;
   int open_mcap(std::string& error);
-  void write_mcap_frame(FrameKey key, const std::vector<Point>& points);
+  void write_mcap_frame(FrameKey key, const std::vector<Point>& points,
+                        const std::vector<port::NebulaReturnType>& return_types);
   Frame& open_frame(FrameKey key);
   const SensorOut& sensor(std::uint32_t s) const;
 
@@ -84,6 +87,7 @@ class OutputSink : public Sink {
   std::vector<SensorOut> sensors_;  // by sensor
   std::size_t mcap_frame_points_ = 0;  // the largest frame written to the MCAP file so far
   std::vector<Point> spare_points_;     // a written MCAP frame's storage, for the next frame
+  std::vector<port::NebulaReturnType> spare_return_types_;  // and its return types'
   port::BirdseyeView png_;      // the PNG of every point; with --per-frame, the empty view each frame starts from
   std::map<FrameKey, Frame> open_;  // --per-frame and MCAP: the frames not yet closed
   std::vector<Point> run_;  // the points of one frame of a packet, for the one file's writer (reused)

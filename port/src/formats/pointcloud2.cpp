@@ -163,12 +163,81 @@ std::vector<std::uint8_t> pointcloud2_head(std::int64_t stamp_ns, const std::str
   return out;
 }
 
-void encode_point(const Point& p, std::int64_t stamp_ns, std::uint8_t out[kPointStep]) {
+// Return-mode bytes: Pandar40 manual 3.1.2, Table 3.3 note and "Return Mode Information"
+// (0x37 strongest, 0x38 last, 0x39 dual: odd block last, even block strongest); Pandar64 manual
+// 3.1.2.2 Body, the return-mode table (0x39: odd-numbered block last, even-numbered strongest,
+// "If the last return is also the strongest, then the even-numbered block stores the second
+// strongest return") and 3.1.2.3 Tail; QT128C2X manual 3.1.2.2 Body, the table "Return Mode
+// field / Block 1 / Block 2 / Note" (0x39 last/strongest, 0x3B first/last, 0x3C first/strongest,
+// 0x3E strongest/second strongest, 0x3A first/second) and 3.1.2 Tail (0x33 first, 0x34 second,
+// 0x37, 0x38). 0x3D (triple: first, last, strongest) has no manual here: nebula hesai_packet.hpp.
+//
+// The ReturnType of each block is nebula's (hesai_sensor.hpp, get_return_type):
+// - a unit equal to another return of its firing (distance and reflectivity) is IDENTICAL, in
+//   every mode and block, before anything else. nebula then keeps only the last block's point of
+//   such a group (hesai_decoder.hpp, convert_returns); we keep both, labelled IDENTICAL, so that
+//   the message has the CSV's points (a contract), and --returns distinct leaves out the repeat
+//   as in every other format;
+// - "strongest" in the two modes that pair a return with the strongest (0x39, 0x3C) is nebula's
+//   test: no other return of the firing has a higher reflectivity (a tie counts as strongest);
+// - the PandarXT16 and XT32 send 0x3B with last in the first block (nebula pandar_xt16.hpp and
+//   pandar_xt32.hpp swap FIRST and LAST for them); the XT32M2X keeps the base order (nebula
+//   pandar_xt32m.hpp does not override it).
+// nebula's other dual-return filter, dropping the earlier of two returns closer than its
+// dual_return_distance_threshold parameter, removes points and sets no label: not mirrored.
+NebulaReturnType nebula_return_type(Model model, std::uint8_t return_mode, std::uint8_t return_index, bool identical,
+                                    bool weaker) noexcept {
+  using T = NebulaReturnType;
+  const bool first_block = return_index == 0;
+  switch (static_cast<ReturnMode>(return_mode)) {
+    case ReturnMode::first: return T::first;
+    case ReturnMode::second: return T::second;
+    case ReturnMode::strongest: return T::strongest;
+    case ReturnMode::last: return T::last;
+    default: break;
+  }
+  if (identical) {
+    switch (static_cast<ReturnMode>(return_mode)) {
+      case ReturnMode::last_strongest:
+      case ReturnMode::first_second:
+      case ReturnMode::first_last:
+      case ReturnMode::first_strongest:
+      case ReturnMode::first_last_strongest:
+      case ReturnMode::strongest_second_strongest: return T::identical;
+      default: return T::unknown;
+    }
+  }
+  switch (static_cast<ReturnMode>(return_mode)) {
+    case ReturnMode::last_strongest:
+      if (first_block) return weaker ? T::last : T::last_strongest;
+      return weaker ? T::second_strongest : T::strongest;
+    case ReturnMode::first_second: return first_block ? T::first : T::second;
+    case ReturnMode::first_last: {
+      const bool last_first = model == Model::pandar_xt16 || model == Model::pandar_xt32;
+      return first_block != last_first ? T::first : T::last;
+    }
+    case ReturnMode::first_strongest:
+      if (first_block) return weaker ? T::first : T::first_strongest;
+      return weaker ? T::second_strongest : T::strongest;
+    case ReturnMode::first_last_strongest:
+      return return_index == 0 ? T::first : return_index == 1 ? T::last : return_index == 2 ? T::strongest : T::unknown;
+    case ReturnMode::strongest_second_strongest: return first_block ? T::strongest : T::second_strongest;
+    default: return T::unknown;
+  }
+}
+
+NebulaReturnType nebula_return_type(const PacketInfo& info, const ReturnComparison& compare, const Point& p) noexcept {
+  const std::size_t ch = static_cast<std::size_t>(p.channel > 0 ? p.channel - 1 : 0);
+  return nebula_return_type(info.model, info.return_mode, p.return_index, compare.is_identical(p.block, ch),
+                            compare.is_weaker(p.block, ch));
+}
+
+void encode_point(const Point& p, NebulaReturnType return_type, std::int64_t stamp_ns, std::uint8_t out[kPointStep]) {
   store_f32(out + 0, p.x);
   store_f32(out + 4, p.y);
   store_f32(out + 8, p.z);
   out[12] = p.intensity;
-  out[13] = p.return_index;
+  out[13] = static_cast<std::uint8_t>(return_type);
   const std::uint16_t channel = p.channel > 0 ? static_cast<std::uint16_t>(p.channel - 1) : 0;
   out[14] = static_cast<std::uint8_t>(channel);
   out[15] = static_cast<std::uint8_t>(channel >> 8);

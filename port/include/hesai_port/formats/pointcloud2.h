@@ -9,8 +9,8 @@
 //   offset  4 y           FLOAT32  metres   | Y axis at azimuth 0, azimuth clockwise seen from
 //   offset  8 z           FLOAT32  metres  /  above, Z up (Point::x, y, z)
 //   offset 12 intensity   UINT8    the reflectivity byte (Point::intensity)
-//   offset 13 return_type UINT8    Point::return_index (0 single / first block of a firing, 1, 2):
-//                                  not nebula's ReturnType code, which needs the return mode
+//   offset 13 return_type UINT8    nebula's ReturnType of the point (nebula_return_type below), by
+//                                  the packet's return mode and the other returns of its firing
 //   offset 14 channel     UINT16   0-based laser channel as nebula numbers them (Point::channel - 1)
 //   offset 16 azimuth     FLOAT32  radians, [0, 2 pi) (nebula: azimuth_rad; Point::azimuth_deg)
 //   offset 20 elevation   FLOAT32  radians, up positive (nebula: elevation_rad)
@@ -24,6 +24,7 @@
 #include <string>
 #include <vector>
 
+#include "hesai/decoder.h"
 #include "hesai/point.h"
 
 namespace hesai {
@@ -55,8 +56,36 @@ inline std::uint64_t pointcloud2_size(std::size_t head_bytes, std::uint64_t poin
   return head_bytes + points * kPointStep + 1;
 }
 
-/// One point record (the layout above); `stamp_ns` is the message's header.stamp.
-void encode_point(const Point& p, std::int64_t stamp_ns, std::uint8_t out[kPointStep]);
+/// nebula's ReturnType (tier4/nebula, nebula_core_common/nebula_common.hpp, enum ReturnType), the
+/// values of the PointCloud2 `return_type` byte. 0 is UNKNOWN, which Autoware reads as invalid.
+enum class NebulaReturnType : std::uint8_t {
+  unknown = 0,
+  last = 1,
+  first = 2,
+  strongest = 3,
+  first_weak = 4,
+  last_weak = 5,
+  identical = 6,
+  second = 7,
+  second_strongest = 8,
+  first_strongest = 9,
+  last_strongest = 10,
+};
+
+/// The ReturnType nebula's Hesai decoder gives a point (nebula hesai_sensor.hpp, get_return_type,
+/// and the overrides in pandar_xt16.hpp and pandar_xt32.hpp): `return_mode` is the tail's byte,
+/// `return_index` the point's block within its firing (Point::return_index), `identical` whether
+/// its unit equals another return of the firing in distance and reflectivity, `weaker` whether
+/// its reflectivity is below another return's (ReturnComparison). The table, with the
+/// manuals' block orders, is in docs/CLI.md (MCAP). A mode byte no manual names: unknown.
+NebulaReturnType nebula_return_type(Model model, std::uint8_t return_mode, std::uint8_t return_index, bool identical,
+                                    bool weaker) noexcept;
+/// The same for a decoded point of the packet `info`, its returns compared in `compare`.
+NebulaReturnType nebula_return_type(const PacketInfo& info, const ReturnComparison& compare, const Point& p) noexcept;
+
+/// One point record (the layout above); `stamp_ns` is the message's header.stamp, `return_type`
+/// the point's nebula ReturnType.
+void encode_point(const Point& p, NebulaReturnType return_type, std::int64_t stamp_ns, std::uint8_t out[kPointStep]);
 
 /// `name` as a bag records a topic: checked against ROS 2's topic-name rules (rcl's
 /// validate_topic_name, for a name whose substitutions are done): only letters, digits, '_' and
