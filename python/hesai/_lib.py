@@ -82,12 +82,13 @@ class CaptureOptions(ctypes.Structure):
     ]
 
 
-# hesai_capture_row: the C struct's layout, fields named and ordered as the CSV's columns.
+# hesai_capture_row: the C struct's layout, fields named and ordered as the CSV's columns (sensor:
+# the index of the CSV's sensor text, hesai_capture_sensor_name).
 ROW_DTYPE = np.dtype({
     "names": ["frame", "packet", "block", "channel", "return", "azimuth_deg", "elevation_deg", "distance_m",
-              "x", "y", "z", "intensity", "time_ns"],
-    "formats": ["<u8", "<u8", "u1", "u1", "u1", "<f4", "<f4", "<f4", "<f4", "<f4", "<f4", "u1", "<i8"],
-    "offsets": [0, 8, 48, 49, 50, 24, 28, 32, 36, 40, 44, 51, 16],
+              "x", "y", "z", "intensity", "time_ns", "sensor"],
+    "formats": ["<u8", "<u8", "u1", "u1", "u1", "<f4", "<f4", "<f4", "<f4", "<f4", "<f4", "u1", "<i8", "<u2"],
+    "offsets": [0, 8, 48, 49, 50, 24, 28, 32, 36, 40, 44, 51, 16, 52],
     "itemsize": 56,
 })
 
@@ -97,8 +98,13 @@ lib.hesai_capture_open.argtypes = [ctypes.c_char_p, ctypes.POINTER(CaptureOption
                                    ctypes.c_char_p, ctypes.c_size_t]
 lib.hesai_capture_open.restype = ctypes.c_int
 lib.hesai_capture_read.argtypes = [ctypes.c_void_p, ctypes.c_void_p, ctypes.c_size_t, ctypes.POINTER(ctypes.c_size_t),
-                                   ctypes.POINTER(ctypes.c_uint64), ctypes.c_char_p, ctypes.c_size_t]
+                                   ctypes.POINTER(ctypes.c_uint64), ctypes.POINTER(ctypes.c_uint16), ctypes.c_char_p,
+                                   ctypes.c_size_t]
 lib.hesai_capture_read.restype = ctypes.c_int
+lib.hesai_capture_sensors.argtypes = [ctypes.c_void_p]
+lib.hesai_capture_sensors.restype = ctypes.c_size_t
+lib.hesai_capture_sensor_name.argtypes = [ctypes.c_void_p, ctypes.c_size_t]
+lib.hesai_capture_sensor_name.restype = ctypes.c_char_p
 lib.hesai_capture_packets.argtypes = [ctypes.c_void_p]
 lib.hesai_capture_packets.restype = ctypes.c_uint64
 lib.hesai_capture_close.argtypes = [ctypes.c_void_p]
@@ -118,6 +124,7 @@ class CaptureColumns(ctypes.Structure):
         ("channel", ctypes.c_void_p),
         ("return_index", ctypes.c_void_p),
         ("packet", ctypes.c_void_p),
+        ("sensor", ctypes.c_void_p),
         ("capacity", ctypes.c_size_t),
     ]
 

@@ -27,7 +27,7 @@ IDS = [f"{n}-{'unit' if u else 'design'}" for n, u in CASES]
 def assert_columns_equal(got, want):
     """The CSV's columns that decode_columns has: integers exactly, floats within half a unit of
     the CSV's last printed digit."""
-    assert list(got) == ["packet", "channel", "return", "x", "y", "z", "intensity", "time_ns"]
+    assert list(got) == ["packet", "channel", "return", "x", "y", "z", "intensity", "time_ns", "sensor"]
     n = len(want["packet"])
     for name, a in got.items():
         assert a.dtype == hesai.COLUMNS[name] and a.ndim == 1 and len(a) == n, name
