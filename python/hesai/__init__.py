@@ -280,11 +280,12 @@ def decode_file(path: PathArg, calibration: Optional[PathArg] = None, firetimes:
         # Sized once, for the most rows the capture can give (each point-cloud packet's model's
         # points per packet), then trimmed: the library writes straight into the result. Pages
         # past the last row are never touched; the trim gives them back.
-        out = np.empty(max(cap.bound()[1], 1), dtype=_RAW)
+        out = _lib.empty(max(cap.bound()[1], 1), _RAW)
         n = 0
         while True:
             if n == len(out):  # the file grew since its bound: not expected
                 out.resize(2 * len(out), refcheck=False)
+                _lib.small_pages(out[n:])
             got = cap.read_into(out, n, len(out) - n)
             if got == 0:
                 break
@@ -307,7 +308,7 @@ class ColumnBuffer:
         self.columns: Dict[str, np.ndarray] = {name: np.empty(0, dtype=dt) for name, dt in COLUMNS.items()}
 
     def room(self, size: int) -> Dict[str, np.ndarray]:
-        if len(self.columns["x"]) < size:
+        if len(self.columns["x"]) < size:  # numpy's pages (huge ones, where it asks): touched once, reused
             self.columns = {name: np.empty(size, dtype=dt) for name, dt in COLUMNS.items()}
         return self.columns
 
@@ -345,7 +346,7 @@ def decode_columns(path: PathArg, calibration: Optional[PathArg] = None, firetim
             size = len(cols["x"])
         else:
             size = cap.bound()[1] + _lib.COLUMNS_MIN
-            cols = {name: np.empty(size, dtype=dt) for name, dt in COLUMNS.items()}
+            cols = {name: _lib.empty(size, dt) for name, dt in COLUMNS.items()}
         n = 0
 
         def trimmed() -> Dict[str, np.ndarray]:
@@ -366,6 +367,7 @@ def decode_columns(path: PathArg, calibration: Optional[PathArg] = None, firetim
                 else:
                     for name in cols:
                         cols[name].resize(size, refcheck=False)
+                        _lib.small_pages(cols[name][n:])
             try:
                 got = cap.read_columns(cols, n)
             except HesaiError as e:  # the points before the damage go with the error

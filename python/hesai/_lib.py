@@ -11,8 +11,10 @@ At import the layouts of hesai_capture_row and hesai_point, as the loaded librar
 
 import ctypes
 import ctypes.util
+import mmap
 import os
 import pathlib
+import sys
 
 import numpy as np
 
@@ -180,6 +182,43 @@ lib.hesai_decoder_update_gps.restype = ctypes.c_int
 lib.hesai_decoder_decode.argtypes = [_u8p, ctypes.c_char_p, ctypes.c_size_t, ctypes.c_void_p, ctypes.c_void_p,
                                      ctypes.c_size_t, ctypes.POINTER(ctypes.c_size_t)]
 lib.hesai_decoder_decode.restype = ctypes.c_int
+
+
+# ---- memory for results ------------------------------------------------------------------------
+
+# numpy asks Linux for transparent huge pages under every array of 4 MiB or more
+# (madvise(MADV_HUGEPAGE)). The first write to such a page makes the kernel clear 2 MiB at once; in
+# a virtual machine whose free memory goes back to the host (Firecracker, balloon free page
+# reporting) each of those pages is new to the host as well, and a capture's rows written into
+# fresh huge pages cost 2 to 5 times the CPU time of the same rows in ordinary 4 KiB pages
+# (docs/PERFORMANCE.md). The arrays the package fills (written once, front to back) ask for
+# ordinary pages instead.
+_HUGE = 1 << 22  # numpy's threshold
+_MADV_NOHUGEPAGE = 15
+_madvise = None
+if sys.platform.startswith("linux"):
+    try:
+        _madvise = ctypes.CDLL(None, use_errno=True).madvise
+        _madvise.argtypes = [ctypes.c_void_p, ctypes.c_size_t, ctypes.c_int]
+        _madvise.restype = ctypes.c_int
+    except (OSError, AttributeError):
+        _madvise = None
+
+
+def small_pages(a: np.ndarray) -> np.ndarray:
+    """`a` (new, not yet written) on ordinary pages where the platform has the choice; returns it.
+    A refusal changes nothing but the speed."""
+    if _madvise is not None and a.nbytes >= _HUGE:
+        start = (a.ctypes.data + mmap.PAGESIZE - 1) & ~(mmap.PAGESIZE - 1)
+        end = (a.ctypes.data + a.nbytes) & ~(mmap.PAGESIZE - 1)
+        if end > start:
+            _madvise(start, end - start, _MADV_NOHUGEPAGE)
+    return a
+
+
+def empty(size: int, dtype) -> np.ndarray:
+    """np.empty(size, dtype) on ordinary pages (small_pages)."""
+    return small_pages(np.empty(size, dtype=dtype))
 
 
 def error_name(code: int) -> str:

@@ -57,8 +57,15 @@ struct Closure {
 // Rows as the CSV sink would write them, and where each frame closed among them.
 class RowSink : public hesai::cli::Sink {
  public:
+  // One packet's points, so one sensor's: those that fit go straight into the caller's rows,
+  // the rest to the staging rows.
   void points(const OutPoint* p, std::size_t count) override {
-    for (std::size_t i = 0; i < count; ++i) add(p[i]);
+    if (discard || count == 0 || p[0].sensor >= kMaxSensors) return;
+    const std::size_t direct_count = std::min(count, direct_capacity - direct_n);
+    hesai_capture_row* out = direct + direct_n;
+    for (std::size_t i = 0; i < direct_count; ++i) out[i] = row(p[i]);
+    direct_n += direct_count;
+    for (std::size_t i = direct_count; i < count; ++i) rows.push_back(row(p[i]));
   }
   void sensor_added(std::uint32_t sensor, const std::string& label) override {
     if (sensor >= kMaxSensors) {
@@ -87,8 +94,7 @@ class RowSink : public hesai::cli::Sink {
   bool too_many = false;                                       // a sensor beyond kMaxSensors came
 
  private:
-  void add(const OutPoint& p) {
-    if (discard || p.sensor >= kMaxSensors) return;
+  static hesai_capture_row row(const OutPoint& p) {
     hesai_capture_row r;
     r.frame = p.frame;
     r.packet = p.packet;
@@ -104,8 +110,7 @@ class RowSink : public hesai::cli::Sink {
     r.return_index = p.point.return_index;
     r.intensity = p.point.intensity;
     r.sensor = static_cast<std::uint16_t>(p.sensor);
-    if (direct_n < direct_capacity) direct[direct_n++] = r;
-    else rows.push_back(r);
+    return r;
   }
 };
 
