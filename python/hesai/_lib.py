@@ -59,6 +59,22 @@ def _load():
 
 lib, path = _load()
 
+
+class LayoutError(ImportError):
+    """The loaded libhesai_c lays out a record otherwise than the package's dtype: a library of
+    another version. Reading its records through the dtype would give wrong values."""
+
+
+def _require(*names):
+    """Raises LayoutError when the library lacks one of these functions (an earlier version)."""
+    missing = [n for n in names if not hasattr(lib, n)]
+    if missing:
+        raise LayoutError(f"hesai: {path} has no {', '.join(missing)}: a library of an earlier version; "
+                          "install the library and the package from the same version")
+
+
+_require("hesai_capture_sensors", "hesai_capture_sensor_name")
+
 # ---- hesai_port/hesai_capture.h -----------------------------------------------------------------
 
 
@@ -223,11 +239,6 @@ def empty(size: int, dtype) -> np.ndarray:
 
 def error_name(code: int) -> str:
     return lib.hesai_error_name(code).decode()
-
-
-class LayoutError(ImportError):
-    """The loaded libhesai_c lays out a record otherwise than the package's dtype: a library of
-    another version. Reading its records through the dtype would give wrong values."""
 
 
 def check_layout(library=None) -> None:

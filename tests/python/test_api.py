@@ -246,6 +246,21 @@ def test_layout_checked(monkeypatch):
     assert issubclass(hesai.LayoutError, ImportError)
 
 
+def test_a_library_without_the_sensor_functions_is_refused(monkeypatch):
+    """A library of the version before sensors (issue #34) lacks hesai_capture_sensors and its
+    row has no sensor member: LayoutError, for each."""
+    _lib._require("hesai_capture_sensors", "hesai_capture_sensor_name")  # the real library has them
+
+    class Earlier:
+        hesai_capture_open = _lib.lib.hesai_capture_open
+    monkeypatch.setattr(_lib, "lib", Earlier())
+    with pytest.raises(hesai.LayoutError, match=r"has no hesai_capture_sensors, hesai_capture_sensor_name"):
+        _lib._require("hesai_capture_sensors", "hesai_capture_sensor_name")
+    monkeypatch.undo()
+    with pytest.raises(hesai.LayoutError, match=r"hesai_capture_row\.sensor is absent"):
+        _lib.check_layout(FakeLayout(0, "sensor", offset=ctypes.c_size_t(-1).value))
+
+
 def test_layout_mismatch_fails_the_import():
     """At import: a library whose layout differs (hesai_capture_layout answering 40 for the row's
     z, through a patched ctypes.CDLL) makes `import hesai` raise LayoutError."""
