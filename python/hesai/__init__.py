@@ -7,8 +7,13 @@ A thin layer over libhesai_c (ctypes; numpy is the only other import):
                                calibration="data/calibration/pandar64_unit_a_angles.csv")
     points["x"], points["frame"], ...          # the columns of `hesai decode --format csv`
 
-    for frame in hesai.frames("capture.pcapng"):   # one array per frame, in the order frames close
+    for frame in hesai.frames("capture.pcapng"):   # one array per frame of one sensor, as frames close
         ...
+
+    rows, sensors = hesai.decode_file("two_units.pcap", return_sensors=True)
+    rows[rows["sensor"] == 1]                   # the rows of sensors[1] ("192.168.1.202:2368", ...)
+    for sensor, frame in hesai.frames("two_units.pcap", with_sensor=True):
+        ...                                     # sensor: the name of the frame's sensor
 
     decoder = hesai.Decoder()                   # packets the caller already has (UDP payloads)
     pts = decoder.decode(payload)
@@ -19,6 +24,12 @@ A thin layer over libhesai_c (ctypes; numpy is the only other import):
 decode_file and frames run the hesai program's own pipeline (capture reader, held packets until
 each sensor's rotation is known, frame assembly): their rows are the CSV's, in its order. The
 work is done in C++, a batch of rows per call; Python only joins the batches.
+
+A capture may hold several sensors (each source: an address and port, or an MCAP topic). A row's
+"sensor" field is its sensor's index, 0, 1, ... in the order they first sent a point-cloud packet;
+the names (the CSV's sensor column: "192.168.1.201:2368", or the topic) come as a list with
+return_sensors=True, so `np.array(sensors)[rows["sensor"]]` is the CSV's column. Frame ids count
+per sensor: a frame is (sensor, frame).
 """
 
 from __future__ import annotations
@@ -26,7 +37,7 @@ from __future__ import annotations
 import ctypes
 import json
 import os
-from typing import Any, Dict, Iterator, Optional, Tuple, Union
+from typing import Any, Dict, Iterator, List, Optional, Tuple, Union
 
 import numpy as np
 
@@ -43,7 +54,8 @@ LayoutError = _lib.LayoutError
 
 ROW_DTYPE = _lib.ROW_DTYPE
 """Fields of decode_file's rows, as the CSV's columns: frame, packet, block, channel, return,
-azimuth_deg, elevation_deg, distance_m, x, y, z, intensity, time_ns."""
+azimuth_deg, elevation_deg, distance_m, x, y, z, intensity, time_ns, sensor (uint16: the index of
+the sensor's name in the list return_sensors=True gives, where the CSV has the name)."""
 
 POINT_DTYPE = _lib.POINT_DTYPE
 """Fields of Decoder.decode's points (the C interface's hesai_point): the CSV's columns without
@@ -54,10 +66,12 @@ library_path: str = _lib.path
 
 COLUMNS: Dict[str, np.dtype] = {"packet": np.dtype("<u8"), "channel": np.dtype("u1"), "return": np.dtype("u1"),
                                 "x": np.dtype("<f4"), "y": np.dtype("<f4"), "z": np.dtype("<f4"),
-                                "intensity": np.dtype("u1"), "time_ns": np.dtype("<i8")}
-"""decode_columns' keys (the CSV's column names, in its order) and each array's dtype."""
+                                "intensity": np.dtype("u1"), "time_ns": np.dtype("<i8"),
+                                "sensor": np.dtype("<u2")}
+"""decode_columns' keys (the CSV's column names, in its order) and each array's dtype (sensor: the
+index of the sensor's name, as ROW_DTYPE's)."""
 
-_BATCH = 1 << 16  # rows per call into the library
+_BATCH = 1 << 16  # rows per call into the library (frames)
 # Rows are moved as opaque records of ROW_DTYPE's size: numpy copies a structured dtype with holes
 # field by field, ten times slower than these plain copies.
 _RAW = np.dtype((np.void, ROW_DTYPE.itemsize))
@@ -148,7 +162,9 @@ class _Capture:
             raise HesaiError(msg.value.decode(errors="replace"), status=st)
         self._count = ctypes.c_size_t()
         self._closed = ctypes.c_uint64()
+        self._closed_sensor = ctypes.c_uint16()
         self._msg = msg
+        self._names: List[str] = []
         self._buffer = None
 
     def __enter__(self) -> "_Capture":
@@ -170,30 +186,35 @@ class _Capture:
         return datagrams.value, points.value
 
     def read(self):
-        """(rows as _RAW records, closed frame id or 0); no rows and 0 at the end. A copy."""
+        """(rows as _RAW records, closed frame id or 0, its sensor); no rows and 0 at the end. A copy."""
         if self._buffer is None:
             self._buffer = np.empty(_BATCH, dtype=_RAW)
         st = _lib.lib.hesai_capture_read(self._handle, self._buffer.ctypes.data, len(self._buffer),
-                                         ctypes.byref(self._count), ctypes.byref(self._closed), self._msg,
-                                         len(self._msg))
+                                         ctypes.byref(self._count), ctypes.byref(self._closed),
+                                         ctypes.byref(self._closed_sensor), self._msg, len(self._msg))
         if st != 0:
             raise self._fail(st)
-        return self._buffer[:self._count.value].copy(), self._closed.value
+        return self._buffer[:self._count.value].copy(), self._closed.value, self._closed_sensor.value
 
-    def read_into(self, out, start):
-        """Rows into out[start:] (an array of _RAW records): (rows written, closed frame id or 0)."""
-        st = _lib.lib.hesai_capture_read(self._handle, out.ctypes.data + start * out.itemsize,
-                                         min(len(out) - start, _BATCH),
-                                         ctypes.byref(self._count), ctypes.byref(self._closed), self._msg,
-                                         len(self._msg))
+    def read_into(self, out, start, capacity) -> int:
+        """Rows into out[start:start + capacity] (an array of _RAW records), without stopping where
+        frames close: the rows written, 0 at the end."""
+        st = _lib.lib.hesai_capture_read(self._handle, out.ctypes.data + start * out.itemsize, capacity,
+                                         ctypes.byref(self._count), None, None, self._msg, len(self._msg))
         if st != 0:
             raise self._fail(st)
-        return self._count.value, self._closed.value
+        return self._count.value
+
+    def sensors(self) -> List[str]:
+        """The names of the sensors known so far, by index (hesai_capture_sensor_name)."""
+        for i in range(len(self._names), _lib.lib.hesai_capture_sensors(self._handle)):
+            self._names.append(_lib.lib.hesai_capture_sensor_name(self._handle, i).decode(errors="replace"))
+        return list(self._names)
 
     def read_columns(self, cols: Dict[str, np.ndarray], start: int) -> int:
         """Points into each cols[name][start:]: the number written, 0 at the end."""
         c = _lib.CaptureColumns()
-        for name in ("x", "y", "z", "time_ns", "intensity", "channel", "packet"):
+        for name in ("x", "y", "z", "time_ns", "intensity", "channel", "packet", "sensor"):
             a = cols[name]
             setattr(c, name, a.ctypes.data + start * a.itemsize)
         c.return_index = cols["return"].ctypes.data + start
@@ -246,9 +267,12 @@ def decode_file(path: PathArg, calibration: Optional[PathArg] = None, firetimes:
                 fov: Optional[Tuple[float, float]] = None, packets: Optional[Tuple[int, int]] = None,
                 min_range: float = 0.0, max_range: float = 1e9, reflectivity: str = "raw",
                 firetime_azimuth: bool = True, session_key: Optional[bytes] = None, allow_unsigned: bool = False,
-                returns: str = "all") -> np.ndarray:
+                returns: str = "all",
+                return_sensors: bool = False) -> Union[np.ndarray, Tuple[np.ndarray, List[str]]]:
     """Every point of a pcap, pcapng or MCAP capture: a structured array of ROW_DTYPE whose rows
-    are those of `hesai decode CAPTURE --format csv`, in the same order."""
+    are those of `hesai decode CAPTURE --format csv`, in the same order. With return_sensors,
+    (rows, sensors): sensors[i] is the name (the CSV's sensor column) of the rows whose "sensor" is
+    i, so rows[rows["sensor"] == i] are that sensor's rows, in order."""
     with _Capture(path, calibration=calibration, firetimes=firetimes, channel_config=channel_config,
                   rotation=rotation, cut_angle=cut_angle, fov=fov, packets=packets, min_range=min_range,
                   max_range=max_range, reflectivity=reflectivity, firetime_azimuth=firetime_azimuth,
@@ -256,17 +280,19 @@ def decode_file(path: PathArg, calibration: Optional[PathArg] = None, firetimes:
         # Sized once, for the most rows the capture can give (each point-cloud packet's model's
         # points per packet), then trimmed: the library writes straight into the result. Pages
         # past the last row are never touched; the trim gives them back.
-        out = np.empty(max(cap.bound()[1], 1), dtype=_RAW)
+        out = _lib.empty(max(cap.bound()[1], 1), _RAW)
         n = 0
         while True:
             if n == len(out):  # the file grew since its bound: not expected
                 out.resize(2 * len(out), refcheck=False)
-            got, closed = cap.read_into(out, n)
-            if got == 0 and closed == 0:
+                _lib.small_pages(out[n:])
+            got = cap.read_into(out, n, len(out) - n)
+            if got == 0:
                 break
             n += got
         out.resize(n, refcheck=False)
-        return out.view(ROW_DTYPE)
+        rows = out.view(ROW_DTYPE)
+        return (rows, cap.sensors()) if return_sensors else rows
 
 
 _BUFFER_MIN = 1 << 16  # points a ColumnBuffer holds at least
@@ -282,7 +308,7 @@ class ColumnBuffer:
         self.columns: Dict[str, np.ndarray] = {name: np.empty(0, dtype=dt) for name, dt in COLUMNS.items()}
 
     def room(self, size: int) -> Dict[str, np.ndarray]:
-        if len(self.columns["x"]) < size:
+        if len(self.columns["x"]) < size:  # numpy's pages (huge ones, where it asks): touched once, reused
             self.columns = {name: np.empty(size, dtype=dt) for name, dt in COLUMNS.items()}
         return self.columns
 
@@ -291,10 +317,13 @@ def decode_columns(path: PathArg, calibration: Optional[PathArg] = None, firetim
                    channel_config: Optional[PathArg] = None, *, rotation: str = "auto",
                    packets: Optional[Tuple[int, int]] = None, reflectivity: str = "raw", firetime_azimuth: bool = True,
                    session_key: Optional[bytes] = None, allow_unsigned: bool = False,
-                   buffer: Optional[ColumnBuffer] = None) -> Dict[str, np.ndarray]:
+                   buffer: Optional[ColumnBuffer] = None,
+                   return_sensors: bool = False) -> Union[Dict[str, np.ndarray],
+                                                          Tuple[Dict[str, np.ndarray], List[str]]]:
     """Every point of a capture as columns: {"packet", "channel", "return", "x", "y", "z",
-    "intensity", "time_ns"} (the CSV's column names; COLUMNS gives each dtype), element i of each
-    the CSV's row i with the same options. Filled in place by the core's columnar decode
+    "intensity", "time_ns", "sensor"} (the CSV's column names; COLUMNS gives each dtype), element i
+    of each the CSV's row i with the same options ("sensor": the index of the row's sensor; with
+    return_sensors, (columns, sensors), sensors[i] the name of index i, as decode_file's). Filled in place by the core's columnar decode
     (hesai_capture_read_columns: the vector code the CPU has), without the program's frames or
     counters: no frame, block, angle or distance columns, and no cut_angle, fov, range or returns
     options (decode_file has them). Options as decode_file's; raises HesaiError where the program
@@ -317,7 +346,7 @@ def decode_columns(path: PathArg, calibration: Optional[PathArg] = None, firetim
             size = len(cols["x"])
         else:
             size = cap.bound()[1] + _lib.COLUMNS_MIN
-            cols = {name: np.empty(size, dtype=dt) for name, dt in COLUMNS.items()}
+            cols = {name: _lib.empty(size, dt) for name, dt in COLUMNS.items()}
         n = 0
 
         def trimmed() -> Dict[str, np.ndarray]:
@@ -338,6 +367,7 @@ def decode_columns(path: PathArg, calibration: Optional[PathArg] = None, firetim
                 else:
                     for name in cols:
                         cols[name].resize(size, refcheck=False)
+                        _lib.small_pages(cols[name][n:])
             try:
                 got = cap.read_columns(cols, n)
             except HesaiError as e:  # the points before the damage go with the error
@@ -346,7 +376,8 @@ def decode_columns(path: PathArg, calibration: Optional[PathArg] = None, firetim
             if got == 0:
                 break
             n += got
-        return trimmed()
+        cols = trimmed()
+        return (cols, cap.sensors()) if return_sensors else cols
 
 
 def stats(path: PathArg, calibration: Optional[PathArg] = None, firetimes: Optional[PathArg] = None,
@@ -371,18 +402,32 @@ def frames(path: PathArg, calibration: Optional[PathArg] = None, firetimes: Opti
            fov: Optional[Tuple[float, float]] = None, packets: Optional[Tuple[int, int]] = None,
            min_range: float = 0.0, max_range: float = 1e9, reflectivity: str = "raw", firetime_azimuth: bool = True,
            session_key: Optional[bytes] = None, allow_unsigned: bool = False,
-           returns: str = "all") -> Iterator[np.ndarray]:
-    """Yields one structured array of ROW_DTYPE per frame, as each frame closes (in id order), with
-    its rows in the CSV's order; a frame that kept no point gives an empty array. The frames'
-    rows together are decode_file's rows, each frame's in their order (near a cut the CSV
-    interleaves two frames' rows). The capture is closed when the generator ends or is closed."""
+           returns: str = "all",
+           with_sensor: bool = False) -> Iterator[Union[np.ndarray, Tuple[str, np.ndarray]]]:
+    """Yields one structured array of ROW_DTYPE per frame of one sensor, as each frame closes (each
+    sensor's in id order), with its rows in the CSV's order; a frame that kept no point gives an
+    empty array. Frames are cut per sensor, as `hesai stats` counts them: every row of a frame has
+    the frame's "sensor" and "frame". With with_sensor, (sensor, frame) pairs: sensor is the name
+    of the frame's sensor (the CSV's sensor column), given for an empty frame too. The frames'
+    rows together are decode_file's rows, each frame's in their order (near a cut, or with several
+    sensors, the CSV interleaves frames' rows). The capture is closed when the generator ends or is
+    closed."""
     with _Capture(path, calibration=calibration, firetimes=firetimes, channel_config=channel_config,
                   rotation=rotation, cut_angle=cut_angle, fov=fov, packets=packets, min_range=min_range,
                   max_range=max_range, reflectivity=reflectivity, firetime_azimuth=firetime_azimuth,
                   session_key=session_key, allow_unsigned=allow_unsigned, returns=returns) as cap:
+        names: List[str] = []
+
+        def named(sensor: int, frame: np.ndarray) -> Union[np.ndarray, Tuple[str, np.ndarray]]:
+            if not with_sensor:
+                return frame
+            if sensor >= len(names):
+                names[:] = cap.sensors()
+            return names[sensor], frame
+
         pending = []  # rows given whose frame has not closed yet
         while True:
-            rows, closed = cap.read()
+            rows, closed, sensor = cap.read()
             if len(rows):
                 pending.append(rows)
             if closed == 0:
@@ -391,15 +436,18 @@ def frames(path: PathArg, calibration: Optional[PathArg] = None, firetimes: Opti
                 continue
             held = np.concatenate(pending) if len(pending) > 1 else (pending[0] if pending else
                                                                     np.empty(0, dtype=_RAW))
-            mine = held.view(ROW_DTYPE)["frame"] == closed
-            yield held[mine].view(ROW_DTYPE)
+            view = held.view(ROW_DTYPE)
+            mine = (view["frame"] == closed) & (view["sensor"] == sensor)
+            yield named(sensor, held[mine].view(ROW_DTYPE))
             rest = held[~mine]
             pending = [rest] if len(rest) else []
         if pending:  # rows of frames that never closed (not expected: finish() closes them)
             held = np.concatenate(pending)
-            ids = held.view(ROW_DTYPE)["frame"]
-            for fid in np.unique(ids):
-                yield held[ids == fid].view(ROW_DTYPE)
+            view = held.view(ROW_DTYPE)
+            keys = np.unique(view[["sensor", "frame"]])
+            for key in keys:
+                mine = (view["sensor"] == key["sensor"]) & (view["frame"] == key["frame"])
+                yield named(int(key["sensor"]), held[mine].view(ROW_DTYPE))
 
 
 decode_file.__doc__ += _DOC_OPTIONS

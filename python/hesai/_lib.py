@@ -11,8 +11,10 @@ At import the layouts of hesai_capture_row and hesai_point, as the loaded librar
 
 import ctypes
 import ctypes.util
+import mmap
 import os
 import pathlib
+import sys
 
 import numpy as np
 
@@ -57,6 +59,22 @@ def _load():
 
 lib, path = _load()
 
+
+class LayoutError(ImportError):
+    """The loaded libhesai_c lays out a record otherwise than the package's dtype: a library of
+    another version. Reading its records through the dtype would give wrong values."""
+
+
+def _require(*names):
+    """Raises LayoutError when the library lacks one of these functions (an earlier version)."""
+    missing = [n for n in names if not hasattr(lib, n)]
+    if missing:
+        raise LayoutError(f"hesai: {path} has no {', '.join(missing)}: a library of an earlier version; "
+                          "install the library and the package from the same version")
+
+
+_require("hesai_capture_sensors", "hesai_capture_sensor_name")
+
 # ---- hesai_port/hesai_capture.h -----------------------------------------------------------------
 
 
@@ -82,12 +100,13 @@ class CaptureOptions(ctypes.Structure):
     ]
 
 
-# hesai_capture_row: the C struct's layout, fields named and ordered as the CSV's columns.
+# hesai_capture_row: the C struct's layout, fields named and ordered as the CSV's columns (sensor:
+# the index of the CSV's sensor text, hesai_capture_sensor_name).
 ROW_DTYPE = np.dtype({
     "names": ["frame", "packet", "block", "channel", "return", "azimuth_deg", "elevation_deg", "distance_m",
-              "x", "y", "z", "intensity", "time_ns"],
-    "formats": ["<u8", "<u8", "u1", "u1", "u1", "<f4", "<f4", "<f4", "<f4", "<f4", "<f4", "u1", "<i8"],
-    "offsets": [0, 8, 48, 49, 50, 24, 28, 32, 36, 40, 44, 51, 16],
+              "x", "y", "z", "intensity", "time_ns", "sensor"],
+    "formats": ["<u8", "<u8", "u1", "u1", "u1", "<f4", "<f4", "<f4", "<f4", "<f4", "<f4", "u1", "<i8", "<u2"],
+    "offsets": [0, 8, 48, 49, 50, 24, 28, 32, 36, 40, 44, 51, 16, 52],
     "itemsize": 56,
 })
 
@@ -97,8 +116,13 @@ lib.hesai_capture_open.argtypes = [ctypes.c_char_p, ctypes.POINTER(CaptureOption
                                    ctypes.c_char_p, ctypes.c_size_t]
 lib.hesai_capture_open.restype = ctypes.c_int
 lib.hesai_capture_read.argtypes = [ctypes.c_void_p, ctypes.c_void_p, ctypes.c_size_t, ctypes.POINTER(ctypes.c_size_t),
-                                   ctypes.POINTER(ctypes.c_uint64), ctypes.c_char_p, ctypes.c_size_t]
+                                   ctypes.POINTER(ctypes.c_uint64), ctypes.POINTER(ctypes.c_uint16), ctypes.c_char_p,
+                                   ctypes.c_size_t]
 lib.hesai_capture_read.restype = ctypes.c_int
+lib.hesai_capture_sensors.argtypes = [ctypes.c_void_p]
+lib.hesai_capture_sensors.restype = ctypes.c_size_t
+lib.hesai_capture_sensor_name.argtypes = [ctypes.c_void_p, ctypes.c_size_t]
+lib.hesai_capture_sensor_name.restype = ctypes.c_char_p
 lib.hesai_capture_packets.argtypes = [ctypes.c_void_p]
 lib.hesai_capture_packets.restype = ctypes.c_uint64
 lib.hesai_capture_close.argtypes = [ctypes.c_void_p]
@@ -118,6 +142,7 @@ class CaptureColumns(ctypes.Structure):
         ("channel", ctypes.c_void_p),
         ("return_index", ctypes.c_void_p),
         ("packet", ctypes.c_void_p),
+        ("sensor", ctypes.c_void_p),
         ("capacity", ctypes.c_size_t),
     ]
 
@@ -175,13 +200,45 @@ lib.hesai_decoder_decode.argtypes = [_u8p, ctypes.c_char_p, ctypes.c_size_t, cty
 lib.hesai_decoder_decode.restype = ctypes.c_int
 
 
+# ---- memory for results ------------------------------------------------------------------------
+
+# numpy asks Linux for transparent huge pages under every array of 4 MiB or more
+# (madvise(MADV_HUGEPAGE)). The first write to such a page makes the kernel clear 2 MiB at once; in
+# a virtual machine whose free memory goes back to the host (Firecracker, balloon free page
+# reporting) each of those pages is new to the host as well, and a capture's rows written into
+# fresh huge pages cost 2 to 5 times the CPU time of the same rows in ordinary 4 KiB pages
+# (docs/PERFORMANCE.md). The arrays the package fills (written once, front to back) ask for
+# ordinary pages instead.
+_HUGE = 1 << 22  # numpy's threshold
+_MADV_NOHUGEPAGE = 15
+_madvise = None
+if sys.platform.startswith("linux"):
+    try:
+        _madvise = ctypes.CDLL(None, use_errno=True).madvise
+        _madvise.argtypes = [ctypes.c_void_p, ctypes.c_size_t, ctypes.c_int]
+        _madvise.restype = ctypes.c_int
+    except (OSError, AttributeError):
+        _madvise = None
+
+
+def small_pages(a: np.ndarray) -> np.ndarray:
+    """`a` (new, not yet written) on ordinary pages where the platform has the choice; returns it.
+    A refusal changes nothing but the speed."""
+    if _madvise is not None and a.nbytes >= _HUGE:
+        start = (a.ctypes.data + mmap.PAGESIZE - 1) & ~(mmap.PAGESIZE - 1)
+        end = (a.ctypes.data + a.nbytes) & ~(mmap.PAGESIZE - 1)
+        if end > start:
+            _madvise(start, end - start, _MADV_NOHUGEPAGE)
+    return a
+
+
+def empty(size: int, dtype) -> np.ndarray:
+    """np.empty(size, dtype) on ordinary pages (small_pages)."""
+    return small_pages(np.empty(size, dtype=dtype))
+
+
 def error_name(code: int) -> str:
     return lib.hesai_error_name(code).decode()
-
-
-class LayoutError(ImportError):
-    """The loaded libhesai_c lays out a record otherwise than the package's dtype: a library of
-    another version. Reading its records through the dtype would give wrong values."""
 
 
 def check_layout(library=None) -> None:

@@ -2,7 +2,8 @@
  * the shared library libhesai_c: the row layout as the C compiler sees it, the errors of
  * hesai_capture_open, and a whole capture read in small batches with its frame closings; the
  * same capture as columns (hesai_capture_read_columns) against those rows, its bound, its
- * stats JSON, and the layout the library reports.
+ * stats JSON, and the layout the library reports. Its one sensor is index 0 in every row, column
+ * and closed frame, named by the sender of the file's first record (read here from its bytes).
  * Expected counts: the Pandar64 capture's 2400 packets and 716 622 points (tests/test_golden.cpp,
  * counted again without the library by tests/golden/count_points.py).
  * Usage: hesai_capture_c_test DATA_DIR */
@@ -27,9 +28,26 @@ static int failures = 0;
 typedef char row_size_is_56[sizeof(hesai_capture_row) == 56 ? 1 : -1];
 typedef char row_offsets[offsetof(hesai_capture_row, time_ns) == 16 && offsetof(hesai_capture_row, azimuth_deg) == 24 &&
                                  offsetof(hesai_capture_row, z) == 44 && offsetof(hesai_capture_row, block) == 48 &&
-                                 offsetof(hesai_capture_row, intensity) == 51
+                                 offsetof(hesai_capture_row, intensity) == 51 && offsetof(hesai_capture_row, sensor) == 52
                              ? 1
                              : -1];
+
+/* The sender of the capture's first record, "a.b.c.d:port", read from the file's bytes (classic
+ * little-endian pcap, Ethernet, IPv4, UDP): what the CSV's sensor column says. */
+static int first_sender(const char* path, char* out, size_t size) {
+  unsigned char b[24 + 16 + 64];
+  size_t ip = 24 + 16 + 14, udp;
+  FILE* f = fopen(path, "rb");
+  if (f == NULL) return 0;
+  if (fread(b, 1, sizeof b, f) != sizeof b) {
+    fclose(f);
+    return 0;
+  }
+  fclose(f);
+  udp = ip + (size_t)(b[ip] & 0x0F) * 4;
+  snprintf(out, size, "%u.%u.%u.%u:%u", b[ip + 12], b[ip + 13], b[ip + 14], b[ip + 15], (unsigned)(b[udp] << 8 | b[udp + 1]));
+  return 1;
+}
 
 static hesai_capture_row rows[1000];
 
@@ -40,14 +58,16 @@ static float cx[P64_POINTS + 8000], cy[P64_POINTS + 8000], cz[P64_POINTS + 8000]
 static int64_t ct[P64_POINTS + 8000];
 static uint8_t ci[P64_POINTS + 8000], cc[P64_POINTS + 8000], cr[P64_POINTS + 8000];
 static uint64_t cp[P64_POINTS + 8000];
+static uint16_t cs[P64_POINTS + 8000];
 static char json[1 << 16];
 
 int main(int argc, char** argv) {
-  char path[1024], cal[1024], message[256];
+  char path[1024], cal[1024], message[256], sender[64];
   hesai_capture* c = NULL;
   hesai_capture_options o;
   size_t count = 0, total = 0, i;
   uint64_t closed = 0, last_closed = 0, frames = 0;
+  uint16_t closed_sensor = 0;
   int st;
   (void)sizeof(row_size_is_56);
   (void)sizeof(row_offsets);
@@ -72,18 +92,21 @@ int main(int argc, char** argv) {
   /* A 40-channel file for a 64-channel capture: applied at the first packet, so reading fails. */
   o.calibration = cal;
   CHECK(hesai_capture_open(path, &o, &c, message, 8) == 0 && c != NULL);
-  CHECK(hesai_capture_read(c, rows, 1000, &count, &closed, message, 8) == 1 && count == 0);
+  CHECK(hesai_capture_read(c, rows, 1000, &count, &closed, &closed_sensor, message, 8) == 1 && count == 0);
   CHECK(strlen(message) == 7); /* cut to the buffer, terminated */
   hesai_capture_close(c);
   hesai_capture_close(NULL);
 
-  /* The whole capture, 1000 rows at most per call. */
+  /* The whole capture, 1000 rows at most per call: one sensor, index 0, named by its sender. */
+  CHECK(first_sender(path, sender, sizeof sender));
   CHECK(hesai_capture_open(path, NULL, &c, message, sizeof message) == 0 && c != NULL);
-  CHECK(hesai_capture_read(c, rows, 0, &count, &closed, message, sizeof message) == 1);
-  CHECK(hesai_capture_read(c, NULL, 10, &count, &closed, message, sizeof message) == 1);
-  CHECK(hesai_capture_read(NULL, rows, 10, &count, &closed, message, sizeof message) == 1);
+  CHECK(hesai_capture_sensors(c) == 0 && hesai_capture_sensor_name(c, 0) == NULL);
+  CHECK(hesai_capture_sensors(NULL) == 0 && hesai_capture_sensor_name(NULL, 0) == NULL);
+  CHECK(hesai_capture_read(c, rows, 0, &count, &closed, &closed_sensor, message, sizeof message) == 1);
+  CHECK(hesai_capture_read(c, NULL, 10, &count, &closed, &closed_sensor, message, sizeof message) == 1);
+  CHECK(hesai_capture_read(NULL, rows, 10, &count, &closed, &closed_sensor, message, sizeof message) == 1);
   for (;;) {
-    st = hesai_capture_read(c, rows, 1000, &count, &closed, message, sizeof message);
+    st = hesai_capture_read(c, rows, 1000, &count, &closed, &closed_sensor, message, sizeof message);
     CHECK(st == 0);
     if (st != 0 || (count == 0 && closed == 0)) break;
     CHECK(count <= 1000);
@@ -93,12 +116,14 @@ int main(int argc, char** argv) {
       CHECK(rows[i].packet < 2400);
       CHECK(rows[i].channel >= 1 && rows[i].channel <= 64 && rows[i].return_index <= 1);
       CHECK(rows[i].azimuth_deg >= 0.0f && rows[i].azimuth_deg < 360.0f);
+      CHECK(rows[i].sensor == 0);
       if (failures > 20) return 1;
     }
     if (total + count <= P64_POINTS) memcpy(all_rows + total, rows, count * sizeof rows[0]);
     total += count;
     if (closed != 0) {
       CHECK(closed == last_closed + 1); /* frames close in id order */
+      CHECK(closed_sensor == 0);
       last_closed = closed;
       ++frames;
     }
@@ -106,8 +131,11 @@ int main(int argc, char** argv) {
   CHECK(total == 716622);
   CHECK(frames >= 2);
   CHECK(hesai_capture_packets(c) == 2400);
+  CHECK(hesai_capture_sensors(c) == 1);
+  CHECK(hesai_capture_sensor_name(c, 0) != NULL && strcmp(hesai_capture_sensor_name(c, 0), sender) == 0);
+  CHECK(hesai_capture_sensor_name(c, 1) == NULL);
   /* At the end it stays at the end. */
-  CHECK(hesai_capture_read(c, rows, 1000, &count, &closed, message, sizeof message) == 0 && count == 0 && closed == 0);
+  CHECK(hesai_capture_read(c, rows, 1000, &count, &closed, &closed_sensor, message, sizeof message) == 0 && count == 0 && closed == 0);
   hesai_capture_close(c);
 
   /* The bound: 2400 datagrams, each a Pandar64 point-cloud packet of 6 blocks x 64 channels. */
@@ -126,7 +154,8 @@ int main(int argc, char** argv) {
     hesai_capture_columns cols;
     size_t n = 0, got = 0, mismatches = 0;
     cols.x = cx; cols.y = cy; cols.z = cz; cols.time_ns = ct;
-    cols.intensity = ci; cols.channel = cc; cols.return_index = cr; cols.packet = cp;
+    cols.intensity = ci; cols.channel = cc; cols.return_index = cr; cols.packet = cp; cols.sensor = cs;
+    memset(cs, 0xFF, sizeof cs);
     cols.capacity = HESAI_CAPTURE_COLUMNS_MIN - 1;
     CHECK(hesai_capture_open(path, NULL, &c, message, sizeof message) == 0);
     CHECK(hesai_capture_read_columns(c, &cols, &got, message, sizeof message) == 1 && got == 0);
@@ -138,7 +167,7 @@ int main(int argc, char** argv) {
     for (;;) {
       hesai_capture_columns at = cols;
       at.x += n; at.y += n; at.z += n; at.time_ns += n; at.intensity += n; at.channel += n;
-      at.return_index += n; at.packet += n;
+      at.return_index += n; at.packet += n; at.sensor += n;
       st = hesai_capture_read_columns(c, &at, &got, message, sizeof message);
       CHECK(st == 0);
       if (st != 0 || got == 0 || n + got > P64_POINTS) break;
@@ -146,14 +175,16 @@ int main(int argc, char** argv) {
       n += got;
     }
     CHECK(n == P64_POINTS);
+    CHECK(hesai_capture_sensors(c) == 1);
+    CHECK(hesai_capture_sensor_name(c, 0) != NULL && strcmp(hesai_capture_sensor_name(c, 0), sender) == 0);
     /* A capture read as columns is read one way. */
-    CHECK(hesai_capture_read(c, rows, 1000, &count, &closed, message, sizeof message) == 1);
+    CHECK(hesai_capture_read(c, rows, 1000, &count, &closed, &closed_sensor, message, sizeof message) == 1);
     CHECK(hesai_capture_stats_json(c, json, sizeof json, &count, message, sizeof message) == 1);
     hesai_capture_close(c);
     for (i = 0; i < n && i < total; ++i)
       if (cx[i] != all_rows[i].x || cy[i] != all_rows[i].y || cz[i] != all_rows[i].z || ct[i] != all_rows[i].time_ns ||
           ci[i] != all_rows[i].intensity || cc[i] != all_rows[i].channel || cr[i] != all_rows[i].return_index ||
-          cp[i] != all_rows[i].packet)
+          cp[i] != all_rows[i].packet || cs[i] != all_rows[i].sensor)
         ++mismatches;
     CHECK(mismatches == 0);
     /* Options the columns do not take are refused, not ignored. */
@@ -176,7 +207,7 @@ int main(int argc, char** argv) {
     CHECK(json[0] == '{' && json[length - 1] == '}');
     CHECK(strstr(json, "\"packets\":2400,") != NULL && strstr(json, "\"points\":716622,") != NULL);
     CHECK(strstr(json, "\"models\":{\"Pandar64\":2400}") != NULL);
-    CHECK(hesai_capture_read(c, rows, 1000, &count, &closed, message, sizeof message) == 1);
+    CHECK(hesai_capture_read(c, rows, 1000, &count, &closed, &closed_sensor, message, sizeof message) == 1);
     CHECK(hesai_capture_stats_json(c, json, 0, &length, message, sizeof message) == 1);
     hesai_capture_close(c);
   }
@@ -186,6 +217,8 @@ int main(int argc, char** argv) {
   CHECK(hesai_capture_layout(0, "time_ns") == offsetof(hesai_capture_row, time_ns));
   CHECK(hesai_capture_layout(0, "return") == offsetof(hesai_capture_row, return_index));
   CHECK(hesai_capture_layout(0, "intensity") == offsetof(hesai_capture_row, intensity));
+  CHECK(hesai_capture_layout(0, "sensor") == offsetof(hesai_capture_row, sensor));
+  CHECK(hesai_capture_layout(1, "sensor") == (size_t)-1);
   CHECK(hesai_capture_layout(1, NULL) == sizeof(hesai_point));
   CHECK(hesai_capture_layout(1, "confidence") == offsetof(hesai_point, confidence));
   CHECK(hesai_capture_layout(1, "block") == offsetof(hesai_point, block));

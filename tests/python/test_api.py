@@ -27,7 +27,7 @@ IDS = [f"{n}-{'unit' if u else 'design'}" for n, u in CASES]
 def assert_columns_equal(got, want):
     """The CSV's columns that decode_columns has: integers exactly, floats within half a unit of
     the CSV's last printed digit."""
-    assert list(got) == ["packet", "channel", "return", "x", "y", "z", "intensity", "time_ns"]
+    assert list(got) == ["packet", "channel", "return", "x", "y", "z", "intensity", "time_ns", "sensor"]
     n = len(want["packet"])
     for name, a in got.items():
         assert a.dtype == hesai.COLUMNS[name] and a.ndim == 1 and len(a) == n, name
@@ -244,6 +244,21 @@ def test_layout_checked(monkeypatch):
     with pytest.raises(hesai.LayoutError, match=r"hesai_capture_row is 56 bytes, the dtype 48"):
         _lib.check_layout()
     assert issubclass(hesai.LayoutError, ImportError)
+
+
+def test_a_library_without_the_sensor_functions_is_refused(monkeypatch):
+    """A library of the version before sensors (issue #34) lacks hesai_capture_sensors and its
+    row has no sensor member: LayoutError, for each."""
+    _lib._require("hesai_capture_sensors", "hesai_capture_sensor_name")  # the real library has them
+
+    class Earlier:
+        hesai_capture_open = _lib.lib.hesai_capture_open
+    monkeypatch.setattr(_lib, "lib", Earlier())
+    with pytest.raises(hesai.LayoutError, match=r"has no hesai_capture_sensors, hesai_capture_sensor_name"):
+        _lib._require("hesai_capture_sensors", "hesai_capture_sensor_name")
+    monkeypatch.undo()
+    with pytest.raises(hesai.LayoutError, match=r"hesai_capture_row\.sensor is absent"):
+        _lib.check_layout(FakeLayout(0, "sensor", offset=ctypes.c_size_t(-1).value))
 
 
 def test_layout_mismatch_fails_the_import():

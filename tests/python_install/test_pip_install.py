@@ -87,7 +87,8 @@ def test_decode_columns_equals_the_csv(venv, name, tmp_path):
     ints = np.loadtxt(io.BytesIO(body), delimiter=",", dtype=np.int64, usecols=[names.index(c) for c in INTS])
     floats = np.loadtxt(io.BytesIO(body), delimiter=",", usecols=[names.index(c) for c in FLOATS])
     assert len(ints) > 100000
-    assert sorted(got) == sorted(INTS + list(FLOATS))
+    assert sorted(got) == sorted(INTS + list(FLOATS) + ["sensor"])
+    assert not got["sensor"].any()  # one sensor: index 0 in every row
     for i, c in enumerate(INTS):
         np.testing.assert_array_equal(got[c].astype(np.int64), ints[:, i], err_msg=c)
     for i, (c, decimals) in enumerate(FLOATS.items()):

@@ -14,6 +14,14 @@
  *   cannot be read or a damaged capture) with a message in the caller's buffer.
  * - Threads: one hesai_capture must not be used by two threads at once; different ones are
  *   independent.
+ * - Sensors: a capture may hold several (each source: an IPv4 or IPv6 address and port, or an MCAP
+ *   bag's topic). Each row names its sensor by index (0, 1, ... in the order they first sent a
+ *   point-cloud packet); hesai_capture_sensor_name gives the CSV's `sensor` text of an index.
+ *   Frame ids count per sensor, so a closed frame is named by its sensor and id.
+ *
+ * ABI: the sensor members (hesai_capture_row.sensor, hesai_capture_columns.sensor) and
+ * hesai_capture_read's closed_sensor changed this interface: a program or binding built against
+ * the header without them must be rebuilt (hesai_capture_layout lets a binding check the rows).
  */
 #ifndef HESAI_PORT_HESAI_CAPTURE_H
 #define HESAI_PORT_HESAI_CAPTURE_H
@@ -50,7 +58,8 @@ typedef struct hesai_capture_options {
   int returns;                /* --returns: 0 all (default), 1 distinct (a repeated second return once) */
 } hesai_capture_options;
 
-/* One row of the CSV. Field order favours alignment; the meaning of each is the CSV column's. */
+/* One row of the CSV. Field order favours alignment; the meaning of each is the CSV column's.
+ * 56 bytes: sensor fills what was padding after intensity, the last two bytes are padding. */
 typedef struct hesai_capture_row {
   uint64_t frame;        /* frame id, 1-based in rotation order */
   uint64_t packet;       /* 0-based index of the point-cloud packet in the capture */
@@ -65,6 +74,7 @@ typedef struct hesai_capture_row {
   uint8_t channel;       /* 1-based laser channel */
   uint8_t return_index;  /* the CSV's "return" */
   uint8_t intensity;     /* reflectivity byte (or the Pandar64's nonlinear percentage) */
+  uint16_t sensor;       /* its sensor: hesai_capture_sensor_name(capture, sensor) is the CSV's `sensor` */
 } hesai_capture_row;
 
 typedef struct hesai_capture hesai_capture;
@@ -81,13 +91,27 @@ int hesai_capture_open(const char* path, const hesai_capture_options* options, h
 
 /* The next rows, in the CSV's order: writes up to `capacity` rows to rows[0 .. *count). Stops early
  * where a frame closes: then *closed_frame is the id of the frame whose every row has now been
- * given (the rows of the next frame may already have started, as a packet that straddles the cut
- * gives points to both); otherwise *closed_frame is 0. *count == 0 with *closed_frame == 0: the end
- * of the capture. Returns 0, or the status of a failure (1: a calibration file that does not fit
- * the model; 2: a damaged capture, after its rows up to the damage have been given) with a message.
- * closed_frame may be NULL; a NULL capture, rows or count, or a capacity of 0: 1. */
+ * given and *closed_sensor its sensor (the rows of the next frame may already have started, as a
+ * packet that straddles the cut gives points to both, and so may other sensors' rows); otherwise
+ * *closed_frame is 0 (and *closed_sensor 0). Frames close in id order within each sensor.
+ * *count == 0 with *closed_frame == 0: the end of the capture. Returns 0, or the status of a
+ * failure (1: a calibration file that does not fit the model; 2: a damaged capture, after its rows
+ * up to the damage have been given, or a capture with more than 65 536 sensors, after the rows of
+ * the first 65 536) with a message. closed_sensor may be NULL. closed_frame NULL: the rows only,
+ * without stopping where frames close (fewer, fuller calls). A NULL capture, rows or count, or a
+ * capacity of 0: 1. */
 int hesai_capture_read(hesai_capture* capture, hesai_capture_row* rows, size_t capacity, size_t* count,
-                       uint64_t* closed_frame, char* message, size_t message_size) HESAI_CAPTURE_NOEXCEPT;
+                       uint64_t* closed_frame, uint16_t* closed_sensor, char* message,
+                       size_t message_size) HESAI_CAPTURE_NOEXCEPT;
+
+/* The sensors known so far: those of the rows or columns given (and of the rows or points read
+ * but not yet given), 0 before the first. Grows as the capture is read; after the end, all. */
+size_t hesai_capture_sensors(const hesai_capture* capture) HESAI_CAPTURE_NOEXCEPT;
+
+/* The name of sensor `index` (< hesai_capture_sensors): the CSV's `sensor` column,
+ * "192.168.1.201:2368", "[fe80::1]:2368" or an MCAP topic ("mcap channel N" when it has none).
+ * NUL-terminated, valid until hesai_capture_close. NULL for another index or a NULL capture. */
+const char* hesai_capture_sensor_name(const hesai_capture* capture, size_t index) HESAI_CAPTURE_NOEXCEPT;
 
 /* UDP payloads the pipeline has examined so far (point-cloud, GPS and rejected ones). */
 uint64_t hesai_capture_packets(const hesai_capture* capture) HESAI_CAPTURE_NOEXCEPT;
@@ -102,7 +126,8 @@ int hesai_capture_bound(const hesai_capture* capture, uint64_t* datagrams, uint6
                         size_t message_size) HESAI_CAPTURE_NOEXCEPT;
 
 /* Caller-owned columns for hesai_capture_read_columns: element i of each is one point, as the
- * CSV's row i gives it. Each pointer addresses `capacity` elements; `packet` may be NULL. */
+ * CSV's row i gives it. Each pointer addresses `capacity` elements; `packet` and `sensor` may be
+ * NULL. */
 typedef struct hesai_capture_columns {
   float* x;              /* metres */
   float* y;              /* metres */
@@ -112,6 +137,7 @@ typedef struct hesai_capture_columns {
   uint8_t* channel;      /* 1-based laser channel */
   uint8_t* return_index; /* the CSV's "return" */
   uint64_t* packet;      /* the CSV's packet (NULL: not written) */
+  uint16_t* sensor;      /* the point's sensor, as hesai_capture_row.sensor (NULL: not written) */
   size_t capacity;
 } hesai_capture_columns;
 
@@ -127,7 +153,7 @@ typedef struct hesai_capture_columns {
  * sets *count; *count == 0 is the end. columns->capacity must be at least
  * HESAI_CAPTURE_COLUMNS_MIN points, else 1. Returns 0, or the status of a failure (1: a
  * calibration file that does not fit the model; 2: a damaged capture, after its points up to the
- * damage have been given) with a message. */
+ * damage have been given, or more than 65 536 sensors) with a message. */
 #define HESAI_CAPTURE_COLUMNS_MIN 4000
 int hesai_capture_read_columns(hesai_capture* capture, const hesai_capture_columns* columns, size_t* count,
                                char* message, size_t message_size) HESAI_CAPTURE_NOEXCEPT;
@@ -147,7 +173,7 @@ int hesai_capture_stats_json(hesai_capture* capture, char* json, size_t size, si
  * Python package checks its numpy dtypes against it at import): of hesai_capture_row (which 0) or
  * hesai_point (which 1, hesai/hesai.h), the offset of the member that holds the CSV column `name`
  * ("frame", "packet", "block", "channel", "return", "azimuth_deg", "elevation_deg", "distance_m",
- * "x", "y", "z", "intensity", "time_ns"; hesai_point has no frame or packet, and has
+ * "x", "y", "z", "intensity", "time_ns", "sensor"; hesai_point has no frame, packet or sensor, and has
  * "confidence"), or with name NULL the struct's size. SIZE_MAX for another name or `which`. */
 size_t hesai_capture_layout(int which, const char* name) HESAI_CAPTURE_NOEXCEPT;
 

@@ -30,7 +30,8 @@ static_assert(sizeof(hesai_capture_row) == 56 && offsetof(hesai_capture_row, fra
               offsetof(hesai_capture_row, distance_m) == 32 && offsetof(hesai_capture_row, x) == 36 &&
               offsetof(hesai_capture_row, y) == 40 && offsetof(hesai_capture_row, z) == 44 &&
               offsetof(hesai_capture_row, block) == 48 && offsetof(hesai_capture_row, channel) == 49 &&
-              offsetof(hesai_capture_row, return_index) == 50 && offsetof(hesai_capture_row, intensity) == 51);
+              offsetof(hesai_capture_row, return_index) == 50 && offsetof(hesai_capture_row, intensity) == 51 &&
+              offsetof(hesai_capture_row, sensor) == 52);
 
 namespace {
 
@@ -43,18 +44,41 @@ void put_message(char* message, std::size_t size, const std::string& text) {
   message[n] = '\0';
 }
 
+// The most sensors a row can name (hesai_capture_row.sensor is 16 bits).
+constexpr std::uint32_t kMaxSensors = 65536;
+
+// A frame that closed: the rows given before it, its id and its sensor.
+struct Closure {
+  std::size_t rows;
+  std::uint64_t frame;
+  std::uint16_t sensor;
+};
+
 // Rows as the CSV sink would write them, and where each frame closed among them.
 class RowSink : public hesai::cli::Sink {
  public:
+  // One packet's points, so one sensor's: those that fit go straight into the caller's rows,
+  // the rest to the staging rows.
   void points(const OutPoint* p, std::size_t count) override {
-    for (std::size_t i = 0; i < count; ++i) add(p[i]);
+    if (discard || count == 0 || p[0].sensor >= kMaxSensors) return;
+    const std::size_t direct_count = std::min(count, direct_capacity - direct_n);
+    hesai_capture_row* out = direct + direct_n;
+    for (std::size_t i = 0; i < direct_count; ++i) out[i] = row(p[i]);
+    direct_n += direct_count;
+    for (std::size_t i = direct_count; i < count; ++i) rows.push_back(row(p[i]));
   }
-  // The rows do not name their sensor yet (hesai_capture_row has no such field): frames of several
-  // sensors are told apart only by their ids.
-  void sensor_added(std::uint32_t, const std::string&) override {}
+  void sensor_added(std::uint32_t sensor, const std::string& label) override {
+    if (sensor >= kMaxSensors) {
+      too_many = true;
+      return;
+    }
+    if (names.size() <= sensor) names.resize(sensor + 1);  // a deque: the names given stay put
+    names[sensor] = label;
+  }
   void receive_time(std::uint64_t) override {}
-  void frame_closed(const hesai::FrameInfo& frame, std::uint32_t) override {
-    if (!discard) closures.emplace_back(direct_n + rows.size(), frame.id);
+  void frame_closed(const hesai::FrameInfo& frame, std::uint32_t sensor) override {
+    if (!discard && track_closures && sensor < kMaxSensors)
+      closures.push_back(Closure{direct_n + rows.size(), frame.id, static_cast<std::uint16_t>(sensor)});
   }
 
   // While hesai_capture_read has nothing staged, rows go straight into the caller's array (one
@@ -63,12 +87,14 @@ class RowSink : public hesai::cli::Sink {
   std::size_t direct_capacity = 0, direct_n = 0;
   std::vector<hesai_capture_row> rows;                         // from `taken` on: not yet given
   std::size_t taken = 0;
-  std::deque<std::pair<std::size_t, std::uint64_t>> closures;  // (rows before the close, frame id)
+  std::deque<Closure> closures;
   bool discard = false;                                        // stats: counts only
+  bool track_closures = true;  // hesai_capture_read was given closed_frame: it stops where frames close
+  std::deque<std::string> names;                               // the sensors', by index
+  bool too_many = false;                                       // a sensor beyond kMaxSensors came
 
  private:
-  void add(const OutPoint& p) {
-    if (discard) return;
+  static hesai_capture_row row(const OutPoint& p) {
     hesai_capture_row r;
     r.frame = p.frame;
     r.packet = p.packet;
@@ -83,8 +109,8 @@ class RowSink : public hesai::cli::Sink {
     r.channel = p.point.channel;
     r.return_index = p.point.return_index;
     r.intensity = p.point.intensity;
-    if (direct_n < direct_capacity) direct[direct_n++] = r;
-    else rows.push_back(r);
+    r.sensor = static_cast<std::uint16_t>(p.sensor);
+    return r;
   }
 };
 
@@ -93,6 +119,7 @@ struct ColumnSource {
   std::unique_ptr<hesai::Decoder> decoder;
   hesai::RotationDetector rotation;
   hesai::HeldPackets<hesai::cli::Pipeline::kHeldPackets> held;  // tagged with the packet's index
+  std::uint16_t sensor = 0;  // its index, as the Pipeline numbers them
 };
 
 }  // namespace
@@ -116,6 +143,7 @@ struct hesai_capture {
   hesai::GpsPacket gps{};
   bool have_gps = false;
   std::uint64_t index = 0;  // point-cloud packets decoded
+  std::uint64_t sources_made = 0;  // sensors numbered so far (the Pipeline's sources_made_)
   hesai::port::UdpDatagram pending;  // read, not yet decoded (no room left)
   bool has_pending = false;
   bool finishing = false;   // the input ended: the held packets are being released
@@ -136,6 +164,10 @@ void feed_next(hesai_capture* c) {
     if (!c->pipeline->feed(d.payload, key)) {  // the program stops here, unfinished
       c->status = kExitUsage;
       c->error = c->pipeline->error();
+      c->ended = true;
+    } else if (c->sink.too_many && !c->sink.discard) {  // rows cannot name the sensor: stop
+      c->status = kExitInput;
+      c->error = "more than 65536 sensors in the capture";
       c->ended = true;
     }
     return;
@@ -167,11 +199,13 @@ hesai::Error decode_columns_at(hesai_capture* c, ColumnSource& src, hesai::ByteV
 // A decoded packet's points kept (Pipeline::process without its accounting): the absolute times
 // and the packet index written; the number of points to advance by (0 outside --packets).
 std::size_t keep_columns(hesai_capture* c, const hesai_capture_columns& out, std::size_t at, std::uint64_t index,
-                         const hesai::PacketInfo& info, std::size_t count) {
+                         std::uint16_t src_sensor, const hesai::PacketInfo& info, std::size_t count) {
   if (index < c->first_packet || index >= c->end_packet) return 0;
   for (std::size_t i = 0; i < count; ++i) out.time_ns[at + i] = info.time_ns + c->times[i];
   if (out.packet != nullptr)
     for (std::size_t i = 0; i < count; ++i) out.packet[at + i] = index;
+  if (out.sensor != nullptr)
+    for (std::size_t i = 0; i < count; ++i) out.sensor[at + i] = src_sensor;
   return count;
 }
 
@@ -184,7 +218,7 @@ std::size_t release_held_columns(hesai_capture* c, ColumnSource& src, const hesa
   const hesai::Error e = decode_columns_at(c, src, payload, out, at, info, count);
   src.held.pop_front();
   if (e != hesai::Error::ok) return 0;  // it decoded when it came; as the Pipeline, skipped
-  return keep_columns(c, out, at, index, info, count);
+  return keep_columns(c, out, at, index, src.sensor, info, count);
 }
 
 }  // namespace
@@ -293,10 +327,12 @@ int hesai_capture_open(const char* path, const hesai_capture_options* options, h
 }
 
 int hesai_capture_read(hesai_capture* c, hesai_capture_row* rows, std::size_t capacity, std::size_t* count,
-                       std::uint64_t* closed_frame, char* message, std::size_t message_size) noexcept {
+                       std::uint64_t* closed_frame, std::uint16_t* closed_sensor, char* message,
+                       std::size_t message_size) noexcept {
   using namespace hesai::cli;
   if (count != nullptr) *count = 0;
   if (closed_frame != nullptr) *closed_frame = 0;
+  if (closed_sensor != nullptr) *closed_sensor = 0;
   if (c == nullptr || count == nullptr || rows == nullptr || capacity == 0) return kExitUsage;
   if (c->mode != hesai_capture::Mode::unread && c->mode != hesai_capture::Mode::rows) {
     put_message(message, message_size, "this capture is read another way (columns or stats)");
@@ -304,6 +340,8 @@ int hesai_capture_read(hesai_capture* c, hesai_capture_row* rows, std::size_t ca
   }
   c->mode = hesai_capture::Mode::rows;
   RowSink& s = c->sink;
+  s.track_closures = closed_frame != nullptr;
+  if (!s.track_closures) s.closures.clear();  // the rows only
   try {
     if (s.taken == s.rows.size() && s.closures.empty() && !c->ended) {
       // Nothing staged: the pipeline writes into the caller's rows until they are full or a
@@ -319,35 +357,37 @@ int hesai_capture_read(hesai_capture* c, hesai_capture_row* rows, std::size_t ca
       s.direct_capacity = s.direct_n = 0;
       std::size_t n = made;
       bool closes = false;
-      if (!s.closures.empty() && s.closures.front().first <= made) {
-        n = s.closures.front().first;
+      if (!s.closures.empty() && s.closures.front().rows <= made) {
+        n = s.closures.front().rows;
         closes = true;
-        if (closed_frame != nullptr) *closed_frame = s.closures.front().second;
+        if (closed_frame != nullptr) *closed_frame = s.closures.front().frame;
+        if (closed_sensor != nullptr) *closed_sensor = s.closures.front().sensor;
         s.closures.pop_front();
       }
       // What came after the rows given (the next frame's first rows, those beyond the capacity)
       // is staged for the next call, in order.
       s.rows.insert(s.rows.begin(), rows + n, rows + made);
-      for (auto& closure : s.closures) closure.first -= n;
+      for (auto& closure : s.closures) closure.rows -= n;
       *count = n;
       if (n != 0 || closes || made != 0) return kExitOk;
       // Nothing made: the end or a failure, said below.
     }
     for (;;) {
       const std::size_t available = s.rows.size() - s.taken;
-      const bool closes = !s.closures.empty() && s.closures.front().first - s.taken <= capacity;
+      const bool closes = !s.closures.empty() && s.closures.front().rows - s.taken <= capacity;
       if (closes || available >= capacity || c->ended) {
-        const std::size_t n = closes ? s.closures.front().first - s.taken : std::min(available, capacity);
+        const std::size_t n = closes ? s.closures.front().rows - s.taken : std::min(available, capacity);
         if (n != 0) std::memcpy(rows, s.rows.data() + s.taken, n * sizeof(hesai_capture_row));
         s.taken += n;
         *count = n;
         if (closes) {
-          if (closed_frame != nullptr) *closed_frame = s.closures.front().second;
+          if (closed_frame != nullptr) *closed_frame = s.closures.front().frame;
+          if (closed_sensor != nullptr) *closed_sensor = s.closures.front().sensor;
           s.closures.pop_front();
         }
         if (s.taken >= 65536 || s.taken == s.rows.size()) {  // drop what was given
           s.rows.erase(s.rows.begin(), s.rows.begin() + static_cast<std::ptrdiff_t>(s.taken));
-          for (auto& closure : s.closures) closure.first -= s.taken;
+          for (auto& closure : s.closures) closure.rows -= s.taken;
           s.taken = 0;
         }
         if (n == 0 && !closes && c->status != kExitOk) {
@@ -362,6 +402,13 @@ int hesai_capture_read(hesai_capture* c, hesai_capture_row* rows, std::size_t ca
     put_message(message, message_size, "out of memory");
     return kExitInput;
   }
+}
+
+std::size_t hesai_capture_sensors(const hesai_capture* c) noexcept { return c == nullptr ? 0 : c->sink.names.size(); }
+
+const char* hesai_capture_sensor_name(const hesai_capture* c, std::size_t index) noexcept {
+  if (c == nullptr || index >= c->sink.names.size()) return nullptr;
+  return c->sink.names[index].c_str();
 }
 
 std::uint64_t hesai_capture_packets(const hesai_capture* c) noexcept {
@@ -471,7 +518,15 @@ int hesai_capture_read_columns(hesai_capture* c, const hesai_capture_columns* co
         it = c->sources.end();
       }
       if (it == c->sources.end()) {
+        if (c->sources_made >= kMaxSensors) {  // the column cannot name it
+          c->status = kExitInput;
+          c->error = "more than 65536 sensors in the capture";
+          c->ended = true;
+          break;
+        }
         ColumnSource s;
+        s.sensor = static_cast<std::uint16_t>(c->sources_made++);
+        c->sink.names.push_back(source_text(d, c->file));
         s.decoder = std::make_unique<hesai::Decoder>(model);
         if (!c->pipeline->configure_decoder(*s.decoder)) {
           c->status = kExitUsage;
@@ -503,7 +558,7 @@ int hesai_capture_read_columns(hesai_capture* c, const hesai_capture_columns* co
           }
         }
       }
-      n += keep_columns(c, out, n, index, info, got);
+      n += keep_columns(c, out, n, index, src.sensor, info, got);
     }
   } catch (const std::bad_alloc&) {
     put_message(message, message_size, "out of memory");
@@ -567,6 +622,7 @@ std::size_t hesai_capture_layout(int which, const char* name) noexcept {
       {"distance_m", offsetof(hesai_capture_row, distance_m)}, {"x", offsetof(hesai_capture_row, x)},
       {"y", offsetof(hesai_capture_row, y)},                 {"z", offsetof(hesai_capture_row, z)},
       {"intensity", offsetof(hesai_capture_row, intensity)}, {"time_ns", offsetof(hesai_capture_row, time_ns)},
+      {"sensor", offsetof(hesai_capture_row, sensor)},
   };
   static constexpr Member kPoint[] = {
       {"x", offsetof(hesai_point, x)},
