@@ -18,7 +18,7 @@ import sys
 
 import numpy as np
 
-_NAMES = ("libhesai_c.so", "libhesai_c.so.0", "libhesai_c.dylib")
+_NAMES = ("libhesai_c.so", "libhesai_c.so.1", "libhesai_c.dylib")
 
 
 def _candidates():
