@@ -185,29 +185,13 @@ std::vector<std::uint8_t> pointcloud2_head(std::int64_t stamp_ns, const std::str
 //   pandar_xt32m.hpp does not override it).
 // nebula's other dual-return filter, dropping the earlier of two returns closer than its
 // dual_return_distance_threshold parameter, removes points and sets no label: not mirrored.
-NebulaReturnType nebula_return_type(Model model, std::uint8_t return_mode, std::uint8_t return_index, bool identical,
-                                    bool weaker) noexcept {
+namespace {
+// The ReturnType of a return of a dual or triple mode by its block alone (nebula's rule, above);
+// unknown for any other mode.
+NebulaReturnType dual_return_type(Model model, ReturnMode mode, std::uint8_t return_index, bool weaker) noexcept {
   using T = NebulaReturnType;
   const bool first_block = return_index == 0;
-  switch (static_cast<ReturnMode>(return_mode)) {
-    case ReturnMode::first: return T::first;
-    case ReturnMode::second: return T::second;
-    case ReturnMode::strongest: return T::strongest;
-    case ReturnMode::last: return T::last;
-    default: break;
-  }
-  if (identical) {
-    switch (static_cast<ReturnMode>(return_mode)) {
-      case ReturnMode::last_strongest:
-      case ReturnMode::first_second:
-      case ReturnMode::first_last:
-      case ReturnMode::first_strongest:
-      case ReturnMode::first_last_strongest:
-      case ReturnMode::strongest_second_strongest: return T::identical;
-      default: return T::unknown;
-    }
-  }
-  switch (static_cast<ReturnMode>(return_mode)) {
+  switch (mode) {
     case ReturnMode::last_strongest:
       if (first_block) return weaker ? T::last : T::last_strongest;
       return weaker ? T::second_strongest : T::strongest;
@@ -224,6 +208,22 @@ NebulaReturnType nebula_return_type(Model model, std::uint8_t return_mode, std::
     case ReturnMode::strongest_second_strongest: return first_block ? T::strongest : T::second_strongest;
     default: return T::unknown;
   }
+}
+}  // namespace
+
+NebulaReturnType nebula_return_type(Model model, std::uint8_t return_mode, std::uint8_t return_index, bool identical,
+                                    bool weaker) noexcept {
+  using T = NebulaReturnType;
+  switch (static_cast<ReturnMode>(return_mode)) {
+    case ReturnMode::first: return T::first;
+    case ReturnMode::second: return T::second;
+    case ReturnMode::strongest: return T::strongest;
+    case ReturnMode::last: return T::last;
+    default: break;
+  }
+  // A dual or triple mode: a return equal to another of its firing is IDENTICAL, whatever its block.
+  const T by_block = dual_return_type(model, static_cast<ReturnMode>(return_mode), return_index, weaker);
+  return identical && by_block != T::unknown ? T::identical : by_block;
 }
 
 NebulaReturnType nebula_return_type(const PacketInfo& info, const ReturnComparison& compare, const Point& p) noexcept {
