@@ -52,20 +52,26 @@ def main():
             fail(f"hesai decode --format {fmt} failed ({r.returncode}): {r.stderr}")
     # Pass 1 over the CSV: the frames, and the row at which each is complete (near a cut the rows
     # of two frames interleave). Pass 2 keeps only the rows of frames not yet compared.
+    # (The frame is the first column, and no field holds a comma or a quote: a split will do.)
     with open(csv_path, newline="") as f:
-        reader_csv = csv.reader(f)
-        header = next(reader_csv)
+        header = next(csv.reader([f.readline()]))
+        if header[0] != "frame":
+            fail(f"the CSV's first column is {header[0]!r}, not frame")
         last_row = {}
-        for i, row in enumerate(reader_csv):
-            last_row[int(row[0])] = i
+        for i, line in enumerate(f):
+            last_row[int(line.split(",", 1)[0])] = i
     col = {k: header.index(k) for k in ("frame", "packet", "block", "channel", "return", "intensity", "x", "y", "z",
                                          "azimuth_deg", "elevation_deg", "distance_m", "time_ns", "sensor")}
+    i_channel, i_intensity, i_packet, i_block, i_return, i_time = (
+        col[k] for k in ("channel", "intensity", "packet", "block", "return", "time_ns"))
+    i_x, i_y, i_z, i_az, i_el, i_dist = (
+        col[k] for k in ("x", "y", "z", "azimuth_deg", "elevation_deg", "distance_m"))
     # The capture's datagram times, by point-cloud packet index (every bundled capture's datagrams
     # are point-cloud packets).
     datagrams = make_pandarscan.pcap_payloads(capture)
     times = [t for t, _ in datagrams]
     payloads = [p for _, p in datagrams]
-    models = {}  # packet index -> model
+    packet_types = {}  # packet index -> (expected_packet's list, the model's channels)
     type_counts = {}
     last_log = -1
     frames = sorted(last_row)
@@ -118,35 +124,40 @@ def main():
                 fail(f"frame {frame}: stamp {stamp} is not the earliest time_ns")
             for i, row in enumerate(rows):
                 p = next(lines, "").rstrip("\n").split(",")
-                where = f"frame {frame} point {i}"
                 if p[0] != "P":
-                    fail_read(f"{where}: no point line")
-                ch, ret, inten = int(p[1]), int(p[2]), int(p[3])
-                x, y, z, az, el, dist = (float(v) for v in p[4:10])
-                if ch != int(row[col["channel"]]) - 1 or inten != int(row[col["intensity"]]):
-                    fail(f"{where}: channel/intensity {ch},{inten} vs CSV "
-                         f"{row[col['channel']]},{row[col['intensity']]}")
-                packet = int(row[col["packet"]])
-                payload = payloads[packet]
-                model = models.get(packet) or models.setdefault(packet, nebula_return_type.identify(payload))
-                want, index_in_firing = nebula_return_type.expected(model, payload, int(row[col["block"]]), ch)
+                    fail_read(f"frame {frame} point {i}: no point line")
+                ch = int(p[1])
+                if ch != int(row[i_channel]) - 1 or p[3] != row[i_intensity]:
+                    fail(f"frame {frame} point {i}: channel/intensity {ch},{p[3]} vs CSV "
+                         f"{row[i_channel]},{row[i_intensity]}")
+                packet = int(row[i_packet])
+                types = packet_types.get(packet)
+                if types is None:
+                    payload = payloads[packet]
+                    model = nebula_return_type.identify(payload)
+                    types = packet_types[packet] = (nebula_return_type.expected_packet(model, payload),
+                                                    nebula_return_type.LAYOUTS[model][4])
+                want, index_in_firing = types[0][int(row[i_block]) * types[1] + ch]
+                ret = int(p[2])
                 if ret != want:
-                    fail(f"{where} (packet {packet} block {row[col['block']]} channel {ch}): return_type {ret}, "
-                         f"nebula's ReturnType from the packet's bytes is {want}")
-                if int(row[col["return"]]) != index_in_firing:
-                    fail(f"{where}: the CSV's return {row[col['return']]}, the block's index in its firing "
-                         f"{index_in_firing}")
+                    fail(f"frame {frame} point {i} (packet {packet} block {row[i_block]} channel {ch}): "
+                         f"return_type {ret}, nebula's ReturnType from the packet's bytes is {want}")
+                if int(row[i_return]) != index_in_firing:
+                    fail(f"frame {frame} point {i}: the CSV's return {row[i_return]}, the block's index in "
+                         f"its firing {index_in_firing}")
                 type_counts[ret] = type_counts.get(ret, 0) + 1
-                if int(p[10]) != int(row[col["time_ns"]]):
-                    fail(f"{where}: time {p[10]} vs CSV {row[col['time_ns']]}")
-                for key, v in (("x", x), ("y", y), ("z", z), ("distance_m", dist)):
-                    if abs(v - float(row[col[key]])) > m_tol:
-                        fail(f"{where}: {key} {v} vs CSV {row[col[key]]}")
-                for key, v in (("azimuth_deg", az), ("elevation_deg", el)):
-                    d = math.degrees(v) - float(row[col[key]])
-                    d = (d + 180.0) % 360.0 - 180.0  # 359.9996 prints as 360.000
-                    if abs(d) > deg_tol:
-                        fail(f"{where}: {key} {math.degrees(v)} vs CSV {row[col[key]]}")
+                if p[10] != row[i_time]:
+                    fail(f"frame {frame} point {i}: time {p[10]} vs CSV {row[i_time]}")
+                x, y, z, az, el, dist = map(float, p[4:10])
+                if (abs(x - float(row[i_x])) > m_tol or abs(y - float(row[i_y])) > m_tol or
+                        abs(z - float(row[i_z])) > m_tol or abs(dist - float(row[i_dist])) > m_tol):
+                    fail(f"frame {frame} point {i}: x, y, z, distance {x}, {y}, {z}, {dist} vs CSV "
+                         f"{row[i_x]}, {row[i_y]}, {row[i_z]}, {row[i_dist]}")
+                d_az = (math.degrees(az) - float(row[i_az]) + 180.0) % 360.0 - 180.0  # 359.9996 prints as 360.000
+                d_el = (math.degrees(el) - float(row[i_el]) + 180.0) % 360.0 - 180.0
+                if abs(d_az) > deg_tol or abs(d_el) > deg_tol:
+                    fail(f"frame {frame} point {i}: azimuth, elevation {math.degrees(az)}, {math.degrees(el)} vs CSV "
+                         f"{row[i_az]}, {row[i_el]}")
                 points += 1
     extra = next(lines, None)
     err = node.stderr.read()

@@ -74,24 +74,37 @@ def returns_of(mode):
     return 2
 
 
-def expected(model, p, block, channel):
-    """nebula's ReturnType of the unit of `channel` (0-based) in `block` (0-based) of payload p,
-    and the block's index within its firing (the CSV's return)."""
+def expected_packet(model, p):
+    """nebula's ReturnType of every unit of payload p, and each unit's block's index within its
+    firing (the CSV's return): a list of (type, index) indexed by block * channels + channel
+    (0-based). The mode byte and the units are read once a packet (compare.py asks for every unit)."""
     body, blocks, block_bytes, units_at, channels, unit_bytes = LAYOUTS[model]
     mode = return_mode(model, p)
     n = returns_of(mode)
-    first = block // n * n
-    r = block - first
+    unit_format = "<HB" + "x" * (unit_bytes - 3)
+    units = [list(struct.iter_unpack(unit_format, p[body + b * block_bytes + units_at:
+                                                  body + b * block_bytes + units_at + channels * unit_bytes]))
+             for b in range(blocks)]
+    out = []
+    for block in range(blocks):
+        first = block // n * n
+        others_blocks = [b for b in range(first, first + n) if b != block]
+        for channel in range(channels):
+            me = units[block][channel]
+            others = [units[b][channel] for b in others_blocks]
+            out.append(_type_of(model, mode, block - first, me, others))
+    return out
 
-    def unit(b):
-        off = body + b * block_bytes + units_at + channel * unit_bytes
-        return struct.unpack_from("<H", p, off)[0], p[off + 2]
 
-    me = unit(block)
-    others = [unit(b) for b in range(first, first + n) if b != block]
-    single = {0x33: FIRST, 0x34: SECOND, 0x37: STRONGEST, 0x38: LAST}
-    if mode in single:
-        return single[mode], r
+# The single-return modes: one type whatever the units.
+SINGLE = {0x33: FIRST, 0x34: SECOND, 0x37: STRONGEST, 0x38: LAST}
+
+
+def _type_of(model, mode, r, me, others):
+    """nebula's ReturnType of unit `me` (distance, reflectivity), return r of its firing, beside
+    the firing's other returns (their units)."""
+    if mode in SINGLE:
+        return SINGLE[mode], r
     if any(o == me for o in others):
         return (IDENTICAL if mode in (0x39, 0x3A, 0x3B, 0x3C, 0x3D, 0x3E) else UNKNOWN), r
     strongest = all(me[1] >= o[1] for o in others)
