@@ -5,6 +5,7 @@
 #pragma once
 
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <cstddef>
 #include <cstdint>
@@ -213,6 +214,8 @@ inline Parsed check_mcap(const std::vector<std::uint8_t>& b) {
   return p;
 }
 
-inline std::string temp_path(const char* name) { return testing::TempDir() + name; }
+/// A file in the temporary directory that no other test process can be using: its name carries
+/// this process's id (two ctest runs of one machine, or two presets, share the directory).
+inline std::string temp_path(const char* name) { return testing::TempDir() + std::to_string(getpid()) + "_" + name; }
 
 }  // namespace hesai_test

@@ -119,7 +119,8 @@ class SensorsApart : public ::testing::Test {
  protected:
   void SetUp() override {
     // One directory per test: ctest runs them as processes side by side.
-    dir_ = testing::TempDir() + "hesai_sensors_apart_" + ::testing::UnitTest::GetInstance()->current_test_info()->name();
+    dir_ = testing::TempDir() + "hesai_sensors_apart_" + std::to_string(getpid()) + "_" +
+           ::testing::UnitTest::GetInstance()->current_test_info()->name();
     std::filesystem::create_directories(dir_);
   }
   void TearDown() override { std::filesystem::remove_all(dir_); }

@@ -7,7 +7,8 @@ HESAI_RUN_PREFIX (environment): words put before HESAI (cross builds: the qemu-u
 
 Proves, for every bundled capture: `stats --json` on the bag (unchunked; chunked with CRCs, with a
 second, non-PandarScan topic; chunked without CRCs) equals `stats --json` on the pcap, key by key;
-`decode --format csv` gives the same bytes. `replay` of a bag sends the pcap's payloads in order.
+`decode --format csv` gives the same bytes (under an emulator, for the chunked bag only).
+`replay` of a bag sends the pcap's payloads in order.
 Then each damaged file gives exit 2 and its own code at the byte offset where the writer put the
 damaged record (never a value read back from the program), and a compressed chunk's message names
 the compression and the commands that rewrite the file uncompressed. A bag cut at a record boundary
@@ -28,6 +29,11 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import make_pandarscan as mp  # noqa: E402
 
 FAILURES = []
+# Cross builds run the program under qemu-user (HESAI_RUN_PREFIX), where each decode of a capture
+# costs seconds: there `stats` still reads every bag, and the CSV is compared for the chunked one.
+# The three bags share the reader's code past the chunk layer, and `stats` equal key by key proves
+# each read the same packets; natively the CSV of every bag is compared.
+EMULATED = bool(os.environ.get('HESAI_RUN_PREFIX', '').split())
 
 
 def check(ok, what):
@@ -76,6 +82,8 @@ def same_output(hesai, work, name, pcap, bags):
         check(set(got) == set(want), '%s %s: keys differ: %s' % (name, variant, set(got) ^ set(want)))
         for k in want:
             check(got.get(k) == want[k], '%s %s: %s = %r, pcap %r' % (name, variant, k, got.get(k), want[k]))
+        if EMULATED and variant != 'chunked':
+            continue  # under qemu: the CSV of the chunked bag (chunks, CRCs, another topic) only
         r = run(hesai, ['decode', path, '--format', 'csv', '--out', '-', '--quiet'])
         check(r.returncode == 0, '%s %s: decode exit %d' % (name, variant, r.returncode))
         got_csv, got_sensors = split_sensor(r.stdout)
