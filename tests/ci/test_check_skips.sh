@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # ctest ci_check_skips: .ci/check-skips on hand-made JUnit files (tests/ci/junit/, as ctest
-# --output-junit writes them) against a hand-made allowlist (tests/ci/junit/allowlist): the exit
-# code and the names and GoogleTest messages it prints.
+# --output-junit writes them, and tests/ci/junit/gtest-xml/, as GoogleTest's --gtest_output=xml
+# does) against hand-made allowlists (tests/ci/junit/allowlist*): the exit code and the names and
+# GoogleTest messages it prints.
 # Usage: test_check_skips.sh SOURCE_DIR [PYTHON]   (default python3)
 set -euo pipefail
 src=${1:?usage: test_check_skips.sh SOURCE_DIR [PYTHON]}
@@ -49,6 +50,20 @@ expect 1 allowed_skip.xml allowlist_empty "  Udp.MulticastGroupOnLoopback: no ne
 # An allowlist entry without its reason, a file that is not XML: 2.
 expect 2 allowed_skip.xml allowlist_no_reason "allowlist_no_reason:2: no '# why'"
 expect 2 allowlist allowlist "check-skips: $dir/allowlist:"
+# Suites run as one ctest each ("Suite.*", under qemu-user: cmake/HesaiGtestSuites.cmake): their
+# cases and skips come from GoogleTest's reports in gtest-xml/ beside the JUnit file (a skip, a
+# parameterised case, a DISABLED_ case, a prefixed suite); each counts as a test.
+unset HESAI_EXPECT_SHA256
+expect 0 suites.xml allowlist_suites "check-skips demo: 7 tests, 3 skipped, 3 allowed" \
+  "skipped, allowed: Udp.MulticastGroupOnLoopback: no network namespace of our own" \
+  "skipped, allowed: Paths/Sha256Kat.Whole/hardware: no SHA instructions on this CPU" \
+  "skipped, allowed: Paths/Sha256Kat.DISABLED_Slow/portable: disabled (not run)"
+# The same skips against the allowlist without the suite's entries: 1, naming the cases.
+expect 1 suites.xml allowlist "7 tests, 3 skipped, 1 allowed" "2 skipped test(s) that" \
+  "  Paths/Sha256Kat.Whole/hardware: no SHA instructions on this CPU"
+# A suite whose report is missing could hide a skip: 1, naming it.
+expect 1 suites_missing_report.xml allowlist_suites "1 suite(s) without the report that would show their skips" \
+  "  zero_allocation.Stats.*: no GoogleTest report of the suite"
 
 [ "$failures" -eq 0 ] && echo "ci_check_skips: all passed"
 exit $((failures > 0))
