@@ -23,6 +23,14 @@ string(APPEND command "[==[${EXE}]==]")
 
 set(tests "")
 set(suites 0)
+set(suite "")
+# A suite's ctest COST (ctest starts the costliest first when it has no timings of its own yet, as
+# on a fresh clone): its number of cases, written once the next suite's line (or the end) is read.
+macro(close_suite)
+  if(suite)
+    string(APPEND tests "set_tests_properties([==[${name}]==] PROPERTIES COST ${cases})\n")
+  endif()
+endmacro()
 # One list item a line. Only the suites' names are kept, which hold no ';', '[' or ']': those
 # characters (in a case's "# GetParam() = ..." comment) are dropped first, as a ';' would split a
 # line and a '[' would join the lines up to its ']' in a CMake list.
@@ -32,7 +40,9 @@ foreach(line IN LISTS lines)
   # A suite's line starts in the first column and ends with '.', before any "  # TypeParam = ..."
   # comment; its cases' lines are indented.
   if(line MATCHES "^([^ #][^ ]*)\\.( .*)?$")
+    close_suite()
     set(suite "${CMAKE_MATCH_1}")
+    set(cases 0)
     set(name "${PREFIX}${suite}.*")
     string(REPLACE "/" "_" xml "${PREFIX}${suite}")
     string(APPEND tests
@@ -40,8 +50,11 @@ foreach(line IN LISTS lines)
            "[==[--gtest_output=xml:${XML_DIR}/${xml}.xml]==])\n"
            "set_tests_properties([==[${name}]==] PROPERTIES LABELS unit WORKING_DIRECTORY [==[${WORKING_DIRECTORY}]==])\n")
     math(EXPR suites "${suites} + 1")
+  elseif(suite AND line MATCHES "^  [^ ]")
+    math(EXPR cases "${cases} + 1")
   endif()
 endforeach()
+close_suite()
 if(suites EQUAL 0)
   message(FATAL_ERROR "${EXE} --gtest_list_tests listed no suite:\n${listing}")
 endif()
