@@ -61,11 +61,13 @@ def cli_csv_body(body):
         empty = {c: np.empty(0, np.int64) for c in INT_COLUMNS}
         empty.update({c: np.empty(0) for c, _ in FLOAT_COLUMNS})
         return empty
-    iv = np.loadtxt(io.BytesIO(body), delimiter=",", dtype=np.int64, usecols=ints, ndmin=2)
-    fv = np.loadtxt(io.BytesIO(body), delimiter=",", dtype=np.float64, usecols=floats, ndmin=2)
-    cols = {c: iv[:, i] for i, c in enumerate(INT_COLUMNS)}
-    cols.update({c: fv[:, i] for i, (c, _) in enumerate(FLOAT_COLUMNS)})
-    return cols
+    # One pass over the text: a record a row, each column its own type (time_ns needs int64 exactly).
+    names = {i: c for i, c in zip(ints, INT_COLUMNS)}
+    names.update({i: c for i, (c, _) in zip(floats, FLOAT_COLUMNS)})
+    usecols = sorted(names)
+    dtype = [(names[i], np.int64 if i in ints else np.float64) for i in usecols]
+    rows = np.loadtxt(io.BytesIO(body), delimiter=",", dtype=dtype, usecols=usecols, ndmin=1)
+    return {c: np.ascontiguousarray(rows[c]) for c in names.values()}
 
 
 def assert_rows_equal(got, want, skip=()):
