@@ -137,7 +137,7 @@ TEST_F(SensorsApart, EachSensorsCsvRowsAreItsOwnCaptures) {
   ASSERT_GT(rows.size(), 1u);
   ASSERT_EQ(sensor_of(rows[0]), "sensor");
   ASSERT_EQ(field(rows[0], 1), "packet");
-  std::map<std::string, std::vector<std::string>, std::less<>> by_sensor;
+  std::map<std::string, std::vector<std::string>> by_sensor;
   for (std::size_t i = 1; i < rows.size(); ++i)
     by_sensor[std::string(sensor_of(rows[i]))].push_back(without_packet_and_sensor(rows[i]));
   ASSERT_EQ(by_sensor.size(), 2u);

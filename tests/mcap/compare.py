@@ -71,7 +71,7 @@ def main():
     datagrams = make_pandarscan.pcap_payloads(capture)
     times = [t for t, _ in datagrams]
     payloads = [p for _, p in datagrams]
-    packet_types = {}  # packet index -> (expected_packet's list, the model's channels)
+    packet_types = {}  # packet index -> nebula_return_type.expected_packet of it
     type_counts = {}
     last_log = -1
     frames = sorted(last_row)
@@ -134,10 +134,9 @@ def main():
                 types = packet_types.get(packet)
                 if types is None:
                     payload = payloads[packet]
-                    model = nebula_return_type.identify(payload)
-                    types = packet_types[packet] = (nebula_return_type.expected_packet(model, payload),
-                                                    nebula_return_type.LAYOUTS[model][4])
-                want, index_in_firing = types[0][int(row[i_block]) * types[1] + ch]
+                    types = packet_types[packet] = nebula_return_type.expected_packet(
+                        nebula_return_type.identify(payload), payload)
+                want, index_in_firing = types[int(row[i_block])][ch]
                 ret = int(p[2])
                 if ret != want:
                     fail(f"frame {frame} point {i} (packet {packet} block {row[i_block]} channel {ch}): "

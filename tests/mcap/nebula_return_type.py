@@ -76,8 +76,8 @@ def returns_of(mode):
 
 def expected_packet(model, p):
     """nebula's ReturnType of every unit of payload p, and each unit's block's index within its
-    firing (the CSV's return): a list of (type, index) indexed by block * channels + channel
-    (0-based). The mode byte and the units are read once a packet (compare.py asks for every unit)."""
+    firing (the CSV's return): (type, index) by [block][channel], both 0-based. The mode byte and
+    the units are read once a packet (compare.py asks for every unit)."""
     body, blocks, block_bytes, units_at, channels, unit_bytes = LAYOUTS[model]
     mode = return_mode(model, p)
     n = returns_of(mode)
@@ -89,10 +89,8 @@ def expected_packet(model, p):
     for block in range(blocks):
         first = block // n * n
         others_blocks = [b for b in range(first, first + n) if b != block]
-        for channel in range(channels):
-            me = units[block][channel]
-            others = [units[b][channel] for b in others_blocks]
-            out.append(_type_of(model, mode, block - first, me, others))
+        out.append([_type_of(model, mode, block - first, units[block][channel],
+                             [units[b][channel] for b in others_blocks]) for channel in range(channels)])
     return out
 
 
