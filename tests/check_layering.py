@@ -4,7 +4,7 @@ public header, belongs to one concern, and includes only headers of its own conc
 concerns below it.
 
     core:  base <- crc, crypto, calibration, ptc, kernels <- sensors <- streams <- capi
-    port:  (all of core) <- base <- capture, net, formats <- cli <- capi
+    port:  (all of core) <- base <- capture, net, formats <- pipeline <- cli, capi
 
 Nothing in core/ includes a header of port/. A core public header's concern is given below; a port
 public header's is the folder it sits in under port/include/hesai_port/; a file under
@@ -50,8 +50,9 @@ PORT_BELOW = {
     'capture': {'base'},
     'net': {'base'},
     'formats': {'base'},
-    'cli': {'base', 'capture', 'net', 'formats'},
-    'capi': {'base', 'capture', 'net', 'formats', 'cli'},
+    'pipeline': {'base', 'capture', 'formats'},
+    'cli': {'base', 'capture', 'net', 'formats', 'pipeline'},
+    'capi': {'base', 'capture', 'net', 'formats', 'pipeline'},
 }
 PORT_HEADERS = {'hesai_capture.h': 'capi'}  # the installed C header, at the top of hesai_port/
 

@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """check_layering.py catches what it is there to catch: on a copy of core/ and port/, each include
 planted below (a format reaching into the network code, a capture reader into a format, the core
-into the port, a library file into the program) makes it exit 1 and name that include, while the
+into the port, a library file or the engine into the program, the engine into the network) makes it exit 1 and name that include, while the
 unplanted copy passes.
 
 Usage: check_layering_planted.py ROOT   (ROOT holds core/, port/ and tests/check_layering.py)
@@ -19,8 +19,14 @@ PLANTS = [  # (file to plant in, the include, the line check_layering.py must pr
      'port/src/capture/mcap_parser.cpp (capture) includes hesai_port/formats/writers.h (formats)'),
     ('port/src/net/udp.cpp', '#include "../cli/options.h"',
      'port/src/net/udp.cpp (net) includes ../cli/options.h (cli)'),
-    ('port/src/cli/sinks.cpp', '#include "hesai_port/hesai_capture.h"',
-     'port/src/cli/sinks.cpp (cli) includes hesai_port/hesai_capture.h (capi)'),
+    ('port/src/cli/decode.cpp', '#include "hesai_port/hesai_capture.h"',
+     'port/src/cli/decode.cpp (cli) includes hesai_port/hesai_capture.h (capi)'),
+    ('port/src/capi/hesai_capture.cpp', '#include "../cli/options.h"',
+     'port/src/capi/hesai_capture.cpp (capi) includes ../cli/options.h (cli)'),
+    ('port/src/pipeline/sinks.cpp', '#include "../cli/commands.h"',
+     'port/src/pipeline/sinks.cpp (pipeline) includes ../cli/commands.h (cli)'),
+    ('port/src/pipeline/pipeline.cpp', '#include "hesai_port/net/udp.h"',
+     'port/src/pipeline/pipeline.cpp (pipeline) includes hesai_port/net/udp.h (net)'),
     ('core/src/streams/frame.cpp', '#include "hesai_port/capture/capture.h"',
      'core/src/streams/frame.cpp (core) includes hesai_port/capture/capture.h, a header of port/'),
 ]

@@ -1,6 +1,6 @@
-// hesai_capture.h: the hesai program's capture reader and Pipeline behind a C interface, for
-// libhesai_c (and through it the Python package). The loop is run_capture's (port/src/cli/main.cpp)
-// turned inside out: datagrams are fed only while the caller wants more rows.
+// hesai_capture.h: the engine's capture feed and Pipeline (hesai_port/pipeline/) behind a C
+// interface, for libhesai_c (and through it the Python package): datagrams are fed (CaptureFeed)
+// only while the caller wants more rows.
 #include "hesai_port/hesai_capture.h"
 
 #include <algorithm>
@@ -15,13 +15,13 @@
 #include <utility>
 #include <vector>
 
-#include "../cli/options.h"
-#include "../cli/pipeline.h"
-#include "../cli/report.h"
 #include "hesai/ct.h"
 #include "hesai/gps.h"
 #include "hesai/hesai.h"
 #include "hesai_port/capture/capture.h"
+#include "hesai_port/pipeline/pipeline.h"
+#include "hesai_port/pipeline/report.h"
+#include "hesai_port/pipeline/run.h"
 
 // The layout python/hesai/_lib.py (ROW_DTYPE) reads.
 static_assert(sizeof(hesai_capture_row) == 56 && offsetof(hesai_capture_row, frame) == 0 &&
@@ -35,7 +35,21 @@ static_assert(sizeof(hesai_capture_row) == 56 && offsetof(hesai_capture_row, fra
 
 namespace {
 
-using hesai::cli::OutPoint;
+using hesai::port::OutPoint;
+
+// hesai_capture.h's return values: the hesai program's exit statuses for the same failures
+// (0 success, 1 a bad request, 2 an input that cannot be read).
+constexpr int kExitOk = 0;
+constexpr int kExitUsage = 1;
+constexpr int kExitInput = 2;
+int status_code(const hesai::port::Status& s) {
+  switch (s.fault()) {
+    case hesai::port::Fault::none: return kExitOk;
+    case hesai::port::Fault::usage: return kExitUsage;
+    case hesai::port::Fault::input: return kExitInput;
+  }
+  return kExitInput;
+}
 
 void put_message(char* message, std::size_t size, const std::string& text) {
   if (message == nullptr || size == 0) return;
@@ -55,7 +69,7 @@ struct Closure {
 };
 
 // Rows as the CSV sink would write them, and where each frame closed among them.
-class RowSink : public hesai::cli::Sink {
+class RowSink : public hesai::port::Sink {
  public:
   // One packet's points, so one sensor's: those that fit go straight into the caller's rows,
   // the rest to the staging rows.
@@ -118,7 +132,7 @@ class RowSink : public hesai::cli::Sink {
 struct ColumnSource {
   std::unique_ptr<hesai::Decoder> decoder;
   hesai::RotationDetector rotation;
-  hesai::HeldPackets<hesai::cli::Pipeline::kHeldPackets> held;  // tagged with the packet's index
+  hesai::HeldPackets<hesai::port::Pipeline::kHeldPackets> held;  // tagged with the packet's index
   std::uint16_t sensor = 0;  // its index, as the Pipeline numbers them
 };
 
@@ -128,7 +142,8 @@ struct hesai_capture {
   hesai::port::CaptureFile file;
   std::string path;
   RowSink sink;
-  std::unique_ptr<hesai::cli::Pipeline> pipeline;
+  std::unique_ptr<hesai::port::Pipeline> pipeline;
+  std::unique_ptr<hesai::port::CaptureFeed> feed;  // the capture to the pipeline
   bool ended = false;  // the pipeline is finished: no more datagrams
   int status = 0;      // the failure that ended it
   std::string error;
@@ -152,31 +167,18 @@ struct hesai_capture {
 
 namespace {
 
-// The next datagram to the pipeline, as run_capture feeds it; at the end (or the damage) the
-// pipeline is finished.
+// The next datagram to the pipeline; at the end (or the damage) the pipeline is finished.
 void feed_next(hesai_capture* c) {
-  using namespace hesai::cli;
-  hesai::port::UdpDatagram d;
-  const hesai::port::CaptureStatus st = c->file.next(d);
-  if (st == hesai::port::CaptureStatus::datagram) {
-    const std::uint64_t key = source_key(d);
-    if (!c->pipeline->has_label(key)) c->pipeline->label_source(key, source_text(d, c->file));
-    if (!c->pipeline->feed(d.payload, key)) {  // the program stops here, unfinished
-      c->status = kExitUsage;
-      c->error = c->pipeline->error();
-      c->ended = true;
-    } else if (c->sink.too_many && !c->sink.discard) {  // rows cannot name the sensor: stop
+  if (c->feed->next()) {
+    if (c->sink.too_many && !c->sink.discard) {  // rows cannot name the sensor: stop
       c->status = kExitInput;
       c->error = "more than 65536 sensors in the capture";
       c->ended = true;
     }
     return;
   }
-  if (st == hesai::port::CaptureStatus::error) {
-    c->status = kExitInput;
-    c->error = c->file.message();
-  }
-  c->pipeline->finish();
+  c->status = status_code(c->feed->status());  // 0 at the end of a whole capture
+  c->error = c->feed->status().message();
   c->ended = true;
 }
 
@@ -184,7 +186,7 @@ void feed_next(hesai_capture* c) {
 // pipeline stops (a configuration error: c->status kExitUsage).
 bool feed_all(hesai_capture* c) {
   while (!c->ended) feed_next(c);
-  return c->status != hesai::cli::kExitUsage;
+  return c->status != kExitUsage;
 }
 
 // Decodes `payload` of `src` into the columns at `at` (room for a packet checked by the caller);
@@ -239,7 +241,7 @@ void hesai_capture_default_options(hesai_capture_options* o) noexcept {
 
 int hesai_capture_open(const char* path, const hesai_capture_options* options, hesai_capture** out, char* message,
                        std::size_t message_size) noexcept {
-  using namespace hesai::cli;
+  using namespace hesai::port;
   if (out == nullptr) return kExitUsage;
   *out = nullptr;
   if (path == nullptr) {
@@ -313,11 +315,11 @@ int hesai_capture_open(const char* path, const hesai_capture_options* options, h
     }
     c->pipeline = std::make_unique<Pipeline>(d, &c->sink);
     hesai::secure_wipe(d.session_key.data(), d.session_key.size());
-    std::string error;
-    if (const int rc = c->pipeline->load_files(error); rc != kExitOk) {
-      put_message(message, message_size, error);
-      return rc;
+    if (const Status s = c->pipeline->load_files(); !s.ok()) {
+      put_message(message, message_size, s.message());
+      return status_code(s);
     }
+    c->feed = std::make_unique<CaptureFeed>(c->file, *c->pipeline);
     *out = c.release();
     return kExitOk;
   } catch (const std::bad_alloc&) {
@@ -329,7 +331,7 @@ int hesai_capture_open(const char* path, const hesai_capture_options* options, h
 int hesai_capture_read(hesai_capture* c, hesai_capture_row* rows, std::size_t capacity, std::size_t* count,
                        std::uint64_t* closed_frame, std::uint16_t* closed_sensor, char* message,
                        std::size_t message_size) noexcept {
-  using namespace hesai::cli;
+  using namespace hesai::port;
   if (count != nullptr) *count = 0;
   if (closed_frame != nullptr) *closed_frame = 0;
   if (closed_sensor != nullptr) *closed_sensor = 0;
@@ -417,14 +419,14 @@ std::uint64_t hesai_capture_packets(const hesai_capture* c) noexcept {
 
 int hesai_capture_bound(const hesai_capture* c, std::uint64_t* datagrams, std::uint64_t* points, char* message,
                         std::size_t message_size) noexcept {
-  if (c == nullptr || datagrams == nullptr || points == nullptr) return hesai::cli::kExitUsage;
+  if (c == nullptr || datagrams == nullptr || points == nullptr) return kExitUsage;
   *datagrams = 0;
   *points = 0;
   try {
     hesai::port::CaptureFile file;
     if (file.open(c->path) != hesai::port::CaptureError::ok) {
       put_message(message, message_size, file.message());
-      return hesai::cli::kExitInput;
+      return kExitInput;
     }
     hesai::port::UdpDatagram d;
     while (file.next(d) == hesai::port::CaptureStatus::datagram) {
@@ -434,16 +436,16 @@ int hesai_capture_bound(const hesai_capture* c, std::uint64_t* datagrams, std::u
       if (hesai::identify(d.payload, model, kind) == hesai::Error::ok && kind == hesai::PacketKind::point_cloud)
         *points += hesai::max_points(model);
     }
-    return hesai::cli::kExitOk;
+    return kExitOk;
   } catch (const std::bad_alloc&) {
     put_message(message, message_size, "out of memory");
-    return hesai::cli::kExitInput;
+    return kExitInput;
   }
 }
 
 int hesai_capture_read_columns(hesai_capture* c, const hesai_capture_columns* columns, std::size_t* count,
                                char* message, std::size_t message_size) noexcept {
-  using namespace hesai::cli;
+  using namespace hesai::port;
   if (count != nullptr) *count = 0;
   if (c == nullptr || columns == nullptr || count == nullptr) return kExitUsage;
   const hesai_capture_columns& out = *columns;
@@ -575,7 +577,7 @@ int hesai_capture_read_columns(hesai_capture* c, const hesai_capture_columns* co
 
 int hesai_capture_stats_json(hesai_capture* c, char* json, std::size_t size, std::size_t* length, char* message,
                              std::size_t message_size) noexcept {
-  using namespace hesai::cli;
+  using namespace hesai::port;
   if (length != nullptr) *length = 0;
   if (c == nullptr || json == nullptr || length == nullptr || size == 0) return kExitUsage;
   json[0] = '\0';

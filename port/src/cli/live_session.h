@@ -19,7 +19,8 @@
 #include <string>
 
 #include "hesai_port/net/ptc_client.h"
-#include "pipeline.h"
+#include "hesai_port/pipeline/pipeline.h"
+#include "options.h"
 
 namespace hesai::cli {
 

@@ -480,14 +480,6 @@ int finish_tls_options(const TlsOptions& o, std::shared_ptr<port::TlsContext>& c
   return context ? kExitOk : kExitInput;
 }
 
-std::string with_sensor(const std::string& text, const std::string& token) {
-  std::string out = text;
-  const std::string key = "{sensor}";
-  for (std::size_t at = out.find(key); at != std::string::npos; at = out.find(key, at + token.size()))
-    out.replace(at, key.size(), token);
-  return out;
-}
-
 bool parse_output_option(Args& args, OutputOptions& o, std::string& error) {
   const std::string opt = args.peek();
   if (opt == "--per-frame") {

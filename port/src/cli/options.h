@@ -7,7 +7,8 @@
 #include <vector>
 
 #include "hesai_port/net/tls.h"
-#include "pipeline.h"
+#include "hesai_port/pipeline/pipeline.h"
+#include "hesai_port/pipeline/sinks.h"
 
 namespace hesai::cli {
 
@@ -17,21 +18,12 @@ inline constexpr int kExitOk = 0;
 inline constexpr int kExitUsage = 1;
 inline constexpr int kExitInput = 2;
 
-/// Output options of decode and listen.
-struct OutputOptions {
-  std::string format = "csv";  ///< csv | pcd | ply | png | mcap
-  std::string out;             ///< --out PATH ("-" for stdout, CSV only); a directory with --per-frame
-  bool per_frame = false;      ///< one file per sensor and frame: frame_<sensor>_000001.pcd ...
-  float png_range_m = 60;      ///< --png-range: metres from the centre to the image edge
-  bool png_height = false;     ///< --png-color height (default intensity)
-  /// --topic: MCAP channel of the PointCloud2 messages; {sensor} is each sensor's name token.
-  std::string topic = "/hesai/{sensor}/points";
-  std::string frame_id = "hesai_{sensor}";  ///< --frame-id: their header.frame_id
-  std::string ros_distro = "humble";        ///< --ros-distro: the bag's rosbag2 metadata record
-};
-
-/// `text` with every "{sensor}" replaced by `token`.
-std::string with_sensor(const std::string& text, const std::string& token);
+// The engine's names the commands use (hesai_port/pipeline/).
+using port::DecodeOptions;
+using port::OutputOptions;
+using port::OutputSink;
+using port::Pipeline;
+using port::with_sensor;
 
 /// Arguments left to right, consumed by the parsers below.
 class Args {

@@ -16,7 +16,7 @@
 #include "hesai_port/net/tls.h"
 #include "hesai_port/net/udp.h"
 #include "commands.h"
-#include "pipeline.h"  // read_text_file
+#include "hesai_port/base/files.h"
 
 namespace hesai::cli {
 namespace {
@@ -169,10 +169,8 @@ int open_stand_in(const StandIn& o, const std::string& capture, port::PtcServer&
   const std::pair<const std::string*, std::string*> files[] = {
       {&o.calibration, &content.calibration}, {&o.firetimes, &content.firetimes}, {&o.channel_config, &content.channel_config}};
   for (const auto& [path, text] : files) {
-    if (!path->empty() && !read_text_file(*path, *text, error)) {
-      std::fprintf(stderr, "hesai replay: %s\n", error.c_str());
-      return kExitInput;
-    }
+    if (!path->empty())
+      if (const port::Status s = port::read_text_file(*path, *text); !s.ok()) return report("replay", s);
   }
   if (!o.secret_file.empty()) {
     if (const int st = read_secret(o.secret_file, content.secret, error); st != kExitOk) {

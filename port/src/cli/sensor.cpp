@@ -14,6 +14,7 @@
 #include "hesai/hkdf.h"
 #include "hesai/ptc.h"
 #include "hesai/model.h"
+#include "commands.h"
 
 namespace hesai::cli {
 
@@ -535,7 +536,9 @@ int SensorLink::fetch(const DecodeOptions& options, Pipeline& pipeline, std::str
   }
   client_.close();  // the session, if any, opens its own connection
   const auto text = [](const Bytes& b) { return std::string(b.begin(), b.end()); };
-  return pipeline.use_downloaded(origin, text(files[0]), text(files[1]), text(files[2]), error);
+  const port::Status s = pipeline.use_downloaded(origin, text(files[0]), text(files[1]), text(files[2]));
+  error = s.message();
+  return exit_status(s);
 }
 
 }  // namespace hesai::cli

@@ -11,8 +11,8 @@
 
 #include "hesai/model.h"
 #include "hesai_port/net/ptc_client.h"
+#include "hesai_port/pipeline/pipeline.h"
 #include "options.h"
-#include "pipeline.h"
 
 namespace hesai::cli {
 

@@ -1,5 +1,6 @@
-// The hesai program's processing pipeline: datagrams in (from a capture or a socket), decoded
-// and accounted, points and frames out to a sink.
+// The engine: datagrams in (from a capture or a socket), decoded and accounted, points and frames
+// out to a sink. The hesai program's commands (port/src/cli/) and the C library for bindings
+// (port/src/capi/) both run it.
 #pragma once
 
 #include <array>
@@ -18,10 +19,11 @@
 #include "hesai/safety.h"
 #include "hesai/sequence.h"
 #include "hesai/stats.h"
+#include "hesai_port/base/status.h"
 #include "hesai_port/capture/capture.h"
 #include "hesai_port/formats/pointcloud2.h"
 
-namespace hesai::cli {
+namespace hesai::port {
 
 /// Options shared by decode, stats and listen.
 struct DecodeOptions {
@@ -54,8 +56,8 @@ struct OutPoint {
   std::uint64_t packet = 0;  ///< 0-based index of the point-cloud packet in the input
   std::uint32_t sensor = 0;  ///< its sensor, as Sink::sensor_added named it
   /// nebula's ReturnType for the MCAP's return_type, from the packet's return mode and the other
-  /// returns of the point's firing (port::nebula_return_type)
-  port::NebulaReturnType return_type = port::NebulaReturnType::unknown;
+  /// returns of the point's firing (nebula_return_type)
+  NebulaReturnType return_type = NebulaReturnType::unknown;
 };
 
 /// Receives what the pipeline produces. A sensor is one source (an address and port, or a bag
@@ -113,13 +115,14 @@ class Pipeline {
   /// Loads the calibration files (the angle and firing-time files are parsed and applied when the
   /// first packet of a model shows their channel count; feed() then fails with the file's error;
   /// the channel configuration is parsed at once, and applied to each QT128 decoder).
-  /// Returns the exit status: kExitOk, kExitInput (with a message) for a missing or unreadable
-  /// file, kExitUsage (with a message) for a channel configuration that does not parse.
-  int load_files(std::string& error);
+  /// Status::input for a missing or unreadable file, Status::usage for a channel configuration
+  /// that does not parse.
+  Status load_files();
   /// Files downloaded from a sensor (listen --sensor), used where no file was given (an explicit
-  /// file wins); `origin` names them in messages. Returns an exit status as load_files().
-  int use_downloaded(const std::string& origin, const std::string& angles, const std::string& firetimes,
-                     const std::string& channel_config, std::string& error);
+  /// file wins); `origin` names them in messages. Status::usage for a channel configuration that
+  /// does not parse.
+  Status use_downloaded(const std::string& origin, const std::string& angles, const std::string& firetimes,
+                        const std::string& channel_config);
   /// Verifies signatures under `key` from now on (a live signature session, or one restarted with
   /// a new key), in every decoder and those created later. Every packet fed from now on must carry
   /// a valid signature: an unsigned one is rejected (unsigned_rejected) unless it is fed with
@@ -192,8 +195,8 @@ class Pipeline {
   void allow_unsigned_for(Source& src, bool pre_session);
   Source* source_for(std::uint64_t key, Model model);
   // Parses a channel configuration (named options_.channel_config_path in messages) into
-  // channel_config_. Returns kExitOk or kExitUsage with a message.
-  int parse_channel_config(const std::string& text, std::string& error);
+  // channel_config_. Status::usage when it does not parse.
+  Status parse_channel_config(const std::string& text);
   // Decodes the oldest held packet in the decoder's direction and processes it.
   bool release_held(Source& src);
   // src's decoder on the payload into points_ and scan_, and compare_ when return_types_.
@@ -231,13 +234,10 @@ class Pipeline {
 };
 
 /// The source a captured datagram comes from, for Pipeline::feed: its sender's address and port.
-std::uint64_t source_key(const port::UdpDatagram& d);
+std::uint64_t source_key(const UdpDatagram& d);
 
 /// The sender of a captured datagram, for the per-sensor report: "192.168.1.201:10000",
 /// "[fe80::1]:10000", or "mcap channel N" (MCAP packets carry no address).
-std::string source_text(const port::UdpDatagram& d, const port::CaptureFile& file);
+std::string source_text(const UdpDatagram& d, const CaptureFile& file);
 
-/// Reads a whole file into a string. False with a message when it cannot be read.
-bool read_text_file(const std::string& path, std::string& out, std::string& error);
-
-}  // namespace hesai::cli
+}  // namespace hesai::port

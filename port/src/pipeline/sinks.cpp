@@ -1,4 +1,4 @@
-#include "sinks.h"
+#include "hesai_port/pipeline/sinks.h"
 
 #include <cerrno>
 #include <cstring>
@@ -9,14 +9,28 @@
 
 #include "hesai_port/formats/pointcloud2.h"
 
-namespace hesai::cli {
+namespace hesai::port {
 
 namespace {
 // The channel's offered_qos_profiles (the ros2 profile's one required metadata key), empty: the QoS
 // YAML changed between rosbag2 versions (integers up to Humble, names since Jazzy), and every
 // version reads an empty value as "not recorded" and plays back with its default profile.
 constexpr const char* kQosProfiles = "";
+
+// A writer's failure: an output that cannot be a pipe (ESPIPE: PCD, PLY and MCAP rewrite their
+// header) is the request's fault, any other the output's.
+Status write_status(const WriteResult& r) {
+  return r.os_error() == ESPIPE ? Status::usage(r.message()) : Status::input(r.message());
+}
 }  // namespace
+
+std::string with_sensor(const std::string& text, const std::string& token) {
+  std::string out = text;
+  const std::string key = "{sensor}";
+  for (std::size_t at = out.find(key); at != std::string::npos; at = out.find(key, at + token.size()))
+    out.replace(at, key.size(), token);
+  return out;
+}
 
 OutputSink::OutputSink(const OutputOptions& o) : options_(o) {
   if (o.format == "pcd") format_ = Format::pcd;
@@ -26,43 +40,33 @@ OutputSink::OutputSink(const OutputOptions& o) : options_(o) {
   else format_ = Format::csv;  // options.cpp accepts no other
 }
 
-int OutputSink::open(std::string& error) {
+Status OutputSink::open() {
   const bool to_stdout = options_.out.empty() || options_.out == "-";
   if (options_.format == "png") {
-    port::PngOptions png;
+    PngOptions png;
     png.range_m = options_.png_range_m;
-    png.color_by = options_.png_height ? port::ColorBy::height : port::ColorBy::intensity;
-    if (!png_.reset(png, &error)) return kExitUsage;
+    png.color_by = options_.png_height ? ColorBy::height : ColorBy::intensity;
+    std::string error;
+    if (!png_.reset(png, &error)) return Status::usage(error);
   }
-  if (options_.format == "mcap") return open_mcap(error);
+  if (options_.format == "mcap") return open_mcap();
   if (options_.per_frame) {
-    if (to_stdout) {
-      error = "--per-frame needs --out DIRECTORY";
-      return kExitUsage;
-    }
-    if (mkdir(options_.out.c_str(), 0777) != 0 && errno != EEXIST) {
-      error = "cannot create directory '" + options_.out + "': " + std::strerror(errno);
-      return kExitInput;
-    }
-    return kExitOk;
+    if (to_stdout) return Status::usage("--per-frame needs --out DIRECTORY");
+    if (mkdir(options_.out.c_str(), 0777) != 0 && errno != EEXIST)
+      return Status::input("cannot create directory '" + options_.out + "': " + std::strerror(errno));
+    return {};
   }
-  if (options_.format != "csv" && to_stdout) {
-    error = "--format " + options_.format + " needs --out FILE";
-    return kExitUsage;
-  }
-  port::WriteResult r;
+  if (options_.format != "csv" && to_stdout) return Status::usage("--format " + options_.format + " needs --out FILE");
+  WriteResult r;
   if (options_.format == "csv") {
     r = to_stdout ? csv_.open(stdout, "stdout") : csv_.open(options_.out);
     csv_open_ = r.ok();
   } else if (options_.format == "pcd" || options_.format == "ply") {
-    r = stream_.open(options_.out, options_.format == "pcd" ? port::CloudFormat::pcd : port::CloudFormat::ply);
+    r = stream_.open(options_.out, options_.format == "pcd" ? CloudFormat::pcd : CloudFormat::ply);
   }
-  if (!r) {
-    error = r.message();
-    return r.os_error() == ESPIPE ? kExitUsage : kExitInput;
-  }
+  if (!r) return write_status(r);
   if ((csv_open_ || stream_.is_open()) && !to_stdout) files_.push_back(options_.out);  // one PNG: at close
-  return kExitOk;
+  return {};
 }
 
 std::string OutputSink::frame_path(FrameKey key) const {
@@ -83,7 +87,7 @@ OutputSink::Frame& OutputSink::open_frame(FrameKey key) {
     it->second.points.clear();
     it->second.points.reserve(mcap_frame_points_);
     it->second.return_types = std::move(spare_return_types_);
-    spare_return_types_ = std::vector<port::NebulaReturnType>();
+    spare_return_types_ = std::vector<NebulaReturnType>();
     it->second.return_types.clear();
     it->second.return_types.reserve(mcap_frame_points_);
   }
@@ -166,7 +170,7 @@ void OutputSink::sensor_added(std::uint32_t s, const std::string& label) {
   out.token = token;
   if (!mcap_.is_open()) return;
   std::string why;
-  const std::string topic = port::ros2_topic(with_sensor(options_.topic, token), why);
+  const std::string topic = ros2_topic(with_sensor(options_.topic, token), why);
   if (topic.empty()) {
     if (deferred_error_.empty())
       deferred_error_ = "--topic '" + options_.topic + "' for sensor " + label + " is not a ROS 2 topic name: " + why;
@@ -175,32 +179,23 @@ void OutputSink::sensor_added(std::uint32_t s, const std::string& label) {
   const auto known = mcap_topics_.find(topic);
   out.channel = known != mcap_topics_.end()
                     ? known->second
-                    : mcap_topics_[topic] = mcap_.add_channel(mcap_schema_, topic, port::kCdrEncoding,
+                    : mcap_topics_[topic] = mcap_.add_channel(mcap_schema_, topic, kCdrEncoding,
                                                               {{"offered_qos_profiles", kQosProfiles}});
   out.frame_id = with_sensor(options_.frame_id, token);
 }
 
-int OutputSink::open_mcap(std::string& error) {
-  if (options_.per_frame) {
-    error = "--format mcap writes one file of one message per frame: drop --per-frame";
-    return kExitUsage;
-  }
-  if (options_.out.empty() || options_.out == "-") {
-    error = "--format mcap needs --out FILE";
-    return kExitUsage;
-  }
-  const port::WriteResult r = mcap_.open(options_.out, "ros2", "hesai");
-  if (!r) {
-    error = r.message();
-    return r.os_error() == ESPIPE ? kExitUsage : kExitInput;
-  }
-  mcap_schema_ = mcap_.add_schema(port::kPointCloud2Schema, port::kRos2MsgEncoding, port::pointcloud2_definition());
+Status OutputSink::open_mcap() {
+  if (options_.per_frame) return Status::usage("--format mcap writes one file of one message per frame: drop --per-frame");
+  if (options_.out.empty() || options_.out == "-") return Status::usage("--format mcap needs --out FILE");
+  const WriteResult r = mcap_.open(options_.out, "ros2", "hesai");
+  if (!r) return write_status(r);
+  mcap_schema_ = mcap_.add_schema(kPointCloud2Schema, kRos2MsgEncoding, pointcloud2_definition());
   files_.push_back(options_.out);
-  return kExitOk;
+  return {};
 }
 
 void OutputSink::write_mcap_frame(FrameKey key, const std::vector<Point>& points,
-                                  const std::vector<port::NebulaReturnType>& return_types) {
+                                  const std::vector<NebulaReturnType>& return_types) {
   if (points.empty() || !mcap_.is_open()) return;  // no point, no stamp: no message
   const SensorOut& s = sensor(key.first);
   if (s.frame_id.empty()) return;  // its topic was refused (deferred_error_)
@@ -209,23 +204,23 @@ void OutputSink::write_mcap_frame(FrameKey key, const std::vector<Point>& points
   std::int64_t stamp = points[0].time_ns;
   for (const Point& p : points) stamp = std::min(stamp, p.time_ns);
   const std::vector<std::uint8_t> head =
-      port::pointcloud2_head(stamp, s.frame_id, static_cast<std::uint32_t>(points.size()));
+      pointcloud2_head(stamp, s.frame_id, static_cast<std::uint32_t>(points.size()));
   // log_time (and publish_time): when the frame was complete, the receive time of the datagram
   // that closed it, never before the previous message's, so the file is in log-time order across
   // sensors whose clocks differ.
   last_log_ns_ = std::max(last_log_ns_, receive_ns_);
   const std::uint64_t t = last_log_ns_;
-  port::WriteResult r = mcap_.begin_message(s.channel, static_cast<std::uint32_t>(key.second), t, t,
-                                            port::pointcloud2_size(head.size(), points.size()));
+  WriteResult r = mcap_.begin_message(s.channel, static_cast<std::uint32_t>(key.second), t, t,
+                                            pointcloud2_size(head.size(), points.size()));
   if (r) r = mcap_.append(head.data(), head.size());
-  std::uint8_t block[2048 * port::kPointStep];
+  std::uint8_t block[2048 * kPointStep];
   for (std::size_t i = 0; r && i < points.size();) {
     std::size_t n = 0;
     for (; n < 2048 && i < points.size(); ++n, ++i)
-      port::encode_point(points[i], return_types[i], stamp, block + n * port::kPointStep);
-    r = mcap_.append(block, n * port::kPointStep);
+      encode_point(points[i], return_types[i], stamp, block + n * kPointStep);
+    r = mcap_.append(block, n * kPointStep);
   }
-  if (r) r = mcap_.append(&port::kPointCloud2Tail, 1);
+  if (r) r = mcap_.append(&kPointCloud2Tail, 1);
   if (r) r = mcap_.end_message();
   if (!r && deferred_error_.empty()) deferred_error_ = r.message();
 }
@@ -264,7 +259,7 @@ void OutputSink::points(const OutPoint* pts, std::size_t count) {
       case Format::png: png_.add(run_.data(), run_.size()); break;
       case Format::csv:
         if (csv_open_) {
-          const port::WriteResult r = csv_.write(run_.data(), run_.size(), static_cast<std::uint32_t>(pts[i].frame),
+          const WriteResult r = csv_.write(run_.data(), run_.size(), static_cast<std::uint32_t>(pts[i].frame),
                                                  pts[i].packet, sensor(pts[i].sensor).label);
           if (!r && deferred_error_.empty()) deferred_error_ = r.message();
         }
@@ -295,10 +290,10 @@ void OutputSink::frame_closed(const FrameInfo& frame, std::uint32_t sensor_index
   std::string error;
   if (options_.format == "csv") {
     // Rows of one frame into its own CSV file.
-    port::CsvWriter w;
+    CsvWriter w;
     const std::string path = frame_path(key);
     const std::string& label = sensor(sensor_index).label;
-    port::WriteResult r = w.open(path);
+    WriteResult r = w.open(path);
     for (std::size_t i = 0; r && i < f.points.size(); ++i)
       r = w.write(f.points[i], static_cast<std::uint32_t>(frame.id), f.packets[i], label);
     if (r) r = w.close();
@@ -309,12 +304,12 @@ void OutputSink::frame_closed(const FrameInfo& frame, std::uint32_t sensor_index
   }
 }
 
-bool OutputSink::write_cloud(const std::string& path, const std::vector<Point>& points, const port::BirdseyeView& png,
+bool OutputSink::write_cloud(const std::string& path, const std::vector<Point>& points, const BirdseyeView& png,
                              std::string& error) {
-  port::WriteResult r;
-  if (options_.format == "pcd") r = port::write_pcd(path, points);
-  if (options_.format == "ply") r = port::write_ply(path, points);
-  if (options_.format == "png") r = port::write_png(path, png);
+  WriteResult r;
+  if (options_.format == "pcd") r = write_pcd(path, points);
+  if (options_.format == "ply") r = write_ply(path, points);
+  if (options_.format == "png") r = write_png(path, png);
   if (!r) {
     error = r.message();
     return false;
@@ -323,26 +318,24 @@ bool OutputSink::write_cloud(const std::string& path, const std::vector<Point>& 
   return true;
 }
 
-bool OutputSink::close(std::string& error) {
+Status OutputSink::close() {
+  std::string error;
   if (mcap_.is_open()) {
     for (const auto& [key, frame] : open_) write_mcap_frame(key, frame.points, frame.return_types);  // frames never closed
     open_.clear();
     // The rosbag2 metadata record, as rosbag2's MCAP storage plugin writes it (the distribution
     // under ROS_DISTRO), so that `ros2 bag info` names it.
     (void)mcap_.add_metadata("rosbag2", {{"ROS_DISTRO", options_.ros_distro}});
-    const port::WriteResult r = mcap_.close();
+    const WriteResult r = mcap_.close();
     if (!r && deferred_error_.empty()) deferred_error_ = r.message();
   } else if (csv_open_ || stream_.is_open()) {
-    const port::WriteResult r = csv_open_ ? csv_.close() : stream_.close();
+    const WriteResult r = csv_open_ ? csv_.close() : stream_.close();
     if (!r && deferred_error_.empty()) deferred_error_ = r.message();
   } else if (!options_.per_frame && !write_cloud(options_.out, {}, png_, error)) {
-    return false;
+    return Status::input(error);
   }
-  if (!deferred_error_.empty()) {
-    error = deferred_error_;
-    return false;
-  }
-  return true;
+  if (!deferred_error_.empty()) return Status::input(deferred_error_);
+  return {};
 }
 
-}  // namespace hesai::cli
+}  // namespace hesai::port

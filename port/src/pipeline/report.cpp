@@ -1,11 +1,11 @@
-#include "report.h"
+#include "hesai_port/pipeline/report.h"
 
 #include <ctime>
 
 #include "hesai/decoder.h"
 #include "hesai/safety.h"
 
-namespace hesai::cli {
+namespace hesai::port {
 
 namespace {
 void add(std::string& out, const char* key, std::uint64_t v, bool comma = true) {
@@ -211,4 +211,4 @@ std::string stats_text(const Pipeline& p) {
   return out;
 }
 
-}  // namespace hesai::cli
+}  // namespace hesai::port

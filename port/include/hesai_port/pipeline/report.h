@@ -5,9 +5,9 @@
 #include <string>
 #include <vector>
 
-#include "pipeline.h"
+#include "hesai_port/pipeline/pipeline.h"
 
-namespace hesai::cli {
+namespace hesai::port {
 
 /// One JSON object with exactly the keys packets, models, points, frames, crc_errors,
 /// signature_valid, signature_invalid, signature_missing, unsigned_accepted, unsigned_rejected,
@@ -31,4 +31,4 @@ std::string stats_text(const Pipeline& p);
 /// "2024-05-17T08:30:15.250000000Z".
 std::string utc_string(std::int64_t ns);
 
-}  // namespace hesai::cli
+}  // namespace hesai::port

@@ -15,32 +15,47 @@
 #include <string>
 #include <vector>
 
+#include "hesai_port/base/status.h"
 #include "hesai_port/formats/mcap.h"
 #include "hesai_port/formats/writers.h"
-#include "options.h"
-#include "pipeline.h"
+#include "hesai_port/pipeline/pipeline.h"
 
-namespace hesai::cli {
+namespace hesai::port {
+
+/// Output options of decode and listen.
+struct OutputOptions {
+  std::string format = "csv";  ///< csv | pcd | ply | png | mcap
+  std::string out;             ///< --out PATH ("-" for stdout, CSV only); a directory with --per-frame
+  bool per_frame = false;      ///< one file per sensor and frame: frame_<sensor>_000001.pcd ...
+  float png_range_m = 60;      ///< --png-range: metres from the centre to the image edge
+  bool png_height = false;     ///< --png-color height (default intensity)
+  /// --topic: MCAP channel of the PointCloud2 messages; {sensor} is each sensor's name token.
+  std::string topic = "/hesai/{sensor}/points";
+  std::string frame_id = "hesai_{sensor}";  ///< --frame-id: their header.frame_id
+  std::string ros_distro = "humble";        ///< --ros-distro: the bag's rosbag2 metadata record
+};
+
+/// `text` with every "{sensor}" replaced by `token`.
+std::string with_sensor(const std::string& text, const std::string& token);
 
 /// Writes the points in the chosen format. open() checks the destination before any decoding.
 class OutputSink : public Sink {
  public:
   explicit OutputSink(const OutputOptions& o);
   /// Prepares the destination: creates the --per-frame directory, opens the CSV file or the PCD/PLY
-  /// file (written as a stream, its header's count rewritten by close()). Returns kExitOk,
-  /// kExitUsage (no --out where one is needed; a pipe for PCD/PLY) or kExitInput (the output
-  /// cannot be created), with a message.
-  int open(std::string& error);
+  /// file (written as a stream, its header's count rewritten by close()). Status::usage: no --out
+  /// where one is needed, a pipe for PCD/PLY; Status::input: the output cannot be created.
+  Status open();
   void sensor_added(std::uint32_t sensor, const std::string& label) override;
   void receive_time(std::uint64_t ns) override { receive_ns_ = ns; }
   void points(const OutPoint* p, std::size_t count) override;
   void frame_closed(const FrameInfo& frame, std::uint32_t sensor) override;
   bool wants_return_types() const override { return format_ == Format::mcap; }
-  /// Writes what is still held (the single PNG), closes the file. Returns false with a message.
+  /// Writes what is still held (the single PNG), closes the file. Status::input when a write failed.
   /// Memory: the open frames' points or PNG views with --per-frame, and the open frames' points
   /// for MCAP (two frames near a cut, where a packet gives points to both); otherwise a block of
   /// output or the PNG's pixels, whatever the number of points.
-  bool close(std::string& error);
+  Status close();
   /// Files written so far.
   const std::vector<std::string>& files() const { return files_; }
   std::uint64_t points_written() const { return points_written_; }
@@ -50,8 +65,8 @@ class OutputSink : public Sink {
   struct Frame {
     std::vector<Point> points;           // CSV, PCD, PLY
     std::vector<std::uint64_t> packets;  // packet index of each point (CSV)
-    std::vector<port::NebulaReturnType> return_types;  // nebula's ReturnType of each point (MCAP)
-    port::BirdseyeView png;              // PNG
+    std::vector<NebulaReturnType> return_types;  // nebula's ReturnType of each point (MCAP)
+    BirdseyeView png;              // PNG
   };
   // What each sensor's outputs need.
   struct SensorOut {
@@ -62,12 +77,12 @@ class OutputSink : public Sink {
   };
   using FrameKey = std::pair<std::uint32_t, std::uint64_t>;  // sensor, frame id
 
-  bool write_cloud(const std::string& path, const std::vector<Point>& points, const port::BirdseyeView& png,
+  bool write_cloud(const std::string& path, const std::vector<Point>& points, const BirdseyeView& png,
                    std::string& error);
   std::string frame_path(FrameKey key) const;
-  int open_mcap(std::string& error);
+  Status open_mcap();
   void write_mcap_frame(FrameKey key, const std::vector<Point>& points,
-                        const std::vector<port::NebulaReturnType>& return_types);
+                        const std::vector<NebulaReturnType>& return_types);
   Frame& open_frame(FrameKey key);
   const SensorOut& sensor(std::uint32_t s) const;
 
@@ -76,10 +91,10 @@ class OutputSink : public Sink {
 
   OutputOptions options_;
   Format format_ = Format::csv;
-  port::CsvWriter csv_;
+  CsvWriter csv_;
   bool csv_open_ = false;
-  port::CloudWriter stream_;    // the single PCD or PLY file
-  port::McapWriter mcap_;      // --format mcap
+  CloudWriter stream_;    // the single PCD or PLY file
+  McapWriter mcap_;      // --format mcap
   std::uint16_t mcap_schema_ = 0;
   std::map<std::string, std::uint16_t> mcap_topics_;  // topic -> channel
   std::uint64_t receive_ns_ = 0;   // receive_time()
@@ -87,8 +102,8 @@ class OutputSink : public Sink {
   std::vector<SensorOut> sensors_;  // by sensor
   std::size_t mcap_frame_points_ = 0;  // the largest frame written to the MCAP file so far
   std::vector<Point> spare_points_;     // a written MCAP frame's storage, for the next frame
-  std::vector<port::NebulaReturnType> spare_return_types_;  // and its return types'
-  port::BirdseyeView png_;      // the PNG of every point; with --per-frame, the empty view each frame starts from
+  std::vector<NebulaReturnType> spare_return_types_;  // and its return types'
+  BirdseyeView png_;      // the PNG of every point; with --per-frame, the empty view each frame starts from
   std::map<FrameKey, Frame> open_;  // --per-frame and MCAP: the frames not yet closed
   std::vector<Point> run_;  // the points of one frame of a packet, for the one file's writer (reused)
   std::vector<std::string> files_;
@@ -96,4 +111,4 @@ class OutputSink : public Sink {
   std::string deferred_error_;
 };
 
-}  // namespace hesai::cli
+}  // namespace hesai::port

@@ -1,20 +1,17 @@
-#include "pipeline.h"
+#include "hesai_port/pipeline/pipeline.h"
 
 #include <algorithm>
-#include <cerrno>
 #include <cstdio>
 #include <cstring>
-#include <fstream>
-#include <sstream>
 
 #include "hesai/calibration.h"
 #include "hesai/ct.h"
 #include "hesai/gps.h"
-#include "options.h"
+#include "hesai_port/base/files.h"
 
-namespace hesai::cli {
+namespace hesai::port {
 
-std::uint64_t source_key(const port::UdpDatagram& d) {
+std::uint64_t source_key(const UdpDatagram& d) {
   // MCAP packets carry no address: each PandarScan channel (topic) is one sensor.
   if (d.ip_version == 0) return d.interface_id;
   std::uint64_t h = 1469598103934665603ull;  // FNV-1a over the address, then the port
@@ -22,7 +19,7 @@ std::uint64_t source_key(const port::UdpDatagram& d) {
   return h ^ d.src_port;
 }
 
-std::string source_text(const port::UdpDatagram& d, const port::CaptureFile& file) {
+std::string source_text(const UdpDatagram& d, const CaptureFile& file) {
   char buf[64];
   if (d.ip_version == 4) {
     std::snprintf(buf, sizeof buf, "%u.%u.%u.%u:%u", d.src_addr[0], d.src_addr[1], d.src_addr[2], d.src_addr[3], d.src_port);
@@ -45,18 +42,6 @@ std::string source_text(const port::UdpDatagram& d, const port::CaptureFile& fil
   return buf;
 }
 
-bool read_text_file(const std::string& path, std::string& out, std::string& error) {
-  std::ifstream f(path, std::ios::binary);
-  if (!f) {
-    error = path + ": " + std::strerror(errno);
-    return false;
-  }
-  std::ostringstream ss;
-  ss << f.rdbuf();
-  out = ss.str();
-  return true;
-}
-
 Pipeline::Pipeline(const DecodeOptions& options, Sink* sink)
     : options_(options), sink_(sink), return_types_(sink != nullptr && sink->wants_return_types()) {}
 
@@ -75,29 +60,28 @@ std::string calibration_error(const std::string& path, std::uint32_t line, Error
 }
 }  // namespace
 
-int Pipeline::load_files(std::string& error) {
-  if (!options_.calibration_path.empty() && !read_text_file(options_.calibration_path, angles_text_, error)) return kExitInput;
-  if (!options_.firetimes_path.empty() && !read_text_file(options_.firetimes_path, firetimes_text_, error)) return kExitInput;
+Status Pipeline::load_files() {
+  if (!options_.calibration_path.empty())
+    if (Status s = read_text_file(options_.calibration_path, angles_text_); !s.ok()) return s;
+  if (!options_.firetimes_path.empty())
+    if (Status s = read_text_file(options_.firetimes_path, firetimes_text_); !s.ok()) return s;
   if (!options_.channel_config_path.empty()) {
     std::string text;
-    if (!read_text_file(options_.channel_config_path, text, error)) return kExitInput;
-    return parse_channel_config(text, error);
+    if (Status s = read_text_file(options_.channel_config_path, text); !s.ok()) return s;
+    return parse_channel_config(text);
   }
-  return kExitOk;
+  return {};
 }
 
-int Pipeline::parse_channel_config(const std::string& text, std::string& error) {
+Status Pipeline::parse_channel_config(const std::string& text) {
   channel_config_ = std::make_unique<ChannelConfig>();
   const ParseResult r = parse_channel_config_csv(text_view(text), *channel_config_);
-  if (r.error != Error::ok) {
-    error = calibration_error(options_.channel_config_path, r.line, r.error);
-    return kExitUsage;
-  }
-  return kExitOk;
+  if (r.error != Error::ok) return Status::usage(calibration_error(options_.channel_config_path, r.line, r.error));
+  return {};
 }
 
-int Pipeline::use_downloaded(const std::string& origin, const std::string& angles, const std::string& firetimes,
-                             const std::string& channel_config, std::string& error) {
+Status Pipeline::use_downloaded(const std::string& origin, const std::string& angles, const std::string& firetimes,
+                                const std::string& channel_config) {
   if (options_.calibration_path.empty() && !angles.empty()) {
     angles_text_ = angles;
     options_.calibration_path = "the calibration from " + origin;
@@ -108,9 +92,9 @@ int Pipeline::use_downloaded(const std::string& origin, const std::string& angle
   }
   if (options_.channel_config_path.empty() && !channel_config.empty()) {
     options_.channel_config_path = "the channel configuration from " + origin;
-    return parse_channel_config(channel_config, error);
+    return parse_channel_config(channel_config);
   }
-  return kExitOk;
+  return {};
 }
 
 void Pipeline::start_session(const std::uint8_t key[32]) {
@@ -398,8 +382,8 @@ bool Pipeline::process(Source& src, std::uint64_t index, const PacketInfo& info)
       const std::uint64_t frame_id = frames.point(p.azimuth_deg);
       if (sink_)
         batch_.push_back(OutPoint{p, frame_id, index, static_cast<std::uint32_t>(src.order),
-                                  return_types_ ? port::nebula_return_type(info, compare_, p)
-                                                : port::NebulaReturnType::unknown});
+                                  return_types_ ? nebula_return_type(info, compare_, p)
+                                                : NebulaReturnType::unknown});
     }
   }
   flush_points();
@@ -450,4 +434,4 @@ void Pipeline::finish() {
   }
 }
 
-}  // namespace hesai::cli
+}  // namespace hesai::port
