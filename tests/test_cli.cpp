@@ -28,7 +28,10 @@
 #include <thread>
 #include <vector>
 
+#include "hesai/crc32.h"
 #include "hesai/decoder.h"
+#include "hesai/sha256.h"
+#include "hesai_port/base/crc32_ieee.h"
 #include "hesai/hkdf.h"
 #include "hesai_port/net/udp.h"
 #include "packet_builder.h"
@@ -137,6 +140,49 @@ TEST(Cli, HelpAndExitStatuses) {
 
 // Capture errors: named by the file, the code and the byte offset, exit status 2 (README). The
 // message texts are a contract: scripts match them.
+// hesai --version names the project's version (CMake's), the C ABI, and the paths the core and
+// the port choose on this machine, as this process's own calls to them say.
+TEST(Cli, VersionNamesTheBuildAndItsCpuPaths) {
+  const CmdResult r = run_cli("--version");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(r.out.rfind(std::string("hesai ") + HESAI_PROJECT_VERSION + "\n", 0), 0u) << r.out;
+  EXPECT_NE(r.out.find("C ABI (libhesai_c) 1\n"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find(std::string("decode: ") + hesai::decode_simd_name() + " "), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find(std::string("crc32/mpeg-2 (packets): ") + hesai::crc32_path_name() + "\n"), std::string::npos) << r.out;
+  const char* ieee = hesai::port::crc32_ieee_path_name(hesai::port::crc32_ieee_best_path());
+  EXPECT_NE(r.out.find(std::string("crc32/ieee (mcap, png): ") + ieee + "\n"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find(std::string("sha-256 (signatures): ") + hesai::sha256_path_name() + "\n"), std::string::npos) << r.out;
+}
+
+// The top-level usage names each command, and each one it names answers --help with its own
+// usage; the sensor line names every sensor command (set, apply and reboot too).
+TEST(Cli, UsageNamesEveryCommand) {
+  const CmdResult r = run_cli("--help");
+  ASSERT_EQ(r.status, 0);
+  std::vector<std::string> named;
+  std::istringstream lines(r.out.substr(r.out.find("commands:\n") + 10));
+  for (std::string line; std::getline(lines, line) && !line.empty();)
+    if (line.rfind("  ", 0) == 0 && line[2] != ' ') named.push_back(line.substr(2, line.find(' ', 2) - 2));
+  EXPECT_EQ(named, (std::vector<std::string>{"decode", "stats", "listen", "replay", "sensor"})) << r.out;
+  for (const std::string& cmd : named) {
+    const CmdResult h = run_cli(cmd + " --help");
+    EXPECT_EQ(h.status, 0) << cmd;
+    EXPECT_NE(h.out.find("usage: hesai " + cmd), std::string::npos) << cmd << ": " << h.out;
+  }
+  for (const char* sub : {"info", "config", "status", "calibration", "firetimes", "channel-config", "signature", "set",
+                          "apply", "reboot"}) {
+    EXPECT_NE(r.out.find(sub), std::string::npos) << sub;
+    // A sensor command: without a HOST it asks for what it lacks, where an unknown one is named as such.
+    const CmdResult no_host = run_cli(std::string("sensor ") + sub);
+    EXPECT_EQ(no_host.status, 1) << sub;
+    EXPECT_EQ(no_host.err.find("unknown command"), std::string::npos) << sub << ": " << no_host.err;
+  }
+  EXPECT_NE(run_cli("sensor bogus 127.0.0.1").err.find("unknown command 'bogus'"), std::string::npos);
+  const CmdResult unknown = run_cli("frobnicate");
+  EXPECT_EQ(unknown.status, 1);
+  EXPECT_NE(unknown.err.find("unknown command 'frobnicate'"), std::string::npos);
+}
+
 TEST(Cli, CaptureErrorMessages) {
   const std::string dir = temp_dir();
   const std::string not_capture = data_path("calibration/pandar64_firetimes.csv");
@@ -1214,7 +1260,12 @@ void expect_whole_capture(const std::string& out) {
 }
 
 TEST(Cli, ListenReceivesEveryReplayedPacket) {
-  expect_whole_capture(replay_into_listen("--bind 127.0.0.1", "127.0.0.1", "127.0.0.1"));
+  const std::string out = replay_into_listen("--bind 127.0.0.1", "127.0.0.1", "127.0.0.1");
+  expect_whole_capture(out);
+  // The JSON has the text summary's kernel_drops too: 0 with every packet received, null where the
+  // receive path cannot know it (the portable path), never a 0 it does not know.
+  const char* drops = hesai::port::UdpReceiver::kernel_drops_known() ? "\"kernel_drops\":0," : "\"kernel_drops\":null,";
+  EXPECT_NE(out.find(drops), std::string::npos) << out;
 }
 
 // `listen --multicast` joins the group on the --bind interface and receives what `replay` sends

@@ -114,7 +114,8 @@ int cmd_listen(Args& args) {
                   "  --timeout S             the deadline of each PTC request, connecting included (default 3)\n"
                   "  --tls ...               PTCS: the PTC of --sensor over TLS (the options below)\n"
                   "  --json                  the summary as one JSON object (keys as in 'hesai stats --json',\n"
-                  "                          and foreign_packets, foreign_model_packets, session_restarts)\n"
+                  "                          and kernel_drops (null where unknown), foreign_packets,\n"
+                  "                          foreign_model_packets, session_restarts)\n"
                   "  --quiet                 no statistics once a second\n%s%s%s%s",
                   port::UdpReceiver::method(), kDecodeOptionsHelp, kOutputOptionsHelp, kKeyOptionsHelp, kTlsOptionsHelp);
       return kExitOk;
@@ -307,7 +308,9 @@ int cmd_listen(Args& args) {
   const std::uint64_t restarts = session ? session->restarts() : 0;
   if (json) {
     std::string j = stats_json(pipeline.stats(), pipeline.sensors());
-    j.insert(j.size() - 1, ",\"foreign_packets\":" + std::to_string(foreign) + ",\"foreign_model_packets\":" +
+    // kernel_drops: null where the receive path cannot know it (the portable path), never 0.
+    const std::string drops = port::UdpReceiver::kernel_drops_known() ? std::to_string(points_rx.kernel_drops()) : "null";
+    j.insert(j.size() - 1, ",\"kernel_drops\":" + drops + ",\"foreign_packets\":" + std::to_string(foreign) + ",\"foreign_model_packets\":" +
                                std::to_string(pipeline.foreign_model_packets()) +
                                ",\"session_restarts\":" + std::to_string(restarts) +
                                (link ? ",\"ptp_status\":" + json_string(link->ptp_status().c_str()) +
