@@ -423,6 +423,7 @@ TEST(Ptc, AllowedValuesPerModel) {
   };
   const std::vector<const char*> six = {"last", "strongest", "last_strongest", "first", "last_first", "first_strongest"};
   const Case cases[] = {
+      {Model::pandar40, {"last", "strongest", "last_strongest", "", "", ""}, {600, 1200}, true, false},
       {Model::pandar40p, {"last", "strongest", "last_strongest", "", "", ""}, {600, 1200}, true, true},
       {Model::pandar64, {"last", "strongest", "last_strongest", "", "", ""}, {600, 1200}, true, false},
       {Model::pandar_qt64, {"last", "", "last_first", "first", "", ""}, {300, 600, 1200}, true, true},
@@ -430,6 +431,7 @@ TEST(Ptc, AllowedValuesPerModel) {
       {Model::pandar_xt16, six, {300, 600, 1200}, false, true},
       {Model::pandar_xt32, six, {300, 600, 1200}, false, true},
       {Model::pandar_xt32m2x, six, {300, 600, 1200}, false, true},
+      {Model::unknown, six, {300, 600, 1200}, true, true},  // as ptc_settings.h documents for it
   };
   for (const Case& c : cases) {
     SCOPED_TRACE(hesai::model_name(c.model));
@@ -461,6 +463,16 @@ TEST(Ptc, AllowedValuesPerModel) {
   EXPECT_EQ(s, ptc::Setting::sync_angle);
   EXPECT_FALSE(ptc::setting_from_name("sync_angles", 11, s));
   EXPECT_FALSE(ptc::setting_from_name("rp", 2, s));
+}
+
+// ptc.h: 9 temperatures in the QT128C2X's status (nebula HesaiLidarStatusQT128), 8 in the
+// others' and an unknown model's (nebula HesaiLidarStatus_XT_40p, SDK PtcClient::GetLidarStatus).
+TEST(Ptc, StatusTemperatureCountPerModel) {
+  for (std::size_t m = 0; m < hesai::kModelCount; ++m) {
+    const auto model = static_cast<Model>(m);
+    EXPECT_EQ(ptc::status_temperature_count(model), model == Model::qt128c2x ? 9u : 8u) << hesai::model_name(model);
+  }
+  EXPECT_EQ(ptc::status_temperature_count(static_cast<Model>(200)), 8u);  // not a model: as unknown
 }
 
 TEST(Ptc, CodedFieldNames) {

@@ -24,4 +24,25 @@
   X(pandar_xt32, "PandarXT32", 32, 8, 2000, 25)     /* point cloud protocol 6.1 */                                 \
   X(pandar_xt32m2x, "PandarXT32M2X", 32, 6, 2000, 38) /* point cloud protocol 6.1 */
 
+/* X(id, spin rates, spin rate over HTTP, FOV over PTC, return-mode codes, status temperatures):
+ * what PTC may set on each model and how its answers read, once per model in value order (the
+ * core's ptc/ asks this list; no other file names the models for it). The sources are cited in
+ * hesai/ptc_settings.h and hesai/ptc.h.
+ * - Spin rates: a bit per rate, 1 = 300 rpm, 2 = 600 rpm, 4 = 1200 rpm.
+ * - Spin rate over HTTP: 1 where nebula sets it over the unit's HTTP API, not PTC 0x17.
+ * - FOV over PTC: 1 where the unit takes a FOV (0x22).
+ * - Return-mode codes: one character per PTC code from 0, the index of its name in
+ *   "last", "strongest", "last_strongest", "first", "last_first", "first_strongest"; '-' for a
+ *   code the model does not list.
+ * - Status temperatures: how many the status (0x09) holds. */
+#define HESAI_MODEL_PTC_LIST(X)                  \
+  X(pandar40, 2 | 4, 1, 0, "012", 8)             \
+  X(pandar40p, 2 | 4, 1, 1, "012", 8)            \
+  X(pandar64, 2 | 4, 1, 0, "012", 8)             \
+  X(qt128c2x, 2 | 4, 0, 1, "012345", 9)          \
+  X(pandar_qt64, 1 | 2 | 4, 1, 1, "0-43", 8)     \
+  X(pandar_xt16, 1 | 2 | 4, 0, 1, "012345", 8)   \
+  X(pandar_xt32, 1 | 2 | 4, 0, 1, "012345", 8)   \
+  X(pandar_xt32m2x, 1 | 2 | 4, 0, 1, "012345", 8)
+
 #endif /* HESAI_MODEL_LIST_H */

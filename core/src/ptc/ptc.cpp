@@ -1,6 +1,8 @@
 // PTC 1.0 framing and payload parsers (hesai/ptc.h has the sources of every layout).
 #include "hesai/ptc.h"
 
+#include "model_facts.h"
+
 namespace hesai::ptc {
 namespace {
 
@@ -176,7 +178,7 @@ Error parse_config(ByteView payload, Config& out) noexcept {
 
 // ---- Status ----
 
-std::size_t status_temperature_count(Model model) noexcept { return model == Model::qt128c2x ? 9 : 8; }
+std::size_t status_temperature_count(Model model) noexcept { return detail::facts(model).temperatures; }
 
 Error parse_status(ByteView payload, Model model, Status& out) noexcept {
   const std::size_t temperatures = status_temperature_count(model);

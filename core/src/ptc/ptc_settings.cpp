@@ -2,6 +2,8 @@
 // source of each).
 #include "hesai/ptc_settings.h"
 
+#include "model_facts.h"
+
 namespace hesai::ptc {
 namespace {
 
@@ -133,43 +135,22 @@ Error parse_setting(std::uint8_t command, ByteView payload, Setting& setting, Se
 // ---- What each model allows ----
 
 std::size_t allowed_spin_rates(Model model, std::uint16_t rates[kMaxSpinRates]) noexcept {
-  switch (model) {
-    case Model::pandar40:
-    case Model::pandar40p:
-    case Model::pandar64:
-    case Model::qt128c2x:
-      rates[0] = 600;
-      rates[1] = 1200;
-      return 2;
-    default:
-      rates[0] = 300;
-      rates[1] = 600;
-      rates[2] = 1200;
-      return 3;
-  }
+  static constexpr std::uint16_t kRates[kMaxSpinRates] = {300, 600, 1200};
+  std::size_t n = 0;
+  for (std::size_t bit = 0; bit < kMaxSpinRates; ++bit)
+    if ((detail::facts(model).spin_rates >> bit) & 1u) rates[n++] = kRates[bit];
+  return n;
 }
 
-bool spin_rate_over_http(Model model) noexcept {
-  switch (model) {
-    case Model::qt128c2x:
-    case Model::pandar_xt16:
-    case Model::pandar_xt32:
-    case Model::pandar_xt32m2x: return false;
-    default: return true;
-  }
-}
+bool spin_rate_over_http(Model model) noexcept { return detail::facts(model).spin_over_http; }
 
-bool fov_supported(Model model) noexcept { return model != Model::pandar64 && model != Model::pandar40; }
+bool fov_supported(Model model) noexcept { return detail::facts(model).fov; }
 
 const char* return_mode_name(Model model, std::uint8_t code) noexcept {
-  switch (model) {
-    case Model::pandar40:
-    case Model::pandar40p:
-    case Model::pandar64: return code <= 2 ? kReturnModes[code] : nullptr;
-    case Model::pandar_qt64:
-      return code == 0 ? kReturnModes[0] : code == 2 ? kReturnModes[4] : code == 3 ? kReturnModes[3] : nullptr;
-    default: return code < kReturnModeNames ? kReturnModes[code] : nullptr;
-  }
+  const char* codes = detail::facts(model).return_codes;
+  for (std::size_t c = 0; codes[c] != '\0'; ++c)
+    if (c == code) return codes[c] == '-' ? nullptr : kReturnModes[codes[c] - '0'];
+  return nullptr;
 }
 
 bool return_mode_code(Model model, const char* name, std::size_t size, std::uint8_t& code) noexcept {
