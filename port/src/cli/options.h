@@ -49,6 +49,12 @@ class Args {
 /// it consumed it. `error` is set when the option is malformed.
 bool parse_decode_option(Args& args, DecodeOptions& o, std::string& error);
 bool parse_output_option(Args& args, OutputOptions& o, std::string& error);
+// ---- Key material (key_options.cpp) ----
+
+/// Parses one key option at the front of `args` (--session-key, --session-key-file, --secret,
+/// --secret-file, --lidar-random, --client-random) if it is one, held until finish_key_options();
+/// returns true when it consumed it. parse_decode_option() calls it.
+bool parse_key_option(Args& args, std::string& error);
 /// Sets the session key once all options are read, from one source in this order of precedence:
 /// a key option (--session-key-file, --secret-file, --session-key or --secret, at most one), else
 /// the environment (HESAI_SESSION_KEY or HESAI_SECRET, not both); a secret with --lidar-random and
@@ -82,6 +88,8 @@ class KeyWipe {
 /// from HESAI_SECRET; 8 to 32 characters. Returns an exit status, with a message that never holds
 /// the secret.
 int read_secret(const std::string& secret_file, std::string& secret, std::string& error);
+
+// ---- PTCS (options.cpp) ----
 
 /// PTCS options of 'sensor' and 'listen --sensor': --tls, --ca, --cert, --key, --insecure,
 /// --expect-serial.

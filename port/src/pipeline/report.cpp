@@ -31,25 +31,30 @@ std::size_t channels_seen(const Stats& s) {
     if (s.models[m] != 0 && channel_count(static_cast<Model>(m)) > n) n = channel_count(static_cast<Model>(m));
   return n;
 }
-}  // namespace
 
-namespace {
+// The stream-health keys that the run (Stats) and each sensor (HealthCounts) share, lost_by to
+// fov_gap_deg, with `channels` entries of blockage_by_channel; no comma after the last.
+template <typename Counts>
+void health_json(std::string& out, LostBy lost_by, const Counts& c, std::size_t channels) {
+  out += "\"lost_by\":\"" + std::string(lost_by_name(lost_by)) + "\",";
+  add(out, "time_stalls", c.time_stalls);
+  add(out, "time_virtual", c.time_virtual);
+  add(out, "time_jumps", c.time_jumps);
+  add(out, "blockage_units", c.blockage_units);
+  out += "\"blockage_by_channel\":[";
+  for (std::size_t ch = 0; ch < channels; ++ch) out += (ch ? "," : "") + std::to_string(c.blockage_by_channel[ch]);
+  out += "],";
+  add(out, "duplicate_returns", c.duplicate_returns);
+  add(out, "beyond_rated_range", c.beyond_rated_range);
+  out += "\"fov_gap_deg\":" + fov_json(c.fov_gap, c.fov_gap_from, c.fov_gap_to);
+}
+
 std::string sensor_json(const SensorReport& r) {
-  const HealthCounts& h = r.health;
   std::string out = "{\"source\":\"" + r.source + "\",\"model\":\"" + model_name(r.model) + "\",";
   add(out, "packets", r.packets);
   add(out, "lost", r.lost);
-  out += "\"lost_by\":\"" + std::string(lost_by_name(r.lost_by)) + "\",";
-  add(out, "time_stalls", h.time_stalls);
-  add(out, "time_virtual", h.time_virtual);
-  add(out, "time_jumps", h.time_jumps);
-  add(out, "blockage_units", h.blockage_units);
-  out += "\"blockage_by_channel\":[";
-  for (std::size_t ch = 0; ch < channel_count(r.model); ++ch) out += (ch ? "," : "") + std::to_string(h.blockage_by_channel[ch]);
-  out += "],";
-  add(out, "duplicate_returns", h.duplicate_returns);
-  add(out, "beyond_rated_range", h.beyond_rated_range);
-  return out + "\"fov_gap_deg\":" + fov_json(h.fov_gap, h.fov_gap_from, h.fov_gap_to) + "}";
+  health_json(out, r.lost_by, r.health, channel_count(r.model));
+  return out + "}";
 }
 }  // namespace
 
@@ -80,18 +85,8 @@ std::string stats_json(const Stats& s, const std::vector<SensorReport>& sensors)
   add(out, "duplicates", s.duplicates);
   add(out, "reordered", s.reordered);
   add(out, "sequence_resyncs", s.sequence_resyncs);
-  out += "\"lost_by\":\"" + std::string(lost_by_name(s.lost_by)) + "\",";
-  add(out, "time_stalls", s.time_stalls);
-  add(out, "time_virtual", s.time_virtual);
-  add(out, "time_jumps", s.time_jumps);
-  add(out, "blockage_units", s.blockage_units);
-  out += "\"blockage_by_channel\":[";
-  const std::size_t channels = channels_seen(s);
-  for (std::size_t ch = 0; ch < channels; ++ch) out += (ch ? "," : "") + std::to_string(s.blockage_by_channel[ch]);
-  out += "],";
-  add(out, "duplicate_returns", s.duplicate_returns);
-  add(out, "beyond_rated_range", s.beyond_rated_range);
-  out += "\"fov_gap_deg\":" + fov_json(s.fov_gap, s.fov_gap_from, s.fov_gap_to) + ",";
+  health_json(out, s.lost_by, s, channels_seen(s));
+  out += ",";
   add(out, "ip_fragments", s.ip_fragments);
   add(out, "gps_packets", s.gps_packets);
   out += "\"first_time_ns\":" + std::to_string(s.first_time_ns) + ",";
