@@ -1,4 +1,4 @@
-// What the tests of 'hesai sensor' share (test_sensor.cpp, test_sensor_config.cpp): the program
+// What the tests of 'hesai sensor' share (test_sensor.cpp, test_sensor_set.cpp): the program
 // run with its output captured, and a stand-in sensor ('hesai replay --serve-ptc') in the
 // background on the loopback.
 #pragma once

@@ -788,7 +788,7 @@ TEST(Cli, UnreadableCaptureGivesOnlyItsError) {
 // ---- Sensor settings: channel configuration and reflectivity mapping ----
 
 // QT128 packets with customised channels (flags bit 6, 80 units per block: the bundled
-// configuration's channels for each block's loop, as test_sensor_settings.cpp builds them): without
+// configuration's channels for each block's loop, as test_packet_variants.cpp builds them): without
 // --channel-config every one is rejected (counted unsupported); with it, every unit with a distance
 // of 2 or more is a point (distance 1 is the QT128's marker).
 TEST(Cli, ChannelConfigAppliesToCustomisedPackets) {

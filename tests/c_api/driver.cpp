@@ -329,7 +329,7 @@ TEST(CApi, Pandar40TimeFromGps) {
 TEST(CApi, CalibrationErrors) { EXPECT_EQ(c_check_calibration_errors(), 0); }
 
 // QT128 channel customisation and the Pandar64 reflectivity mapping through the C setters: a real
-// QT128 packet reduced to the bundled configuration's channels (as test_sensor_settings.cpp builds
+// QT128 packet reduced to the bundled configuration's channels (as test_packet_variants.cpp builds
 // it) decodes, under that file, to the points its non-zero units give (distance 2 or more).
 TEST(CApi, SensorSettings) {
   const auto qt = pcap_payloads("qt128c2x_dual.pcap").at(5);
