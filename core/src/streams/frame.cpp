@@ -1,5 +1,7 @@
 #include "hesai/frame.h"
 
+#include <cstring>
+
 namespace hesai {
 
 namespace {
@@ -12,6 +14,49 @@ constexpr std::int32_t clockwise(std::int32_t from, std::int32_t to) { return (t
 
 static_assert(clockwise(35990, 10) == 20, "wrap through 0 is a short forward move");
 static_assert(clockwise(105, 100) == 35995, "jitter is almost a full turn clockwise");
+
+// A float's bits as an unsigned key in the floats' order: a < b gives key(a) < key(b) (-0 just
+// below +0), and a NaN's key lies beyond the infinity of its sign, so that a NaN among several
+// floats is their smallest or their largest key. Positive: the sign bit set; negative: every bit
+// flipped.
+constexpr std::uint32_t order_key(std::uint32_t bits) { return bits ^ ((0u - (bits >> 31)) | 0x80000000u); }
+constexpr std::uint32_t order_bits(std::uint32_t key) { return key ^ ((0u - (~key >> 31)) | 0x80000000u); }
+
+static_assert(order_key(0x00000000u) == 0x80000000u && order_key(0x80000000u) == 0x7FFFFFFFu, "+0 just above -0");
+static_assert(order_key(0x3F800000u) < order_key(0x40000000u), "1 < 2");
+static_assert(order_key(0xBF800000u) > order_key(0xC0000000u), "-1 > -2");
+static_assert(order_key(0x7FC00000u) > order_key(0x7F800000u), "a NaN above +infinity");
+static_assert(order_key(0xFFC00000u) < order_key(0xFF800000u), "a negative NaN below -infinity");
+static_assert(order_bits(order_key(0xC3B40000u)) == 0xC3B40000u && order_bits(order_key(0x44340000u)) == 0x44340000u,
+              "order_bits undoes order_key");
+
+struct KeyRange {
+  std::uint32_t lo = ~0u;
+  std::uint32_t hi = 0;
+};
+
+// The smallest and largest order_key() of `count` floats, `stride` bytes apart; kStride, when
+// not 0, is the stride known at compile time (a plain column: the loop vectorises).
+template <std::size_t kStride>
+KeyRange key_range(const unsigned char* first, std::size_t count, std::size_t stride) noexcept {
+  if (kStride != 0) stride = kStride;
+  KeyRange r;
+  for (std::size_t i = 0; i < count; ++i) {
+    std::uint32_t bits;
+    std::memcpy(&bits, first + i * stride, sizeof bits);
+    const std::uint32_t key = order_key(bits);
+    r.lo = key < r.lo ? key : r.lo;
+    r.hi = key > r.hi ? key : r.hi;
+  }
+  return r;
+}
+
+float float_of_key(std::uint32_t key) noexcept {
+  const std::uint32_t bits = order_bits(key);
+  float f;
+  std::memcpy(&f, &bits, sizeof f);
+  return f;
+}
 }  // namespace
 
 Error FrameAssembler::set_cut_deg(float degrees) noexcept {
@@ -174,17 +219,12 @@ std::uint64_t FrameAssembler::point(float azimuth_deg) noexcept {
     ++pending_points_;
     return next_id_;
   }
-  // The point's offset from its block, forward, in (-half turn, half turn].
+  // The point's offset from its block, clockwise, in (-half turn, half turn].
   float offset = 0.0f;
   if (azimuth_deg >= -360.0f && azimuth_deg < 720.0f) offset = azimuth_deg * 100.0f - static_cast<float>(block_cdeg_);
   while (offset > static_cast<float>(kHalfTurn)) offset -= static_cast<float>(kTurn);
   while (offset <= -static_cast<float>(kHalfTurn)) offset += static_cast<float>(kTurn);
-  if (rotation_ == Rotation::counterclockwise) offset = -offset;
-  const float at = static_cast<float>(block_pos_) + offset;
-
-  std::uint64_t id = block_id_;
-  if (at < 0.0f) --id;
-  if (at >= static_cast<float>(kTurn)) ++id;
+  std::uint64_t id = frame_at(offset);
   if (id == next_id_) open_next(id >= complete_from_);  // a point ahead opens the next frame early
   const bool late = id < first_open_;
   if (late) id = first_open_;
@@ -193,6 +233,60 @@ std::uint64_t FrameAssembler::point(float azimuth_deg) noexcept {
   ++f.points;
   if (late) ++f.late_points;
   return id;
+}
+
+std::uint64_t FrameAssembler::frame_at(float offset) const noexcept {
+  // `offset`: a point's from the last block, clockwise, in (-half turn, half turn]; the frame of
+  // its rotation by where it lies past block_id_'s cut.
+  if (rotation_ == Rotation::counterclockwise) offset = -offset;
+  const float at = static_cast<float>(block_pos_) + offset;
+  std::uint64_t id = block_id_;
+  if (at < 0.0f) --id;
+  if (at >= static_cast<float>(kTurn)) ++id;
+  return id;
+}
+
+std::uint64_t FrameAssembler::points(const float* azimuth_deg, std::size_t count, std::size_t stride_bytes,
+                                     std::uint64_t* ids_out) noexcept {
+  if (count == 0) return 0;
+  const unsigned char* first = reinterpret_cast<const unsigned char*>(azimuth_deg);
+  if (block_id_ != 0) {
+    // The frame of a point is monotonic in its azimuth while no offset needs point()'s half-turn
+    // fold: the smallest and largest azimuth decide for all. A NaN is the smallest or the largest
+    // key and fails the range check.
+    const KeyRange keys = stride_bytes == sizeof(float) ? key_range<sizeof(float)>(first, count, stride_bytes)
+                                                        : key_range<0>(first, count, stride_bytes);
+    const float lo = float_of_key(keys.lo);
+    const float hi = float_of_key(keys.hi);
+    if (lo >= -360.0f && hi < 720.0f) {
+      // point()'s offsets of the two, computed as it computes them.
+      const float lo_offset = lo * 100.0f - static_cast<float>(block_cdeg_);
+      const float hi_offset = hi * 100.0f - static_cast<float>(block_cdeg_);
+      if (lo_offset > -static_cast<float>(kHalfTurn) && hi_offset <= static_cast<float>(kHalfTurn)) {
+        const std::uint64_t id = frame_at(lo_offset);
+        // One open frame for all: none late, none opening the next frame early.
+        if (id == frame_at(hi_offset) && id >= first_open_ && id < next_id_) {
+          count_packet(id);
+          slot(id).points += count;
+          return id;
+        }
+      }
+    }
+  }
+  // Point by point.
+  std::uint64_t one = 0;
+  for (std::size_t i = 0; i < count; ++i) {
+    float azimuth;
+    std::memcpy(&azimuth, first + i * stride_bytes, sizeof azimuth);
+    const std::uint64_t id = point(azimuth);
+    if (ids_out != nullptr) ids_out[i] = id;
+    if (i == 0) {
+      one = id;
+    } else if (id != one) {
+      one = 0;
+    }
+  }
+  return one;
 }
 
 bool FrameAssembler::pop_closed(FrameInfo& out) noexcept {
