@@ -231,6 +231,55 @@ TEST_P(EdgeCases, OnePointExactlyOnTheCutOpensTheNextFrame) {
   EXPECT_EQ(t.block.current().points, cw() ? 4u : 1u);
 }
 
+TEST_P(EdgeCases, EveryPointAheadPastTheCutOpensTheNextFrame) {
+  Twins t = ten_degrees_before_the_cut(GetParam());
+  t.both([](FrameAssembler& fa) { fa.begin_packet(100, 0); });
+  ASSERT_TRUE(t.block_azimuth(last_block()));
+  // Every point of the block 0.10 short of the cut lies past it (a calibration wider than the
+  // spread, none here): all in frame 2, which the first of them opens.
+  const std::vector<float> az{cw() ? 360.0f : 0.0f, cw() ? 360.05f : 359.95f, cw() ? 360.5f : 359.5f};
+  std::uint64_t ids[3] = {};
+  EXPECT_EQ(t.block.points(az.data(), az.size(), sizeof(float), ids), 2u);
+  for (float a : az) EXPECT_EQ(t.one.point(a), 2u);
+  ASSERT_TRUE(t.state());
+  EXPECT_TRUE(t.block.is_open());
+  // Open now: the next such block goes there in one step.
+  EXPECT_TRUE(t.points(az));
+  // The block at the cut enters frame 2, which holds the 6 points.
+  t.both([](FrameAssembler& fa) { fa.begin_packet(101, 0); });
+  EXPECT_TRUE(t.block_azimuth(0));
+  EXPECT_EQ(t.block.current().id, 2u);
+  EXPECT_EQ(t.block.current().points, 6u);
+  EXPECT_TRUE(t.finish());
+}
+
+TEST_P(EdgeCases, PointsHalfATurnFromTheirBlock) {
+  // Cut 0, a stream from 170.00 to 180.00 in steps of 0.25 degree (exact in binary): block
+  // 180.00 lies 180.00 past the cut either way. point() takes offsets in (-180, 180] clockwise.
+  // Clockwise: a point at 0.00 is -180 from the block, folded to +180: 360.00 past the cut, the
+  // next rotation (frame 2, which it opens); 360.00 is +180 unfolded, the same. Counter-clockwise
+  // +180 clockwise is 180 behind: both lie 0.00 past the cut, on it, in frame 1.
+  Twins t;
+  t.both([&](FrameAssembler& fa) { fa.set_rotation(GetParam()); });
+  for (std::uint16_t k = 0; k <= 40; ++k) {
+    t.both([&](FrameAssembler& fa) { fa.begin_packet(k, 0); });
+    ASSERT_TRUE(t.block_azimuth(static_cast<std::uint16_t>(cw() ? 17000 + 25 * k : 19000 - 25 * k)));
+  }
+  const std::uint64_t half_turn_frame = cw() ? 2 : 1;
+  for (float a : {0.0f, 360.0f}) {
+    std::uint64_t id = 0;
+    EXPECT_EQ(t.block.points(&a, 1, sizeof(float), &id), half_turn_frame);
+    EXPECT_EQ(t.one.point(a), half_turn_frame);
+    ASSERT_TRUE(t.state());
+  }
+  EXPECT_TRUE(t.points({0.0f, 360.0f, 180.0f, 0.0f}));  // 180.00, on its block, in frame 1
+  EXPECT_TRUE(t.points({180.0f, 90.0f, 270.0f}));       // all within the frame of their block
+  EXPECT_TRUE(t.points({0.0f, 360.0f}));
+  EXPECT_EQ(t.block.current().id, 1u);
+  // Clockwise the 180.00, 90.00 and 270.00 points; counter-clockwise all 11.
+  EXPECT_EQ(t.block.current().points, cw() ? 4u : 11u);
+}
+
 TEST_P(EdgeCases, NotAnAzimuthAndBeforeTheFirstBlock) {
   Twins t;
   t.both([&](FrameAssembler& fa) { fa.set_rotation(GetParam()); });
@@ -296,11 +345,14 @@ struct Random {
     EXPECT_EQ(fa.set_cut_deg(cut), Error::ok);
     EXPECT_EQ(fa.set_beam_spread(AzimuthSpread{lo, hi}), Error::ok);
   });
-  const std::uint32_t step = 1 + r.below(r.chance(30) ? 400 : 60);  // cdeg a block, forward
+  // A third of the streams keep their blocks on multiples of 0.25 degree, which binary floats
+  // hold exactly: their points half a turn away are exactly there, where point() folds.
+  const std::int64_t grid = r.chance(30) ? 25 : 1;
+  const std::uint32_t step = static_cast<std::uint32_t>(grid) * (1 + r.below(r.chance(30) ? 400 : 60));  // cdeg a block, forward
   const std::uint32_t blocks_per_packet = 1 + r.below(12);
   const std::uint32_t max_points = r.below(70);
   const std::uint32_t wild = r.below(8);  // percent of points not within the spread
-  std::int64_t az = static_cast<std::int64_t>(r.below(36000));
+  std::int64_t az = grid * r.below(36000 / static_cast<std::uint32_t>(grid));
   const std::uint32_t packets = 20 + r.below(100);
 
   std::vector<float> column;
@@ -334,9 +386,9 @@ struct Random {
     for (std::uint32_t b = 0; b < blocks_per_packet; ++b) {
       const std::uint32_t how = r.below(100);
       if (how < 3) {
-        az -= 1 + r.below(300);  // a step back: jitter or a late block
+        az -= grid * (1 + r.below(300 / static_cast<std::uint32_t>(grid)));  // a step back: jitter or a late block
       } else if (how < 5) {
-        az += 9000 + r.below(18000);  // a jump of a quarter to three quarters of a turn
+        az += grid * ((9000 + r.below(18000)) / grid);  // a jump of a quarter to three quarters of a turn
       } else if (how >= 15) {
         az += step;  // else the same azimuth (a dual return's second block)
       }
@@ -358,6 +410,7 @@ struct Random {
             case 3: a = block_deg + r.uniform(-40.0f, 40.0f); break;  // wider than the spread
             case 4: a += r.chance(50) ? 360.0f : -360.0f; break;      // a turn away
             case 5: a = block_deg + r.uniform(-179.0f, 181.0f); break;
+            case 6: a = block_deg + (r.chance(50) ? 180.0f : -180.0f); break;  // half a turn
             default: a = static_cast<float>(t.one.cut_cdeg()) / 100.0f + (r.chance(50) ? 0.0f : 360.0f); break;  // the cut
           }
         } else if (r.chance(50)) {

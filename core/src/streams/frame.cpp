@@ -251,25 +251,22 @@ std::uint64_t FrameAssembler::points(const float* azimuth_deg, std::size_t count
   if (count == 0) return 0;
   const unsigned char* first = reinterpret_cast<const unsigned char*>(azimuth_deg);
   if (block_id_ != 0) {
-    // The frame of a point is monotonic in its azimuth while no offset needs point()'s half-turn
-    // fold: the smallest and largest azimuth decide for all. A NaN is the smallest or the largest
-    // key and fails the range check.
+    // A point's frame is monotonic in its azimuth while no offset needs point()'s half-turn fold:
+    // then the smallest and the largest azimuth decide for all. Their offsets are computed as
+    // point() computes them. A NaN is the smallest or the largest key, and its offset, NaN, fails
+    // the fold's bounds; so does an azimuth outside [-360, 720) (point() counts it as its block's),
+    // which lies more than half a turn from any block.
     const KeyRange keys = stride_bytes == sizeof(float) ? key_range<sizeof(float)>(first, count, stride_bytes)
                                                         : key_range<0>(first, count, stride_bytes);
-    const float lo = float_of_key(keys.lo);
-    const float hi = float_of_key(keys.hi);
-    if (lo >= -360.0f && hi < 720.0f) {
-      // point()'s offsets of the two, computed as it computes them.
-      const float lo_offset = lo * 100.0f - static_cast<float>(block_cdeg_);
-      const float hi_offset = hi * 100.0f - static_cast<float>(block_cdeg_);
-      if (lo_offset > -static_cast<float>(kHalfTurn) && hi_offset <= static_cast<float>(kHalfTurn)) {
-        const std::uint64_t id = frame_at(lo_offset);
-        // One open frame for all: none late, none opening the next frame early.
-        if (id == frame_at(hi_offset) && id >= first_open_ && id < next_id_) {
-          count_packet(id);
-          slot(id).points += count;
-          return id;
-        }
+    const float lo_offset = float_of_key(keys.lo) * 100.0f - static_cast<float>(block_cdeg_);
+    const float hi_offset = float_of_key(keys.hi) * 100.0f - static_cast<float>(block_cdeg_);
+    if (lo_offset > -static_cast<float>(kHalfTurn) && hi_offset <= static_cast<float>(kHalfTurn)) {
+      const std::uint64_t id = frame_at(lo_offset);
+      // One open frame for all: none late, none opening the next frame early.
+      if (id == frame_at(hi_offset) && id >= first_open_ && id < next_id_) {
+        count_packet(id);
+        slot(id).points += count;
+        return id;
       }
     }
   }
