@@ -304,6 +304,31 @@ TEST_P(EdgeCases, NotAnAzimuthAndBeforeTheFirstBlock) {
 INSTANTIATE_TEST_SUITE_P(BothWays, EdgeCases, ::testing::Values(Rotation::clockwise, Rotation::counterclockwise),
                          [](const auto& i) { return i.param == Rotation::clockwise ? "clockwise" : "counterclockwise"; });
 
+TEST(FramePoints, NegativeAzimuthsGoPointByPoint) {
+  // Cut 350 clockwise, spread +-10 degrees: blocks 340.00, 341.00 ... 359.00, 0.00, 1.00, one a
+  // packet. Frame 2 starts at 350.00 and frame 1 closes at 0.00 (10 past the cut): block 1.00 lies
+  // 11.00 into frame 2. Its points 0.50 and -0.50 lie 10.50 and 9.50 past the cut (frame 2);
+  // 200.00 is +199 raw, folded to 161 behind: frame 1, closed, so late, counted in frame 2.
+  // Sorted as unsigned bits, -0.50 comes above 200.00: a sign bit must send the block point by point.
+  Twins t;
+  t.both([](FrameAssembler& fa) {
+    EXPECT_EQ(fa.set_cut_deg(350.0f), Error::ok);
+    EXPECT_EQ(fa.set_beam_spread(AzimuthSpread{-10.0f, 10.0f}), Error::ok);
+  });
+  for (std::uint16_t k = 0; k <= 22; ++k) {
+    t.both([&](FrameAssembler& fa) { fa.begin_packet(k, 0); });
+    ASSERT_TRUE(t.block_azimuth(static_cast<std::uint16_t>((34000 + 100 * k) % 36000)));
+  }
+  EXPECT_EQ(t.frames, 1u);
+  EXPECT_EQ(t.block.current().id, 2u);
+  const float az[3] = {0.5f, -0.5f, 200.0f};
+  EXPECT_EQ(t.block.points(az, 3, sizeof(float), nullptr), 2u);
+  for (float a : az) EXPECT_EQ(t.one.point(a), 2u);
+  EXPECT_TRUE(t.state());
+  EXPECT_EQ(t.block.current().points, 3u);
+  EXPECT_EQ(t.block.current().late_points, 1u);
+}
+
 // ---- Pseudo-random streams ----
 
 // splitmix64: the same numbers on every platform and standard library.

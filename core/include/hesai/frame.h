@@ -118,15 +118,15 @@ class FrameAssembler {
   /// frames, late_points and early openings), in one step when they all land in one open frame.
   /// Point i's azimuth (degrees) is the float at `azimuth_deg` plus i x `stride_bytes` bytes:
   /// `&pts[0].azimuth_deg, n, sizeof(Point)` for Points, `column, n, sizeof(float)` for a column
-  /// (stride_bytes a multiple of alignof(float)). Returns the id of the frame that got every
+  /// (stride_bytes: a multiple of sizeof(float), as both are). Returns the id of the frame that got every
   /// point; 0 when count is 0 or the points went to more than one frame, and then ids_out[i]
   /// holds point i's id. ids_out: room for count ids, or null when the caller needs no ids;
   /// after a non-zero return its contents are unspecified.
   /// Cost: one pass over the azimuths (their smallest and largest), then constant work. The
   /// point-by-point rule (count x point()) serves a block that is not the common case: any
-  /// azimuth NaN or not one (outside [-360, 720)), an offset from the block that point() folds (not
-  /// within half a turn: above -180 and up to +180 degrees), points on both sides of a cut, a late
-  /// frame, a frame still to open, or no block yet in the stream.
+  /// azimuth negative (-0 too), NaN or 720 and more, an offset from the block that point() folds
+  /// (not within half a turn: above -180 and up to +180 degrees), points on both sides of a cut,
+  /// a late frame, a frame still to open, or no block yet in the stream.
   std::uint64_t points(const float* azimuth_deg, std::size_t count, std::size_t stride_bytes,
                        std::uint64_t* ids_out) noexcept;
   /// The oldest closed frame not yet taken, in id order; false when there is none.

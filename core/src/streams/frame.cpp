@@ -2,6 +2,8 @@
 
 #include <cstring>
 
+#include "../base/compiler.h"
+
 namespace hesai {
 
 namespace {
@@ -15,48 +17,47 @@ constexpr std::int32_t clockwise(std::int32_t from, std::int32_t to) { return (t
 static_assert(clockwise(35990, 10) == 20, "wrap through 0 is a short forward move");
 static_assert(clockwise(105, 100) == 35995, "jitter is almost a full turn clockwise");
 
-// A float's bits as an unsigned key in the floats' order: a < b gives key(a) < key(b) (-0 just
-// below +0), and a NaN's key lies beyond the infinity of its sign, so that a NaN among several
-// floats is their smallest or their largest key. Positive: the sign bit set; negative: every bit
-// flipped.
-constexpr std::uint32_t order_key(std::uint32_t bits) { return bits ^ ((0u - (bits >> 31)) | 0x80000000u); }
-constexpr std::uint32_t order_bits(std::uint32_t key) { return key ^ ((0u - (~key >> 31)) | 0x80000000u); }
+// A float's bits and back, without a call to memcpy where the core is built freestanding.
+inline std::uint32_t float_bits(float f) noexcept {
+#if HESAI_GNU
+  return __builtin_bit_cast(std::uint32_t, f);
+#else
+  std::uint32_t b;
+  std::memcpy(&b, &f, sizeof b);
+  return b;
+#endif
+}
+inline float bits_float(std::uint32_t b) noexcept {
+#if HESAI_GNU
+  return __builtin_bit_cast(float, b);
+#else
+  float f;
+  std::memcpy(&f, &b, sizeof f);
+  return f;
+#endif
+}
 
-static_assert(order_key(0x00000000u) == 0x80000000u && order_key(0x80000000u) == 0x7FFFFFFFu, "+0 just above -0");
-static_assert(order_key(0x3F800000u) < order_key(0x40000000u), "1 < 2");
-static_assert(order_key(0xBF800000u) > order_key(0xC0000000u), "-1 > -2");
-static_assert(order_key(0x7FC00000u) > order_key(0x7F800000u), "a NaN above +infinity");
-static_assert(order_key(0xFFC00000u) < order_key(0xFF800000u), "a negative NaN below -infinity");
-static_assert(order_bits(order_key(0xC3B40000u)) == 0xC3B40000u && order_bits(order_key(0x44340000u)) == 0x44340000u,
-              "order_bits undoes order_key");
-
-struct KeyRange {
+struct BitsRange {
   std::uint32_t lo = ~0u;
   std::uint32_t hi = 0;
 };
 
-// The smallest and largest order_key() of `count` floats, `stride` bytes apart; kStride, when
-// not 0, is the stride known at compile time (a plain column: the loop vectorises).
-template <std::size_t kStride>
-KeyRange key_range(const unsigned char* first, std::size_t count, std::size_t stride) noexcept {
-  if (kStride != 0) stride = kStride;
-  KeyRange r;
+// The smallest and largest bits, as unsigned integers, of `count` floats `step` floats apart;
+// kStep, when not 0, is the step known at compile time (a plain column: the loop vectorises).
+// For floats with the sign bit clear the integers order as the floats do (+0 < ... < +infinity
+// < every NaN); a float with the sign bit set (negative, -0, a negative NaN) is above them all.
+template <std::size_t kStep>
+BitsRange bits_range(const float* first, std::size_t count, std::size_t step) noexcept {
+  if (kStep != 0) step = kStep;
+  BitsRange r;
   for (std::size_t i = 0; i < count; ++i) {
-    std::uint32_t bits;
-    std::memcpy(&bits, first + i * stride, sizeof bits);
-    const std::uint32_t key = order_key(bits);
-    r.lo = key < r.lo ? key : r.lo;
-    r.hi = key > r.hi ? key : r.hi;
+    const std::uint32_t bits = float_bits(first[i * step]);
+    r.lo = bits < r.lo ? bits : r.lo;
+    r.hi = bits > r.hi ? bits : r.hi;
   }
   return r;
 }
 
-float float_of_key(std::uint32_t key) noexcept {
-  const std::uint32_t bits = order_bits(key);
-  float f;
-  std::memcpy(&f, &bits, sizeof f);
-  return f;
-}
 }  // namespace
 
 Error FrameAssembler::set_cut_deg(float degrees) noexcept {
@@ -249,18 +250,18 @@ std::uint64_t FrameAssembler::frame_at(float offset) const noexcept {
 std::uint64_t FrameAssembler::points(const float* azimuth_deg, std::size_t count, std::size_t stride_bytes,
                                      std::uint64_t* ids_out) noexcept {
   if (count == 0) return 0;
-  const unsigned char* first = reinterpret_cast<const unsigned char*>(azimuth_deg);
+  const std::size_t step = stride_bytes / sizeof(float);
   if (block_id_ != 0) {
     // A point's frame is monotonic in its azimuth while no offset needs point()'s half-turn fold:
-    // then the smallest and the largest azimuth decide for all. Their offsets are computed as
-    // point() computes them. A NaN is the smallest or the largest key, and its offset, NaN, fails
-    // the fold's bounds; so does an azimuth outside [-360, 720) (point() counts it as its block's),
-    // which lies more than half a turn from any block.
-    const KeyRange keys = stride_bytes == sizeof(float) ? key_range<sizeof(float)>(first, count, stride_bytes)
-                                                        : key_range<0>(first, count, stride_bytes);
-    const float lo_offset = float_of_key(keys.lo) * 100.0f - static_cast<float>(block_cdeg_);
-    const float hi_offset = float_of_key(keys.hi) * 100.0f - static_cast<float>(block_cdeg_);
-    if (lo_offset > -static_cast<float>(kHalfTurn) && hi_offset <= static_cast<float>(kHalfTurn)) {
+    // then the smallest and the largest azimuth decide for all, their offsets computed as point()
+    // computes them. Only azimuths with the sign bit clear are taken so (the decoder's lie in
+    // [0, 360)): a NaN among them is the largest, and its offset, NaN, fails the fold's bounds;
+    // so does an azimuth of 720 or more (point() counts it as its block's), more than half a
+    // turn from any block.
+    const BitsRange bits = step == 1 ? bits_range<1>(azimuth_deg, count, step) : bits_range<0>(azimuth_deg, count, step);
+    const float lo_offset = bits_float(bits.lo) * 100.0f - static_cast<float>(block_cdeg_);
+    const float hi_offset = bits_float(bits.hi) * 100.0f - static_cast<float>(block_cdeg_);
+    if (bits.hi < 0x80000000u && lo_offset > -static_cast<float>(kHalfTurn) && hi_offset <= static_cast<float>(kHalfTurn)) {
       const std::uint64_t id = frame_at(lo_offset);
       // One open frame for all: none late, none opening the next frame early.
       if (id == frame_at(hi_offset) && id >= first_open_ && id < next_id_) {
@@ -273,9 +274,7 @@ std::uint64_t FrameAssembler::points(const float* azimuth_deg, std::size_t count
   // Point by point.
   std::uint64_t one = 0;
   for (std::size_t i = 0; i < count; ++i) {
-    float azimuth;
-    std::memcpy(&azimuth, first + i * stride_bytes, sizeof azimuth);
-    const std::uint64_t id = point(azimuth);
+    const std::uint64_t id = point(azimuth_deg[i * step]);
     if (ids_out != nullptr) ids_out[i] = id;
     if (i == 0) {
       one = id;
