@@ -118,10 +118,10 @@ class FrameAssembler {
   /// frames, late_points and early openings), in one step when they all land in one open frame.
   /// Point i's azimuth (degrees) is the float at `azimuth_deg` plus i x `stride_bytes` bytes:
   /// `&pts[0].azimuth_deg, n, sizeof(Point)` for Points, `column, n, sizeof(float)` for a column
-  /// (stride_bytes: a multiple of sizeof(float), as both are). Returns the id of the frame that got every
-  /// point; 0 when count is 0 or the points went to more than one frame, and then ids_out[i]
-  /// holds point i's id. ids_out: room for count ids, or null when the caller needs no ids;
-  /// after a non-zero return its contents are unspecified.
+  /// (stride_bytes: a multiple of sizeof(float), as both are). Returns the id of the frame that
+  /// got every point; 0 when count is 0 or the points went to more than one frame, and then
+  /// ids_out[i] holds point i's id. ids_out: room for count ids, or null when the caller needs no
+  /// ids; after a non-zero return its contents are unspecified.
   /// Cost: one pass over the azimuths (their smallest and largest), then constant work. The
   /// point-by-point rule (count x point()) serves a block that is not the common case: any
   /// azimuth negative (-0 too), NaN or 720 and more, an offset from the block that point() folds

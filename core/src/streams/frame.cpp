@@ -258,10 +258,12 @@ std::uint64_t FrameAssembler::points(const float* azimuth_deg, std::size_t count
     // [0, 360)): a NaN among them is the largest, and its offset, NaN, fails the fold's bounds;
     // so does an azimuth of 720 or more (point() counts it as its block's), more than half a
     // turn from any block.
-    const BitsRange bits = step == 1 ? bits_range<1>(azimuth_deg, count, step) : bits_range<0>(azimuth_deg, count, step);
+    const BitsRange bits =
+        step == 1 ? bits_range<1>(azimuth_deg, count, step) : bits_range<0>(azimuth_deg, count, step);
     const float lo_offset = bits_float(bits.lo) * 100.0f - static_cast<float>(block_cdeg_);
     const float hi_offset = bits_float(bits.hi) * 100.0f - static_cast<float>(block_cdeg_);
-    if (bits.hi < 0x80000000u && lo_offset > -static_cast<float>(kHalfTurn) && hi_offset <= static_cast<float>(kHalfTurn)) {
+    const bool unfolded = lo_offset > -static_cast<float>(kHalfTurn) && hi_offset <= static_cast<float>(kHalfTurn);
+    if (bits.hi < 0x80000000u && unfolded) {
       const std::uint64_t id = frame_at(lo_offset);
       // One open frame for all: none late, none opening the next frame early.
       if (id == frame_at(hi_offset) && id >= first_open_ && id < next_id_) {
