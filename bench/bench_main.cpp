@@ -1,6 +1,6 @@
 // hesai_bench: packet validation and decoding per sensor, with a memcpy baseline of the same
-// packets and a baseline that only writes their Points; the CRC-32/MPEG-2 paths; SHA-256 and
-// HMAC-SHA256 beside OpenSSL's.
+// packets and a baseline that only writes their Points; frame assembly point by point and by
+// block over whole captures; the CRC-32/MPEG-2 paths; SHA-256 and HMAC-SHA256 beside OpenSSL's.
 // Packets are real ones from data/*.pcap, taken round-robin (a handful, not one).
 // bench/report.py turns the JSON output into a table of ratios and target checks.
 #include <benchmark/benchmark.h>
@@ -16,6 +16,7 @@
 
 #include "hesai/crc32.h"
 #include "hesai/decoder.h"
+#include "hesai/frame.h"
 #include "hesai/hmac.h"
 #include "hesai/detail/pandar40_packet.h"
 #include "hesai/detail/pandar64_packet.h"
@@ -55,6 +56,25 @@ std::vector<Bytes> pcap_payloads(const char* name, std::size_t limit) {
     if (incl < 42 || incl > file.size() - off) break;
     if (index++ % 7 == 0) out.emplace_back(file.begin() + static_cast<long>(off + 42), file.begin() + static_cast<long>(off + incl));
     off += incl;
+  }
+  return out;
+}
+
+std::vector<Bytes> pcap_payloads_all(const char* name) {
+  const std::string path = std::string(HESAI_DATA_DIR) + "/" + name;
+  std::ifstream f(path, std::ios::binary);
+  const Bytes file((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
+  std::vector<Bytes> out;
+  for (std::size_t off = 24; off + 16 <= file.size();) {
+    const std::uint32_t incl = hesai::load_le32(&file[off + 8]);
+    off += 16;
+    if (incl < 42 || incl > file.size() - off) break;
+    out.emplace_back(file.begin() + static_cast<long>(off + 42), file.begin() + static_cast<long>(off + incl));
+    off += incl;
+  }
+  if (out.empty()) {
+    std::fprintf(stderr, "hesai_bench: cannot read %s\n", path.c_str());
+    std::exit(1);
   }
   return out;
 }
@@ -321,6 +341,79 @@ void BM_WritePoints(benchmark::State& state, hesai::Model model, Floor floor) {
   finish_counters(state, bytes, points);
 }
 
+/// Every packet of a capture, in order (the frames need the stream: a rotation is 300 to 600
+/// packets).
+const std::vector<Bytes>& whole_capture(hesai::Model model) {
+  static const std::vector<Bytes> p64 = pcap_payloads_all("pandar64_dual.pcap");
+  static const std::vector<Bytes> qt = pcap_payloads_all("qt128c2x_dual.pcap");
+  static const std::vector<Bytes> p40p = pcap_payloads_all("pandar40p_dual.pcap");
+  return model == hesai::Model::pandar64 ? p64 : model == hesai::Model::qt128c2x ? qt : p40p;
+}
+
+enum class Frames {
+  decode_only,  // the decode and the block azimuths alone: what both below share
+  per_point,    // FrameAssembler::point() for each point, as hesai's Pipeline has done
+  by_block      // FrameAssembler::points() for each block's points
+};
+
+/// The frame assignment of a whole capture, cycled: per packet decode() into Points, then
+/// begin_packet(), block() per block (closed frames taken) and the block's points to their frames,
+/// as hesai's Pipeline does (every point kept: no range or field-of-view filter). At the end of the
+/// capture finish() and the stream starts again. Items: packets; points/s: points assigned.
+void BM_Frames(benchmark::State& state, hesai::Model model, Frames how) {
+  const std::vector<Bytes>& packets = whole_capture(model);
+  hesai::Decoder decoder(model);
+  hesai::FrameAssembler frames;
+  static hesai::PacketPoints out;
+  static std::uint64_t ids[hesai::kMaxPointsPerPacket];
+  hesai::PacketInfo info;
+  for (const Bytes& p : packets) {
+    if (decoder.decode({p.data(), p.size()}, info, out) != hesai::Error::ok) {
+      state.SkipWithError("a benchmark packet does not decode");
+      return;
+    }
+  }
+  std::size_t i = 0;
+  std::uint64_t bytes = 0, points = 0, sum = 0;
+  hesai::FrameInfo closed;
+  for (auto _ : state) {
+    const Bytes& p = packets[i];
+    const hesai::Error e = decoder.decode({p.data(), p.size()}, info, out);
+    benchmark::DoNotOptimize(e);
+    if (frames.set_beam_spread(decoder.beam_spread()) != hesai::Error::ok) {
+      state.SkipWithError("the frames refuse the decoder's beam spread");
+      return;
+    }
+    frames.begin_packet(i, 0);
+    std::size_t next = 0;
+    for (std::size_t b = 0; b < info.blocks; ++b) {
+      if (frames.block(info.block_azimuth[b]))
+        while (frames.pop_closed(closed)) sum += closed.points;
+      const std::size_t first = next;
+      while (next < out.count && out.points[next].block == b) ++next;
+      if (how == Frames::per_point) {
+        for (std::size_t k = first; k < next; ++k) sum += frames.point(out.points[k].azimuth_deg);
+      } else if (how == Frames::by_block && next > first) {
+        const std::uint64_t id = frames.points(&out.points[first].azimuth_deg, next - first, sizeof(hesai::Point), ids);
+        if (id != 0) {
+          sum += id * (next - first);
+        } else {
+          for (std::size_t k = 0; k < next - first; ++k) sum += ids[k];
+        }
+      }
+    }
+    benchmark::DoNotOptimize(sum);
+    bytes += p.size();
+    points += out.count;
+    if (++i == packets.size()) {
+      i = 0;
+      frames.finish();
+      while (frames.pop_closed(closed)) sum += closed.points;
+    }
+  }
+  finish_counters(state, bytes, points);
+}
+
 Bytes pseudo_random(std::size_t n) {
   Bytes b(n);
   std::uint32_t x = 0x12345678u;
@@ -451,6 +544,15 @@ void register_all() {
     benchmark::RegisterBenchmark(("BM_" + n + "_decode_avx2").c_str(), BM_Decoder, s.model, Stage::decode_avx2);
   }
   benchmark::RegisterBenchmark("BM_QT128C2X_decode_signed", BM_Decoder, hesai::Model::qt128c2x, Stage::decode_signed);
+  // Frames (issue #43): a whole capture through decode() and the FrameAssembler, point by point
+  // (the baseline) and by block; and the decode alone, which both include.
+  for (const NamedModel& s : kSensors) {
+    if (s.model != hesai::Model::pandar64 && s.model != hesai::Model::qt128c2x && s.model != hesai::Model::pandar40p) continue;
+    const std::string n = s.name;
+    benchmark::RegisterBenchmark(("BM_Baseline_frames_decode_" + n).c_str(), BM_Frames, s.model, Frames::decode_only);
+    benchmark::RegisterBenchmark(("BM_Baseline_frames_per_point_" + n).c_str(), BM_Frames, s.model, Frames::per_point);
+    benchmark::RegisterBenchmark(("BM_" + n + "_frames_by_block").c_str(), BM_Frames, s.model, Frames::by_block);
+  }
 
   const struct {
     const char* name;

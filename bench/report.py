@@ -44,6 +44,9 @@ def ns(b):
 
 
 def baseline_of(name, names):
+    m = re.match(r'BM_(\w+)_frames_by_block$', name)
+    if m:
+        return 'BM_Baseline_frames_per_point_' + m.group(1)
     m = re.match(r'BM_(Pandar40P|Pandar40|Pandar64|QT128C2X|PandarQT64|PandarXT16|PandarXT32M2X|PandarXT32)_', name)
     if m:
         return 'BM_Baseline_copy_' + m.group(1)
@@ -299,6 +302,27 @@ def main():
             'sensor', 'decode', 'decode avx2', 'columns', 'columns avx2', 'validate', 'write Points', 'write x,y,z,t',
             'validate + write x,y,z,t'))
         for line in floors:
+            print(line)
+    # Frame assembly (issue #43): a whole capture decoded and its points given to their frames,
+    # point by point (FrameAssembler::point) and by block (points()); less the decode alone, what
+    # the frames cost.
+    frame_rows = []
+    for sensor in sensors:
+        dec = get('BM_Baseline_frames_decode_%s' % sensor)
+        one, blk = get('BM_Baseline_frames_per_point_%s' % sensor), get('BM_%s_frames_by_block' % sensor)
+        if one and blk:
+            row = '%-13s %12.1f %12.1f %8.2f' % (sensor, ns(one), ns(blk), ns(blk) / ns(one))
+            if dec and ns(blk) > ns(dec):  # else the run's noise is larger than the frames' cost
+                row += ' %12.1f %12.1f %8.2f' % (ns(one) - ns(dec), ns(blk) - ns(dec),
+                                                  (ns(blk) - ns(dec)) / (ns(one) - ns(dec)))
+            frame_rows.append(row)
+    if frame_rows:
+        print()
+        print('frames, ns per packet (BM_Baseline_frames_per_point_<sensor>, BM_<sensor>_frames_by_block; '
+              'frames alone: less BM_Baseline_frames_decode_<sensor>):')
+        print('%-13s %12s %12s %8s %12s %12s %8s' % ('sensor', 'per point', 'by block', 'ratio', 'frames: point',
+                                                      'frames: block', 'ratio'))
+        for line in frame_rows:
             print(line)
     print()
     print('%-45s %-5s %s' % ('target', 'check', 'measured'))

@@ -1,6 +1,7 @@
 // Zero-allocation proof for frame assembly, sequence accounting and the integrity counters.
 #include <gtest/gtest.h>
 
+#include <cstddef>
 #include <cstdint>
 
 #include "alloc_counter.h"
@@ -27,10 +28,17 @@ TEST(ZeroAllocation, FramesSequenceStats) {
         const auto az = static_cast<std::uint16_t>((20 * (10 * p + b)) % 36000);
         if (fa.block(az))
           for (hesai::FrameInfo f; fa.pop_closed(f);) ++frames;
+        // Point by point in even packets, the block's points at once (points()) in odd ones.
+        float kept[8];
+        std::uint64_t ids[8];
+        std::size_t count = 0;
         for (int ch = -5; ch < 3; ++ch) {
           const float point_az = static_cast<float>((az + 36000 + 100 * ch) % 36000) / 100.0f;
-          if (fa.in_fov(point_az)) (void)fa.point(point_az);
+          if (!fa.in_fov(point_az)) continue;
+          if (p % 2 == 0) (void)fa.point(point_az);
+          if (p % 2 == 1) kept[count++] = point_az;
         }
+        (void)fa.points(kept, count, sizeof(float), ids);
       }
     }
     (void)seq.observe(1000000);

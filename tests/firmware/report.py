@@ -82,6 +82,25 @@ HEALTH_BUDGETS = {
         'PandarXT32M2X': {'decode_scan': 322000, 'health': 2200},
     },
 }
+# Issue #43's frame assembly, by the same rule, on the Cortex-M4F only (the Cortex-M0+ image does
+# not link the FrameAssembler: no room in its flash): `frames` is the FrameAssembler's work on one
+# packet as hesai's Pipeline does it (begin_packet, block() per block, each block's points by
+# FrameAssembler::points(), a stream under way, no block on the cut, the packet turned half a
+# turn so that no point lies across 0 from its block), `full_path` the packet's
+# whole path: decode_scan (validate included) + health + frames. `frames_per_point`, the same with
+# point() for each point, is reported beside it, without a budget.
+FRAMES_BUDGETS = {
+    'cortex-m4': {
+        'Pandar40': {'frames': 12000, 'full_path': 50000},
+        'Pandar40P': {'frames': 12000, 'full_path': 50000},
+        'Pandar64': {'frames': 7000, 'full_path': 41000},
+        'QT128C2X': {'frames': 6000, 'full_path': 38000},
+        'PandarQT64': {'frames': 6000, 'full_path': 31000},
+        'PandarXT16': {'frames': 6000, 'full_path': 22000},
+        'PandarXT32': {'frames': 9000, 'full_path': 35000},
+        'PandarXT32M2X': {'frames': 5000, 'full_path': 23000},
+    },
+}
 # Issue #25's targets on the Cortex-M4F, every sensor: instructions per unit less validate (the
 # ARMv7E-M assembly loops, kernels/armv7m_loops.h), and validate + columns decode at the sensor's
 # dual-return packet rate within a 168 MHz core at one instruction a cycle.
@@ -329,7 +348,8 @@ def instructions_json(counts, path):
         out[sensor] = {'units': UNITS[sensor], 'packets_per_second': round(RPM / 60 * PACKETS_PER_ROTATION[sensor], 1),
                        'validate': c.get('validate'), 'decode_points': c.get('decode'),
                        'decode_columns': c.get('decode_columns'), 'decode_points_rate_change': c.get('decode_rpm_change'),
-                       'decode_points_scan': c.get('decode_scan'), 'health': c.get('health')}
+                       'decode_points_scan': c.get('decode_scan'), 'health': c.get('health'),
+                       'frames': c.get('frames'), 'full_path': c.get('full_path')}
     with open(path, 'w') as f:
         json.dump(out, f, indent=2)
         f.write('\n')
@@ -351,6 +371,9 @@ def instruction_counts(emulator, image, over, json_path=None):
         over.append('no instruction counts from %s' % image)
         return lines + ['The image printed no instruction counts (or failed): see its output.', '']
     budgets = INSTRUCTION_BUDGETS[core]
+    for c in counts.values():
+        if all(what in c for what in ('decode_scan', 'health', 'frames')):
+            c['full_path'] = c['decode_scan'] + c['health'] + c['frames']
     lines += ['Exact counts of the instructions executed per call (main.cpp says how), for one real packet of '
               'each sensor (dual return); `decode` includes its `validate`. *rate change*: the packet at another '
               'spin rate, so that the per-rate cache is rebuilt first (the worst case). Budget (%s, in brackets): '
@@ -371,7 +394,8 @@ def instruction_counts(emulator, image, over, json_path=None):
         for what in ('validate', 'decode', 'decode_columns', 'decode_rpm_change'):
             if what not in budget or c.get(what, 0) > budget[what]:
                 over.append('instructions %s %s %d > budget %s' % (sensor, what, c.get(what, 0), budget.get(what)))
-        health_budget = HEALTH_BUDGETS.get(core, {}).get(sensor, {})
+        health_budget = dict(HEALTH_BUDGETS.get(core, {}).get(sensor, {}))
+        health_budget.update(FRAMES_BUDGETS.get(core, {}).get(sensor, {}))
         for what, limit in health_budget.items():
             if what not in c or c[what] > limit:
                 over.append('instructions %s %s %s > budget %d' % (sensor, what, c.get(what), limit))
@@ -391,6 +415,17 @@ def instruction_counts(emulator, image, over, json_path=None):
             lines.append('| %s | %d | %d (%s) | %d (%s) |' % (sensor, c.get('decode', 0), c.get('decode_scan', 0),
                                                              hb.get('decode_scan', 'no budget'), c.get('health', 0),
                                                              hb.get('health', 'no budget')))
+    if any('frames' in c for c in counts.values()):
+        lines += ['', 'Frames (issue #43): `frames` is the FrameAssembler on the packet (`begin_packet`, `block` per block, '
+                  'each block\'s points by `points()`), a stream under way, no block on the cut; `per point` the same with '
+                  '`point()` for each point; `full_path` = decode_scan (validate included) + health + frames. Budget in '
+                  'brackets.', '',
+                  '| sensor | frames | per point | full_path |', '| --- | ---: | ---: | ---: |']
+        for sensor, c in counts.items():
+            fb = FRAMES_BUDGETS.get(core, {}).get(sensor, {})
+            lines.append('| %s | %d (%s) | %d | %d (%s) |' % (sensor, c.get('frames', 0), fb.get('frames', 'no budget'),
+                                                             c.get('frames_per_point', 0), c.get('full_path', 0),
+                                                             fb.get('full_path', 'no budget')))
     qt = counts.get('QT128C2X', {})
     if 'validate_signed' in qt:
         signature = qt['validate_signed'] - qt['validate']

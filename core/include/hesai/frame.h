@@ -5,6 +5,7 @@
 // per block and per point, no heap.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 
 #include "hesai/decoder.h"
@@ -36,7 +37,8 @@ struct FrameInfo {
 ///
 /// Use, per packet: begin_packet(); then for each block in order: block(azimuth) (true: frames
 /// closed, take them with pop_closed() before the next block), then point(azimuth) for each of
-/// that block's points, which names the frame the point belongs to. At the end of the stream,
+/// that block's points, which names the frame the point belongs to, or points() for all of them
+/// at once (the same result, usually one frame id for the whole block). At the end of the stream,
 /// finish() closes the open frames (take them with pop_closed()).
 ///
 /// Rules (block azimuths in 0.01 degree, 0..35999, as in the packets; "forward" is the direction
@@ -112,6 +114,21 @@ class FrameAssembler {
   /// frame and returns that frame's id. An azimuth that is not one (NaN, beyond two turns) counts as
   /// its block's. Before the first block of a stream it counts in the first frame to open.
   std::uint64_t point(float azimuth_deg) noexcept;
+  /// The points of the last block at once: the same as point() for each, in order (the same ids,
+  /// frames, late_points and early openings), in one step when they all land in one open frame.
+  /// Point i's azimuth (degrees) is the float at `azimuth_deg` plus i x `stride_bytes` bytes:
+  /// `&pts[0].azimuth_deg, n, sizeof(Point)` for Points, `column, n, sizeof(float)` for a column
+  /// (stride_bytes: a multiple of sizeof(float), as both are). Returns the id of the frame that
+  /// got every point; 0 when count is 0 or the points went to more than one frame, and then
+  /// ids_out[i] holds point i's id. ids_out: room for count ids, or null when the caller needs no
+  /// ids; after a non-zero return its contents are unspecified.
+  /// Cost: one pass over the azimuths (their smallest and largest), then constant work. The
+  /// point-by-point rule (count x point()) serves a block that is not the common case: any
+  /// azimuth negative (-0 too), NaN or 720 and more, an offset from the block that point() folds
+  /// (not within half a turn: above -180 and up to +180 degrees), points on both sides of a cut,
+  /// a late frame, a frame still to open, or no block yet in the stream.
+  std::uint64_t points(const float* azimuth_deg, std::size_t count, std::size_t stride_bytes,
+                       std::uint64_t* ids_out) noexcept;
   /// The oldest closed frame not yet taken, in id order; false when there is none.
   bool pop_closed(FrameInfo& out) noexcept;
   /// End of stream: closes every open frame (ends_at_cut false) and returns true if there was
@@ -145,6 +162,7 @@ class FrameAssembler {
   bool close_through(std::uint64_t id, bool at_cut) noexcept;
   void count_packet(std::uint64_t id) noexcept;
   void update_reach() noexcept;
+  std::uint64_t frame_at(float offset) const noexcept;
 
   FrameInfo slots_[kSlots];
   std::uint64_t next_id_ = 1;          // id of the next frame to open

@@ -1,5 +1,9 @@
 #include "hesai/frame.h"
 
+#include <cstring>
+
+#include "../base/compiler.h"
+
 namespace hesai {
 
 namespace {
@@ -12,6 +16,48 @@ constexpr std::int32_t clockwise(std::int32_t from, std::int32_t to) { return (t
 
 static_assert(clockwise(35990, 10) == 20, "wrap through 0 is a short forward move");
 static_assert(clockwise(105, 100) == 35995, "jitter is almost a full turn clockwise");
+
+// A float's bits and back, without a call to memcpy where the core is built freestanding.
+inline std::uint32_t float_bits(float f) noexcept {
+#if HESAI_GNU
+  return __builtin_bit_cast(std::uint32_t, f);
+#else
+  std::uint32_t b;
+  std::memcpy(&b, &f, sizeof b);
+  return b;
+#endif
+}
+inline float bits_float(std::uint32_t b) noexcept {
+#if HESAI_GNU
+  return __builtin_bit_cast(float, b);
+#else
+  float f;
+  std::memcpy(&f, &b, sizeof f);
+  return f;
+#endif
+}
+
+struct BitsRange {
+  std::uint32_t lo = ~0u;
+  std::uint32_t hi = 0;
+};
+
+// The smallest and largest bits, as unsigned integers, of `count` floats `step` floats apart;
+// kStep, when not 0, is the step known at compile time (a plain column: the loop vectorises).
+// For floats with the sign bit clear the integers order as the floats do (+0 < ... < +infinity
+// < every NaN); a float with the sign bit set (negative, -0, a negative NaN) is above them all.
+template <std::size_t kStep>
+BitsRange bits_range(const float* first, std::size_t count, std::size_t step) noexcept {
+  if (kStep != 0) step = kStep;
+  BitsRange r;
+  for (std::size_t i = 0; i < count; ++i) {
+    const std::uint32_t bits = float_bits(first[i * step]);
+    r.lo = bits < r.lo ? bits : r.lo;
+    r.hi = bits > r.hi ? bits : r.hi;
+  }
+  return r;
+}
+
 }  // namespace
 
 Error FrameAssembler::set_cut_deg(float degrees) noexcept {
@@ -174,17 +220,12 @@ std::uint64_t FrameAssembler::point(float azimuth_deg) noexcept {
     ++pending_points_;
     return next_id_;
   }
-  // The point's offset from its block, forward, in (-half turn, half turn].
+  // The point's offset from its block, clockwise, in (-half turn, half turn].
   float offset = 0.0f;
   if (azimuth_deg >= -360.0f && azimuth_deg < 720.0f) offset = azimuth_deg * 100.0f - static_cast<float>(block_cdeg_);
   while (offset > static_cast<float>(kHalfTurn)) offset -= static_cast<float>(kTurn);
   while (offset <= -static_cast<float>(kHalfTurn)) offset += static_cast<float>(kTurn);
-  if (rotation_ == Rotation::counterclockwise) offset = -offset;
-  const float at = static_cast<float>(block_pos_) + offset;
-
-  std::uint64_t id = block_id_;
-  if (at < 0.0f) --id;
-  if (at >= static_cast<float>(kTurn)) ++id;
+  std::uint64_t id = frame_at(offset);
   if (id == next_id_) open_next(id >= complete_from_);  // a point ahead opens the next frame early
   const bool late = id < first_open_;
   if (late) id = first_open_;
@@ -193,6 +234,57 @@ std::uint64_t FrameAssembler::point(float azimuth_deg) noexcept {
   ++f.points;
   if (late) ++f.late_points;
   return id;
+}
+
+std::uint64_t FrameAssembler::frame_at(float offset) const noexcept {
+  // `offset`: a point's from the last block, clockwise, in (-half turn, half turn]; the frame of
+  // its rotation by where it lies past block_id_'s cut.
+  if (rotation_ == Rotation::counterclockwise) offset = -offset;
+  const float at = static_cast<float>(block_pos_) + offset;
+  std::uint64_t id = block_id_;
+  if (at < 0.0f) --id;
+  if (at >= static_cast<float>(kTurn)) ++id;
+  return id;
+}
+
+std::uint64_t FrameAssembler::points(const float* azimuth_deg, std::size_t count, std::size_t stride_bytes,
+                                     std::uint64_t* ids_out) noexcept {
+  if (count == 0) return 0;
+  const std::size_t step = stride_bytes / sizeof(float);
+  if (block_id_ != 0) {
+    // A point's frame is monotonic in its azimuth while no offset needs point()'s half-turn fold:
+    // then the smallest and the largest azimuth decide for all, their offsets computed as point()
+    // computes them. Only azimuths with the sign bit clear are taken so (the decoder's lie in
+    // [0, 360)): a NaN among them is the largest, and its offset, NaN, fails the fold's bounds;
+    // so does an azimuth of 720 or more (point() counts it as its block's), more than half a
+    // turn from any block.
+    const BitsRange bits =
+        step == 1 ? bits_range<1>(azimuth_deg, count, step) : bits_range<0>(azimuth_deg, count, step);
+    const float lo_offset = bits_float(bits.lo) * 100.0f - static_cast<float>(block_cdeg_);
+    const float hi_offset = bits_float(bits.hi) * 100.0f - static_cast<float>(block_cdeg_);
+    const bool unfolded = lo_offset > -static_cast<float>(kHalfTurn) && hi_offset <= static_cast<float>(kHalfTurn);
+    if (bits.hi < 0x80000000u && unfolded) {
+      const std::uint64_t id = frame_at(lo_offset);
+      // One open frame for all: none late, none opening the next frame early.
+      if (id == frame_at(hi_offset) && id >= first_open_ && id < next_id_) {
+        count_packet(id);
+        slot(id).points += count;
+        return id;
+      }
+    }
+  }
+  // Point by point.
+  std::uint64_t one = 0;
+  for (std::size_t i = 0; i < count; ++i) {
+    const std::uint64_t id = point(azimuth_deg[i * step]);
+    if (ids_out != nullptr) ids_out[i] = id;
+    if (i == 0) {
+      one = id;
+    } else if (id != one) {
+      one = 0;
+    }
+  }
+  return one;
 }
 
 bool FrameAssembler::pop_closed(FrameInfo& out) noexcept {
