@@ -99,6 +99,8 @@ class FrameAssembler {
   [[nodiscard]] Error set_fov_deg(float start_degrees, float end_degrees) noexcept;
   /// No field of view: in_fov() is true for every azimuth.
   void clear_fov() noexcept { has_fov_ = false; }
+  /// Whether a field of view is set (in_fov() can be false).
+  bool has_fov() const noexcept { return has_fov_; }
   /// True when a point azimuth (degrees) lies in the field of view. An azimuth within one turn
   /// outside [0, 360) is folded in first (-10 is 350); NaN and other values are outside.
   bool in_fov(float azimuth_deg) const noexcept;

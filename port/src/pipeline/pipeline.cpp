@@ -43,7 +43,11 @@ std::string source_text(const UdpDatagram& d, const CaptureFile& file) {
 }
 
 Pipeline::Pipeline(const DecodeOptions& options, Sink* sink)
-    : options_(options), sink_(sink), return_types_(sink != nullptr && sink->wants_return_types()) {}
+    : options_(options),
+      sink_(sink),
+      return_types_(sink != nullptr && sink->wants_return_types()),
+      // The defaults keep every point: a distance is never negative nor 1e9 m.
+      filtered_(options.min_range > 0 || options.max_range < 1e9f || options.frames.has_fov()) {}
 
 Pipeline::~Pipeline() {
   secure_wipe(options_.session_key.data(), options_.session_key.size());
@@ -361,8 +365,9 @@ bool Pipeline::process(Source& src, std::uint64_t index, const PacketInfo& info)
     saturating_follow(stats_.sequence_resyncs, before.resyncs, after.resyncs);
   }
 
-  // Each point goes to the frame of its own azimuth; frames close when the blocks have moved
-  // far enough past their end that no later point can reach them.
+  // Each point goes to the frame of its own azimuth, a block's points at once (FrameAssembler::
+  // points(): one frame for the whole block unless it straddles a cut); frames close when the
+  // blocks have moved far enough past their end that no later point can reach them.
   // `points` counts every point decoded: with --returns distinct, the repeated ones left out too.
   if (options_.returns == Returns::distinct) saturating_add(stats_.points, scan_.duplicate_returns);
   const bool keep = index >= options_.first_packet && index < options_.end_packet;
@@ -374,20 +379,40 @@ bool Pipeline::process(Source& src, std::uint64_t index, const PacketInfo& info)
       flush_points();  // every point of a frame before its frame_closed()
       close_frames(src);
     }
-    for (; next < points_.count && points_.points[next].block == b; ++next) {
-      const Point& p = points_.points[next];
-      saturating_increment(stats_.points);
-      if (!keep || p.distance_m < options_.min_range || p.distance_m > options_.max_range) continue;
-      if (!frames.in_fov(p.azimuth_deg)) continue;
-      const std::uint64_t frame_id = frames.point(p.azimuth_deg);
-      if (sink_)
-        batch_.push_back(OutPoint{p, frame_id, index, static_cast<std::uint32_t>(src.order),
-                                  return_types_ ? nebula_return_type(info, compare_, p)
-                                                : NebulaReturnType::unknown});
-    }
+    const std::size_t first = next;
+    while (next < points_.count && points_.points[next].block == b) ++next;
+    saturating_add(stats_.points, next - first);
+    if (keep && next > first) assign_frames(src, index, info, first, next);
   }
   flush_points();
   return true;
+}
+
+void Pipeline::assign_frames(Source& src, std::uint64_t index, const PacketInfo& info, std::size_t first,
+                             std::size_t end) {
+  const Point* p = points_.points.data();
+  std::uint64_t* ids = sink_ ? ids_.data() : nullptr;  // stats needs no point's frame
+  std::size_t n = 0;  // kept points
+  std::uint64_t id = 0;
+  if (!filtered_) {  // every point is kept: the block's Points as they are
+    n = end - first;
+    for (std::size_t i = 0; i < n; ++i) kept_[i] = static_cast<std::uint16_t>(first + i);
+    id = src.frames.points(&p[first].azimuth_deg, n, sizeof(Point), ids);
+  } else {
+    for (std::size_t i = first; i < end; ++i) {
+      if (p[i].distance_m < options_.min_range || p[i].distance_m > options_.max_range) continue;
+      if (!src.frames.in_fov(p[i].azimuth_deg)) continue;
+      kept_[n] = static_cast<std::uint16_t>(i);
+      azimuths_[n++] = p[i].azimuth_deg;
+    }
+    id = src.frames.points(azimuths_.data(), n, sizeof(float), ids);
+  }
+  if (!sink_) return;
+  for (std::size_t k = 0; k < n; ++k) {
+    const Point& q = p[kept_[k]];
+    batch_.push_back(OutPoint{q, id != 0 ? id : ids_[k], index, static_cast<std::uint32_t>(src.order),
+                              return_types_ ? nebula_return_type(info, compare_, q) : NebulaReturnType::unknown});
+  }
 }
 
 void Pipeline::flush_points() {

@@ -203,11 +203,14 @@ class Pipeline {
   Error decode(Source& src, ByteView payload, PacketInfo& info);
   // Accounts one decoded packet (points_ holds its points) and gives its points to the frames.
   bool process(Source& src, std::uint64_t index, const PacketInfo& info);
+  // The kept points of points_[first, end) (one block) to their frames, and to batch_ for the sink.
+  void assign_frames(Source& src, std::uint64_t index, const PacketInfo& info, std::size_t first, std::size_t end);
   void close_frames(Source& src);
 
   DecodeOptions options_;
   Sink* sink_;
   bool return_types_;  // the sink wants OutPoint::return_type
+  bool filtered_;      // --min-range, --max-range or --fov may leave points out
   std::string angles_text_, firetimes_text_;
   std::unique_ptr<ChannelConfig> channel_config_;  // --channel-config, parsed once
   std::map<std::uint64_t, Source> sources_;
@@ -231,6 +234,11 @@ class Pipeline {
   std::vector<OutPoint> batch_;  // its kept points for the sink (reused: no allocation per packet)
   UnitScan scan_;        // and what its units say beyond them
   ReturnComparison compare_;  // and how each of its returns compares with its firing's others
+  // One block's kept points (assign_frames): their index in points_, azimuth (when filtered) and
+  // frame id (when they went to more than one frame).
+  std::array<std::uint16_t, kMaxPointsPerPacket> kept_;
+  std::array<float, kMaxPointsPerPacket> azimuths_;
+  std::array<std::uint64_t, kMaxPointsPerPacket> ids_;
 };
 
 /// The source a captured datagram comes from, for Pipeline::feed: its sender's address and port.
