@@ -43,6 +43,8 @@ struct Stats {
                                            ///< or received before a live session's key was agreed)
   std::uint64_t unsigned_rejected = 0;     ///< of those, rejected (Error::signature_missing)
   std::uint64_t signature_unverified = 0;  ///< signed, but no key configured
+  std::uint64_t replayed = 0;              ///< validly signed, but not new in its session (ReplayGuard):
+                                           ///< refused, not counted in signature_valid, none of its points kept
   std::uint64_t malformed = 0;             ///< every other rejection (length, magic, fields...)
   std::uint64_t unsupported = 0;           ///< a version, model or section we do not implement, or
                                            ///< customised QT128 channels without a matching configuration

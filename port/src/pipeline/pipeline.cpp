@@ -108,6 +108,7 @@ void Pipeline::start_session(const std::uint8_t key[32]) {
   for (auto& [k, s] : sources_) {
     (void)s.decoder->set_session_key(key);  // only unsupported_feature, checked at creation
     s.decoder->set_allow_unsigned(options_.allow_unsigned);
+    s.replay.reset();
   }
 }
 
@@ -241,6 +242,10 @@ bool Pipeline::feed(ByteView payload, std::uint64_t source_key, bool pre_session
   if (e != Error::ok) {
     count_error(stats_, e);
     ++rejections_[e];
+    return true;
+  }
+  if (info.signature == SignatureStatus::valid && !src->replay.accept(info)) {
+    saturating_increment(stats_.replayed);  // signed, but seen before in this session: refused
     return true;
   }
   const std::uint64_t index = point_packet_index_++;

@@ -79,6 +79,7 @@ std::string stats_json(const Stats& s, const std::vector<SensorReport>& sensors)
   add(out, "unsigned_accepted", s.unsigned_accepted);
   add(out, "unsigned_rejected", s.unsigned_rejected);
   add(out, "signature_unverified", s.signature_unverified);
+  add(out, "replayed", s.replayed);
   add(out, "malformed", s.malformed);
   add(out, "unsupported", s.unsupported);
   add(out, "lost", s.lost);
@@ -152,6 +153,7 @@ std::string stats_text(const Pipeline& p) {
   line("unsigned_accepted", std::to_string(s.unsigned_accepted));
   line("unsigned_rejected", std::to_string(s.unsigned_rejected));
   line("signature_unverified", std::to_string(s.signature_unverified));
+  line("replayed", std::to_string(s.replayed));
   line("malformed", std::to_string(s.malformed));
   line("unsupported", std::to_string(s.unsupported));
   line("lost", std::to_string(s.lost));

@@ -15,6 +15,7 @@
 #include "hesai/frame.h"
 #include "hesai/health.h"
 #include "hesai/held_packets.h"
+#include "hesai/replay.h"
 #include "hesai/rotation.h"
 #include "hesai/safety.h"
 #include "hesai/sequence.h"
@@ -127,7 +128,12 @@ class Pipeline {
   /// a new key), in every decoder and those created later. Every packet fed from now on must carry
   /// a valid signature: an unsigned one is rejected (unsigned_rejected) unless it is fed with
   /// `pre_session` (received before the session's key was agreed; unsigned_accepted) or
-  /// --allow-unsigned was given.
+  /// --allow-unsigned was given. Each sensor's replay guard starts anew (a new key).
+  ///
+  /// Under any key (this one, or --session-key), a validly signed packet that is not new for its
+  /// sensor (hesai/replay.h: its UDP sequence, or its time, does not move forward past the replay
+  /// window) is refused and counted as replayed: none of its points is kept, and it counts in
+  /// neither signature_valid nor the losses.
   void start_session(const std::uint8_t key[32]);
   /// listen --sensor: the sensor's model, from its inventory. A point-cloud packet of another
   /// model is rejected and counted (foreign_model_packets): it never ends the run and never
@@ -182,6 +188,7 @@ class Pipeline {
     FrameAssembler frames;
     SafetyMonitor safety;
     RotationDetector rotation;
+    ReplayGuard replay;  // its validly signed packets, each accepted once in a session
     HeldPackets<kHeldPackets> held;  // decoded, not yet processed: the direction is not known;
                                      // tagged with the packet's index | kPreSessionTag
     std::uint64_t key = 0;           // the sender (feed's source)

@@ -11,7 +11,7 @@ namespace hesai::port {
 
 /// One JSON object with exactly the keys packets, models, points, frames, crc_errors,
 /// signature_valid, signature_invalid, signature_missing, unsigned_accepted, unsigned_rejected,
-/// signature_unverified, malformed,
+/// signature_unverified, replayed, malformed,
 /// unsupported, lost, duplicates, reordered, sequence_resyncs, lost_by ("udp_sequence",
 /// "azimuth_time", "mixed" or "none"), time_stalls, time_virtual, time_jumps, blockage_units,
 /// blockage_by_channel (an array, channel - 1, as long as the most channels of the models seen),
