@@ -14,6 +14,7 @@
 #include "hesai/hkdf.h"
 #include "hesai/ptc.h"
 #include "hesai/model.h"
+#include "hesai_port/base/text.h"
 #include "commands.h"
 
 namespace hesai::cli {
@@ -22,23 +23,7 @@ using port::PtcClient;
 using port::PtcResult;
 using Bytes = std::vector<std::uint8_t>;
 
-std::string json_string(const char* s) {
-  std::string out = "\"";
-  for (const char* p = s; *p != '\0'; ++p) {
-    const unsigned char c = static_cast<unsigned char>(*p);
-    if (c == '"' || c == '\\') {
-      out += '\\';
-      out += static_cast<char>(c);
-    } else if (c < 0x20 || c >= 0x7F) {
-      char esc[8];
-      std::snprintf(esc, sizeof esc, "\\u%04x", c);
-      out += esc;
-    } else {
-      out += static_cast<char>(c);
-    }
-  }
-  return out + "\"";
-}
+std::string json_string(const char* s) { return port::json_string(s); }
 
 std::string ipv4_text(const std::uint8_t a[4]) {
   return std::to_string(a[0]) + "." + std::to_string(a[1]) + "." + std::to_string(a[2]) + "." + std::to_string(a[3]);
@@ -117,6 +102,15 @@ constexpr const char* kSensorUsage =
     "\n"
     "PTCS:\n";
 
+// After the TLS options (options.cpp): how the serial is checked.
+constexpr const char* kSerialPinHelp =
+    "\n"
+    "The serial check is exact: the unit's certificate names one serial, its serialNumber, or its\n"
+    "CN where it has none, and that whole value must equal the serial (CN \"Hesai QT128 1234\" is\n"
+    "not unit 1234). Without --expect-serial the certificate must name the serial the unit itself\n"
+    "reports in its inventory: that binds the certificate to what the unit says, not to the unit\n"
+    "you meant; any unit with a certificate of the CA passes. --expect-serial SN pins the unit.\n";
+
 std::string mac_text(const std::uint8_t m[6]) {
   char text[18];
   std::snprintf(text, sizeof text, "%02x:%02x:%02x:%02x:%02x:%02x", m[0], m[1], m[2], m[3], m[4], m[5]);
@@ -124,23 +118,7 @@ std::string mac_text(const std::uint8_t m[6]) {
 }
 
 
-// Text from the unit (serial, dates, versions) for a terminal: printable ASCII as is, every other
-// byte (control bytes such as ESC, DEL, bytes of 0x80 and above) and the backslash as \xNN, so a
-// forged inventory cannot send escape sequences to the user's terminal.
-std::string terminal_text(const char* s) {
-  std::string out;
-  for (const char* p = s; *p != '\0'; ++p) {
-    const unsigned char c = static_cast<unsigned char>(*p);
-    if (c >= 0x20 && c < 0x7F && c != '\\') {
-      out += static_cast<char>(c);
-    } else {
-      char esc[8];
-      std::snprintf(esc, sizeof esc, "\\x%02x", c);
-      out += esc;
-    }
-  }
-  return out;
-}
+using port::terminal_text;
 
 // What lstat found at a path that is not a regular file, for the refusal.
 const char* file_kind(mode_t mode) {
@@ -435,7 +413,7 @@ int cmd_sensor(Args& args) {
     }
     const std::string a = args.take();
     if (a == "--help" || a == "-h") {
-      std::printf("%s%s", kSensorUsage, kTlsOptionsHelp);
+      std::printf("%s%s%s", kSensorUsage, kTlsOptionsHelp, kSerialPinHelp);
       return kExitOk;
     }
     if (a == "--json") json = true;

@@ -13,6 +13,7 @@
 #include <unistd.h>
 
 #include "hesai_port/base/clock.h"
+#include "hesai_port/base/text.h"
 #include "hesai_port/net/tls.h"
 
 namespace hesai::port {
@@ -37,6 +38,10 @@ bool wait_ready(int fd, short events, std::int64_t deadline_ns) {
     if (r < 0 && errno != EINTR) return true;  // the next call reports the error
   }
 }
+
+// How a certificate names a serial (subject_names_serial), for the refusals.
+constexpr const char* kSerialRule =
+    "its serialNumber, or its CN where it has none, must equal the serial exactly";
 
 std::string hex_byte(std::uint8_t b) {
   char text[8];
@@ -192,7 +197,7 @@ PtcResult PtcClient::open(ptc::Command command, std::int64_t deadline) {
   if (!o.expect_serial.empty() && !subject_names_serial(subject, o.expect_serial))
     return fail(PtcOutcome::tls, command,
                 "TLS: the unit's certificate (" + subject_text(subject) + ") does not name the expected serial '" +
-                    o.expect_serial + "' (--expect-serial); no command was sent");
+                    terminal_text(o.expect_serial) + "' (--expect-serial; " + kSerialRule + "); no command was sent");
   transport_ = std::move(tls);
   if (o.insecure) return PtcResult{};
   // The serial the unit gives for itself: its certificate must name it.
@@ -211,8 +216,9 @@ PtcResult PtcClient::open(ptc::Command command, std::int64_t deadline) {
   serial = first == std::string::npos ? std::string() : serial.substr(first, serial.find_last_not_of(' ') - first + 1);
   if (!subject_names_serial(subject, serial))
     return fail(PtcOutcome::tls, command,
-                "TLS: the unit's certificate (" + subject_text(subject) + ") does not name the serial '" + serial +
-                    "' of its inventory (0x07): not the unit it claims to be");
+                "TLS: the unit's certificate (" + subject_text(subject) + ") does not name the serial '" +
+                    terminal_text(serial) + "' of its inventory (0x07; " + kSerialRule +
+                    "): not the unit it claims to be");
   return PtcResult{};
 }
 

@@ -10,6 +10,7 @@
 
 #include "hesai/ct.h"
 #include "hesai_port/base/clock.h"
+#include "hesai_port/base/text.h"
 
 #if HESAI_WITH_TLS
 #include <csignal>
@@ -35,8 +36,6 @@ const char* file_kind(mode_t mode) {
   if (S_ISBLK(mode)) return "a block device";
   return "not a regular file";
 }
-
-bool is_word_char(char c) { return (c >= '0' && c <= '9') || (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z'); }
 
 }  // namespace
 
@@ -93,20 +92,28 @@ bool read_private_key_file(const std::string& path, std::string& pem, std::strin
 
 bool subject_names_serial(const std::vector<SubjectName>& names, const std::string& serial) {
   if (serial.empty()) return false;
+  // The one name the certificate gives: its serialNumber where it has one, else its CN; two of
+  // the field that decides name no one unit.
+  std::size_t serial_numbers = 0, cns = 0;
+  const SubjectName* serial_number = nullptr;
+  const SubjectName* cn = nullptr;
   for (const SubjectName& n : names) {
-    const std::string& v = n.value;
-    for (std::size_t at = v.find(serial); at != std::string::npos; at = v.find(serial, at + 1)) {
-      const std::size_t end = at + serial.size();
-      if ((at == 0 || !is_word_char(v[at - 1])) && (end == v.size() || !is_word_char(v[end]))) return true;
+    if (n.field == "serialNumber") {
+      ++serial_numbers;
+      serial_number = &n;
+    } else if (n.field == "CN") {
+      ++cns;
+      cn = &n;
     }
   }
-  return false;
+  if (serial_numbers > 0) return serial_numbers == 1 && serial_number->value == serial;
+  return cns == 1 && cn->value == serial;
 }
 
 std::string subject_text(const std::vector<SubjectName>& names) {
   if (names.empty()) return "no CN and no serialNumber";
   std::string out;
-  for (const SubjectName& n : names) out += (out.empty() ? "" : ", ") + n.field + "=" + n.value;
+  for (const SubjectName& n : names) out += (out.empty() ? "" : ", ") + n.field + "=" + terminal_text(n.value);
   return out;
 }
 

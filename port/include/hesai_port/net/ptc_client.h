@@ -12,10 +12,11 @@
 // The byte stream is a PtcTransport: plain TCP (TcpTransport), or PTCS, PTC over TLS (TlsTransport,
 // hesai_port/net/tls.h) once use_tls() is called. Over TLS, each new connection is checked before
 // the request goes out: the chain to the CA (TlsContext), then the serial. The unit's certificate
-// must name, in its subject's CN or serialNumber, the expected serial when one is given (before
-// any command is sent), and the serial of the unit's own inventory (0x07, asked first on every
-// connection; skipped with the insecure option, which checks no chain either); a mismatch names
-// both.
+// must name (subject_names_serial: its serialNumber, or its CN where it has none, equal to the
+// serial, byte for byte) the expected serial when one is given (before any command is sent), and
+// the serial of the unit's own inventory (0x07, asked first on every connection; skipped with the
+// insecure option, which checks no chain either); a mismatch names both, escaped for a terminal
+// (terminal_text), as either may hold anything.
 #pragma once
 
 #include <cstdint>
