@@ -526,6 +526,9 @@ int cmd_sensor(Args& args) {
 
 int SensorLink::fetch(const DecodeOptions& options, Pipeline& pipeline, std::string& error, bool require_sync) {
   const std::string origin = client_.host() + ":" + std::to_string(client_.port());
+  // Ctrl-C (or SIGTERM) ends the request in flight at once, here and in the session that follows
+  // over this client; the requests made after it (the session's stop) still run.
+  client_.set_stop(&g_stop);
   if (!ask_model(client_, model_)) {
     error = "cannot fetch the calibration from the sensor (see above)";
     return kExitInput;
