@@ -342,6 +342,21 @@ def main():
     write('ptc', 'hostile_cut_short', ptc(0x07, common[:10], length=120))
     write('ptc', 'hostile_error_code', ptc(0x07, b'', code=5))
 
+    # Settings files of 'sensor apply' (fuzz_settings_file.cpp): every key, each number form JSON
+    # has, and the refusals of issue #44 (a NUL in a number, a leading zero, a control byte).
+    write('settings_file', 'every_key', b'{\n  "rpm": 1200,\n  "return_mode": "strongest",\n  "standby": "off",\n'
+          b'  "sync_angle": 30,\n  "destination": "192.168.1.100:2368,10110",\n  "fov": "30.5-330"\n}\n')
+    write('settings_file', 'empty_object', b'{}')
+    write('settings_file', 'sync_off', b'{"sync_angle": "off", "standby": "on"}')
+    write('settings_file', 'numbers', b'{"rpm": -0.5e+10, "sync_angle": 0E-0}')
+    write('settings_file', 'escapes', b'{"return_mode": "a\\"b\\\\c"}')
+    write('settings_file', 'nul_in_number', b'{"rpm": 12\x0000}')
+    write('settings_file', 'leading_zero', b'{"rpm": 01200}')
+    write('settings_file', 'control_byte', b'{"standby": "on\x1b[2J"}')
+    write('settings_file', 'wrong_types', b'{"standby": true, "rpm": [1], "fov": {}, "sync_angle": null}')
+    write('settings_file', 'twice_unknown', b'{"rpm": 600,\r\n"rpm": 600, "colour\x7f\xff": 1}')
+    write('settings_file', 'trailing', b'{"rpm": 600} x')
+
     # MCAP bags of PandarScan (fuzz_mcap.cpp), written by tests/mcap/make_pandarscan.py.
     import sys
     sys.dont_write_bytecode = True  # no __pycache__ in the source tree

@@ -25,11 +25,13 @@
 #include <chrono>
 #include <cstdio>
 #include <fstream>
+#include <memory>
 #include <string>
 #include <thread>
 #include <utility>
 #include <vector>
 
+#include "hesai_port/net/ptc_server.h"
 #include "hesai_port/net/tls.h"
 #include "test_support.h"
 #include "udp_support.h"
@@ -99,17 +101,32 @@ TEST(Ptcs, SerialInTheSubject) {
   EXPECT_TRUE(subject_names_serial(cn, "STANDIN"));
   EXPECT_FALSE(subject_names_serial(cn, "STAND"));      // a part of a word
   EXPECT_FALSE(subject_names_serial(cn, "STANDIN2"));
+  EXPECT_FALSE(subject_names_serial(cn, "standin"));    // byte for byte
   EXPECT_FALSE(subject_names_serial(cn, ""));           // an empty serial names nothing
   EXPECT_FALSE(subject_names_serial({}, "STANDIN"));
+  // A word of the CN is not the serial (issue #44, finding 5).
   const std::vector<SubjectName> words{{"CN", "Hesai QT128C2X 1234ABCD"}};
-  EXPECT_TRUE(subject_names_serial(words, "1234ABCD"));  // a word of the CN
-  EXPECT_TRUE(subject_names_serial(words, "QT128C2X"));
+  EXPECT_FALSE(subject_names_serial(words, "1234ABCD"));
+  EXPECT_FALSE(subject_names_serial(words, "QT128C2X"));
   EXPECT_FALSE(subject_names_serial(words, "1234"));
+  EXPECT_FALSE(subject_names_serial({{"CN", "Hesai Lidar"}}, "Lidar"));
+  EXPECT_FALSE(subject_names_serial({{"CN", " STANDIN"}}, "STANDIN"));
+  EXPECT_FALSE(subject_names_serial({{"CN", std::string("STANDIN\0X", 9)}}, "STANDIN"));
+  // Two CNs name no one unit.
+  const std::vector<SubjectName> two{{"CN", "X42"}, {"CN", "X99"}};
+  EXPECT_FALSE(subject_names_serial(two, "X42"));
+  EXPECT_FALSE(subject_names_serial(two, "X99"));
+  // A serialNumber decides where there is one; the CN is then only a name.
   const std::vector<SubjectName> sn{{"CN", "Hesai stand-in"}, {"serialNumber", "QT-0001"}};
   EXPECT_TRUE(subject_names_serial(sn, "QT-0001"));
   EXPECT_FALSE(subject_names_serial(sn, "QT-000"));
+  EXPECT_FALSE(subject_names_serial(sn, "Hesai stand-in"));
+  EXPECT_FALSE(subject_names_serial({{"CN", "X42"}, {"serialNumber", "X99"}}, "X42"));
+  EXPECT_FALSE(subject_names_serial({{"serialNumber", "X42"}, {"serialNumber", "X99"}}, "X42"));
   EXPECT_EQ(hesai::port::subject_text(sn), "CN=Hesai stand-in, serialNumber=QT-0001");
   EXPECT_EQ(hesai::port::subject_text({}), "no CN and no serialNumber");
+  // Values for a terminal (issue #44, finding 3).
+  EXPECT_EQ(hesai::port::subject_text({{"CN", "a\x1b[2J\x07\\"}}), "CN=a\\x1b[2J\\x07\\x5c");
 }
 
 #if !HESAI_WITH_TLS
@@ -128,6 +145,11 @@ TEST(Ptcs, BuiltWithoutTls) {
 #else
 
 // ---- The test's CA and certificates ----
+
+// A serial and a CN that write to the terminal (ESC ] 0 ; ... BEL sets the window title, ESC [ 2 J
+// clears the screen, DEL): a unit's inventory and a man in the middle's certificate may hold them.
+const char* const kHostileSerial = "\x1b]0;own\x07\x1b[2J\x7f";
+const char* const kHostileCn = "\x1b]0;pwned\x07\x1b[31mSTANDIN\x1b[0m";
 
 EVP_PKEY* new_key() {
   EVP_PKEY* key = nullptr;
@@ -231,6 +253,14 @@ class Pki {
         {"foreign.pem", {{"CN", "STANDIN"}}, &other_ca, server, -day, 30 * day, "serverAuth"},
         {"client.pem", {{"CN", "test client"}}, &ca, client, -day, 30 * day, "clientAuth"},
         {"foreign_client.pem", {{"CN", "foreign client"}}, &other_ca, foreign_client, -day, 30 * day, "clientAuth"},
+        // Issue #44: subjects with escape sequences, and subjects that name a serial only as a word.
+        {"hostile.pem", {{"CN", kHostileCn}}, &ca, server, -day, 30 * day, "serverAuth"},
+        {"hostile_serial.pem", {{"CN", kHostileSerial}}, &ca, server, -day, 30 * day, "serverAuth"},
+        {"two_serials.pem", {{"CN", "Hesai X42 X99"}}, &ca, server, -day, 30 * day, "serverAuth"},
+        {"two_cns.pem", {{"CN", "X42"}, {"CN", "X99"}}, &ca, server, -day, 30 * day, "serverAuth"},
+        {"hesai_lidar.pem", {{"CN", "Hesai Lidar"}}, &ca, server, -day, 30 * day, "serverAuth"},
+        {"x42.pem", {{"CN", "X42"}}, &ca, server, -day, 30 * day, "serverAuth"},
+        {"sn_x42.pem", {{"CN", "Hesai X42 X99"}, {"serialNumber", "X42"}}, &ca, server, -day, 30 * day, "serverAuth"},
     };
     long serial = 100;
     for (const auto& c : certs) {
@@ -295,6 +325,37 @@ class StandIn {
   pid_t pid_ = -1;
   int port_ = 0;
   std::string err_;
+};
+
+// The stand-in's PTC service in this process (PtcServer, as 'hesai replay --serve-ptc' runs it), a
+// QT128C2X whose inventory gives `serial`, over TLS with the certificate `cert` and server.key.
+class ServiceInProcess {
+ public:
+  ServiceInProcess(const std::string& serial, const std::string& cert) {
+    hesai::port::StandInContent content;
+    content.model = hesai::Model::qt128c2x;
+    content.serial = serial;
+    hesai::port::TlsServerOptions o;
+    o.cert_file = pki().path(cert);
+    o.key_file = pki().path("server.key");
+    std::shared_ptr<hesai::port::TlsContext> tls = hesai::port::TlsContext::server(o, error_);
+    if (!tls) return;
+    server_.use_tls(std::move(tls));
+    if (!server_.open("127.0.0.1", 0, std::move(content), error_)) return;
+    thread_ = std::thread([this] { server_.run(); });
+  }
+  ~ServiceInProcess() {
+    server_.stop();
+    if (thread_.joinable()) thread_.join();
+  }
+  int port() const { return thread_.joinable() ? server_.port() : 0; }
+  const std::string& error() const { return error_; }
+  std::string at() const { return " 127.0.0.1 --ptc-port " + std::to_string(port()); }
+
+ private:
+  hesai::port::PtcServer server_;
+  std::thread thread_;
+  std::string error_;
 };
 
 std::string standin_tls(const std::string& cert, const std::string& client_ca = "") {
@@ -588,6 +649,91 @@ TEST(Ptcs, Usage) {
   }
   EXPECT_EQ(run("listen --tls --ca x.pem --count 1").status, 1);  // --tls goes with --sensor
   EXPECT_EQ(run("replay " + data_path("qt128c2x_dual.pcap") + " --to 127.0.0.1:9 --tls-cert a.pem --tls-key b.key").status, 1);
+}
+
+
+// ---- Issue #44 ----
+
+// The offset of the first byte of `text` a terminal would act on (below 0x20 but the line feed, or
+// DEL), or npos. The text itself is not printed on failure: it would reach the terminal running
+// the tests.
+std::size_t first_control_byte(const std::string& text) {
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    const unsigned char b = static_cast<unsigned char>(text[i]);
+    if ((b < 0x20 && b != '\n') || b == 0x7F) return i;
+  }
+  return std::string::npos;
+}
+
+// Finding 3: the TLS mismatch messages printed the certificate's subject and the inventory's serial
+// raw: a man in the middle's self-signed certificate (or a unit's inventory) wrote escape sequences
+// to the operator's terminal. Each is shown with \xNN now; on stdout, text and JSON alike.
+TEST(Ptcs, HostileSubjectAndSerialReachTheTerminalEscaped) {
+  {  // A subject that is not the serial: refused, both named, escaped.
+    ServiceInProcess unit(kHostileSerial, "hostile.pem");
+    ASSERT_NE(unit.port(), 0) << unit.error();
+    for (const char* json : {"", " --json"}) {
+      const Ran r = run("sensor info" + unit.at() + tls_client() + json);
+      EXPECT_EQ(r.status, 2);
+      EXPECT_EQ(first_control_byte(r.err), std::string::npos);
+      EXPECT_EQ(first_control_byte(r.out), std::string::npos);
+      EXPECT_NE(r.err.find("(CN=\\x1b]0;pwned\\x07\\x1b[31mSTANDIN\\x1b[0m)"), std::string::npos) << first_control_byte(r.err);
+      EXPECT_NE(r.err.find("the serial '\\x1b]0;own\\x07\\x1b[2J\\x7f' of its inventory"), std::string::npos)
+          << first_control_byte(r.err);
+    }
+    const Ran expect = run("sensor info" + unit.at() + tls_client() + " --expect-serial STANDIN");
+    EXPECT_EQ(expect.status, 2);
+    EXPECT_EQ(first_control_byte(expect.err), std::string::npos);
+    EXPECT_NE(expect.err.find("does not name the expected serial 'STANDIN'"), std::string::npos) << first_control_byte(expect.err);
+  }
+  {  // The subject is the serial, byte for byte: accepted, and the serial printed escaped.
+    ServiceInProcess unit(kHostileSerial, "hostile_serial.pem");
+    ASSERT_NE(unit.port(), 0) << unit.error();
+    const Ran text = run("sensor info" + unit.at() + tls_client());
+    EXPECT_EQ(text.status, 0) << first_control_byte(text.err);
+    EXPECT_EQ(first_control_byte(text.out), std::string::npos);
+    EXPECT_EQ(first_control_byte(text.err), std::string::npos);
+    EXPECT_NE(text.out.find("serial            \\x1b]0;own\\x07\\x1b[2J\\x7f\n"), std::string::npos);
+    const Ran json = run("sensor info" + unit.at() + tls_client() + " --json");
+    EXPECT_EQ(json.status, 0);
+    EXPECT_EQ(first_control_byte(json.out), std::string::npos);
+    EXPECT_NE(json.out.find("\"serial\":\"\\u001b]0;own\\u0007\\u001b[2J\\u007f\""), std::string::npos);
+  }
+}
+
+// Finding 5: the serial pin was a word match: a CN that holds two serials passed as either unit,
+// a certificate with two CNs as either, and CN "Hesai Lidar" as a unit reporting "Lidar". A
+// certificate names one serial: its serialNumber when it has one, else its CN, whole, byte for byte.
+TEST(Ptcs, SerialPinIsAnExactMatch) {
+  const std::string rule = "must equal the serial exactly";
+  const auto refused = [&](const std::string& serial, const std::string& cert, const std::string& cn) {
+    SCOPED_TRACE(serial + " with " + cert);
+    ServiceInProcess unit(serial, cert);
+    ASSERT_NE(unit.port(), 0) << unit.error();
+    expect_failure("sensor info" + unit.at() + tls_client(),
+                   {"(" + cn + ") does not name the serial '" + serial + "' of its inventory", rule});
+  };
+  refused("X42", "two_serials.pem", "CN=Hesai X42 X99");
+  refused("X99", "two_serials.pem", "CN=Hesai X42 X99");
+  refused("X42", "two_cns.pem", "CN=X42, CN=X99");
+  refused("X99", "two_cns.pem", "CN=X42, CN=X99");
+  refused("Lidar", "hesai_lidar.pem", "CN=Hesai Lidar");
+  refused("X99", "sn_x42.pem", "CN=Hesai X42 X99, serialNumber=X42");  // the serialNumber decides
+  {  // --expect-serial: the same rule, before any command.
+    TinyTlsServer server(TLS1_3_VERSION, "hesai_lidar.pem");
+    ASSERT_NE(server.port(), 0);
+    expect_failure("sensor info 127.0.0.1 --ptc-port " + std::to_string(server.port()) + tls_client() + " --expect-serial Lidar",
+                   {"(CN=Hesai Lidar) does not name the expected serial 'Lidar'", rule, "no command was sent"});
+    EXPECT_EQ(server.application_bytes(), 0);
+  }
+  // What passes: the whole CN, or the serialNumber whatever the CN says.
+  for (const auto& [serial, cert] : {std::pair<const char*, const char*>{"X42", "x42.pem"}, {"X42", "sn_x42.pem"}}) {
+    ServiceInProcess unit(serial, cert);
+    ASSERT_NE(unit.port(), 0) << unit.error();
+    const Ran r = run("sensor info" + unit.at() + tls_client() + " --expect-serial X42 --json");
+    EXPECT_EQ(r.status, 0) << cert << ": " << r.err;
+    EXPECT_NE(r.out.find("\"serial\":\"X42\""), std::string::npos) << r.out;
+  }
 }
 
 #endif  // HESAI_WITH_TLS

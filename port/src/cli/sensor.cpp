@@ -14,6 +14,7 @@
 #include "hesai/hkdf.h"
 #include "hesai/ptc.h"
 #include "hesai/model.h"
+#include "hesai_port/base/text.h"
 #include "commands.h"
 
 namespace hesai::cli {
@@ -22,23 +23,7 @@ using port::PtcClient;
 using port::PtcResult;
 using Bytes = std::vector<std::uint8_t>;
 
-std::string json_string(const char* s) {
-  std::string out = "\"";
-  for (const char* p = s; *p != '\0'; ++p) {
-    const unsigned char c = static_cast<unsigned char>(*p);
-    if (c == '"' || c == '\\') {
-      out += '\\';
-      out += static_cast<char>(c);
-    } else if (c < 0x20 || c >= 0x7F) {
-      char esc[8];
-      std::snprintf(esc, sizeof esc, "\\u%04x", c);
-      out += esc;
-    } else {
-      out += static_cast<char>(c);
-    }
-  }
-  return out + "\"";
-}
+std::string json_string(const char* s) { return port::json_string(s); }
 
 std::string ipv4_text(const std::uint8_t a[4]) {
   return std::to_string(a[0]) + "." + std::to_string(a[1]) + "." + std::to_string(a[2]) + "." + std::to_string(a[3]);
@@ -117,6 +102,15 @@ constexpr const char* kSensorUsage =
     "\n"
     "PTCS:\n";
 
+// After the TLS options (options.cpp): how the serial is checked.
+constexpr const char* kSerialPinHelp =
+    "\n"
+    "The serial check is exact: the unit's certificate names one serial, its serialNumber, or its\n"
+    "CN where it has none, and that whole value must equal the serial (CN \"Hesai QT128 1234\" is\n"
+    "not unit 1234). Without --expect-serial the certificate must name the serial the unit itself\n"
+    "reports in its inventory: that binds the certificate to what the unit says, not to the unit\n"
+    "you meant; any unit with a certificate of the CA passes. --expect-serial SN pins the unit.\n";
+
 std::string mac_text(const std::uint8_t m[6]) {
   char text[18];
   std::snprintf(text, sizeof text, "%02x:%02x:%02x:%02x:%02x:%02x", m[0], m[1], m[2], m[3], m[4], m[5]);
@@ -124,23 +118,7 @@ std::string mac_text(const std::uint8_t m[6]) {
 }
 
 
-// Text from the unit (serial, dates, versions) for a terminal: printable ASCII as is, every other
-// byte (control bytes such as ESC, DEL, bytes of 0x80 and above) and the backslash as \xNN, so a
-// forged inventory cannot send escape sequences to the user's terminal.
-std::string terminal_text(const char* s) {
-  std::string out;
-  for (const char* p = s; *p != '\0'; ++p) {
-    const unsigned char c = static_cast<unsigned char>(*p);
-    if (c >= 0x20 && c < 0x7F && c != '\\') {
-      out += static_cast<char>(c);
-    } else {
-      char esc[8];
-      std::snprintf(esc, sizeof esc, "\\x%02x", c);
-      out += esc;
-    }
-  }
-  return out;
-}
+using port::terminal_text;
 
 // What lstat found at a path that is not a regular file, for the refusal.
 const char* file_kind(mode_t mode) {
@@ -152,11 +130,6 @@ const char* file_kind(mode_t mode) {
   return "not a regular file";
 }
 
-// Writes `bytes` to `path` atomically: a new file in the same folder (a random name, created with
-// O_CREAT | O_EXCL | O_NOFOLLOW and mode 0600, then set to `mode`), written, fsync'ed and renamed
-// over `path`. A reader holding the old file open keeps the old bytes; a path that exists and is
-// not a regular file (a symbolic link, by lstat, a folder, a FIFO) is refused and left as it is;
-// on any failure the temporary file is removed. Exit status (kExitInput with `error` on failure).
 // False, with a message, when `path` exists and is not a regular file (lstat: a link is not).
 bool regular_or_absent(const std::string& path, std::string& error) {
   struct stat st {};
@@ -166,46 +139,83 @@ bool regular_or_absent(const std::string& path, std::string& error) {
   return false;
 }
 
+// A file written atomically over `path`: create() makes a new file in the same folder (a random
+// name, created with O_CREAT | O_EXCL | O_NOFOLLOW and mode 0600), commit() sets its mode, writes
+// it, fsyncs it and renames it over `path`. A reader holding the old file open keeps the old
+// bytes; a path that exists and is not a regular file (a symbolic link, by lstat, a folder, a
+// FIFO) is refused and left as it is; a temporary file not committed is removed. Each returns an
+// exit status (kExitInput with `error` on failure).
+class AtomicFile {
+ public:
+  explicit AtomicFile(std::string path) : path_(std::move(path)) {}
+  ~AtomicFile() { discard(); }
+  AtomicFile(const AtomicFile&) = delete;
+  AtomicFile& operator=(const AtomicFile&) = delete;
+
+  int create(std::string& error) {
+    if (!regular_or_absent(path_, error)) return kExitInput;
+    const std::size_t slash = path_.rfind('/');
+    folder_ = slash == std::string::npos ? "" : path_.substr(0, slash + 1);
+    const std::string name = slash == std::string::npos ? path_ : path_.substr(slash + 1);
+    std::uint8_t random[8];
+    if (name.empty() || !port::random_bytes(random, sizeof random)) {
+      error = "cannot write '" + path_ + "': " + (name.empty() ? "not a file name" : "no random name for the temporary file");
+      return kExitInput;
+    }
+    char suffix[24];
+    std::snprintf(suffix, sizeof suffix, ".%02x%02x%02x%02x%02x%02x%02x%02x.tmp", random[0], random[1], random[2],
+                  random[3], random[4], random[5], random[6], random[7]);
+    temp_ = folder_ + "." + name + suffix;
+    fd_ = ::open(temp_.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0600);
+    if (fd_ < 0) {
+      error = "cannot write '" + path_ + "': cannot create '" + temp_ + "': " + std::strerror(errno);
+      return kExitInput;
+    }
+    return kExitOk;
+  }
+
+  int commit(const Bytes& bytes, mode_t mode, std::string& error) {
+    std::size_t done = 0;
+    int err = fchmod(fd_, mode) == 0 ? 0 : errno;
+    while (err == 0 && done < bytes.size()) {
+      const ssize_t n = ::write(fd_, bytes.data() + done, bytes.size() - done);
+      if (n > 0) done += static_cast<std::size_t>(n);
+      else if (n < 0 && errno != EINTR) err = errno;
+    }
+    if (err == 0 && fsync(fd_) != 0) err = errno;
+    if (::close(fd_) != 0 && err == 0) err = errno;
+    fd_ = -1;
+    if (err == 0 && ::rename(temp_.c_str(), path_.c_str()) != 0) err = errno;
+    if (err != 0) {
+      error = "cannot write '" + path_ + "': " + std::strerror(err);
+      discard();
+      return kExitInput;
+    }
+    temp_.clear();
+    // The rename itself lasts once the folder's entry is on disk (best effort).
+    if (const int dir = ::open(folder_.empty() ? "." : folder_.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC); dir >= 0) {
+      (void)fsync(dir);
+      ::close(dir);
+    }
+    return kExitOk;
+  }
+
+ private:
+  void discard() {
+    if (fd_ >= 0) ::close(fd_);
+    fd_ = -1;
+    if (!temp_.empty()) ::unlink(temp_.c_str());
+    temp_.clear();
+  }
+
+  std::string path_, folder_, temp_;
+  int fd_ = -1;
+};
+
 int write_file(const std::string& path, const Bytes& bytes, mode_t mode, std::string& error) {
-  if (!regular_or_absent(path, error)) return kExitInput;
-  const std::size_t slash = path.rfind('/');
-  const std::string folder = slash == std::string::npos ? "" : path.substr(0, slash + 1);
-  const std::string name = slash == std::string::npos ? path : path.substr(slash + 1);
-  std::uint8_t random[8];
-  if (name.empty() || !port::random_bytes(random, sizeof random)) {
-    error = "cannot write '" + path + "': " + (name.empty() ? "not a file name" : "no random name for the temporary file");
-    return kExitInput;
-  }
-  char suffix[24];
-  std::snprintf(suffix, sizeof suffix, ".%02x%02x%02x%02x%02x%02x%02x%02x.tmp", random[0], random[1], random[2], random[3],
-                random[4], random[5], random[6], random[7]);
-  const std::string temp = folder + "." + name + suffix;
-  const int fd = ::open(temp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0600);
-  if (fd < 0) {
-    error = "cannot write '" + path + "': cannot create '" + temp + "': " + std::strerror(errno);
-    return kExitInput;
-  }
-  std::size_t done = 0;
-  int err = fchmod(fd, mode) == 0 ? 0 : errno;
-  while (err == 0 && done < bytes.size()) {
-    const ssize_t n = ::write(fd, bytes.data() + done, bytes.size() - done);
-    if (n > 0) done += static_cast<std::size_t>(n);
-    else if (n < 0 && errno != EINTR) err = errno;
-  }
-  if (err == 0 && fsync(fd) != 0) err = errno;
-  if (::close(fd) != 0 && err == 0) err = errno;
-  if (err == 0 && ::rename(temp.c_str(), path.c_str()) != 0) err = errno;
-  if (err != 0) {
-    ::unlink(temp.c_str());
-    error = "cannot write '" + path + "': " + std::strerror(err);
-    return kExitInput;
-  }
-  // The rename itself lasts once the folder's entry is on disk (best effort).
-  if (const int dir = ::open(folder.empty() ? "." : folder.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC); dir >= 0) {
-    (void)fsync(dir);
-    ::close(dir);
-  }
-  return kExitOk;
+  AtomicFile file(path);
+  if (const int st = file.create(error); st != kExitOk) return st;
+  return file.commit(bytes, mode, error);
 }
 
 // Whether a downloaded file parses for `model`; `text` says so ("fits the QT128C2X (128
@@ -354,8 +364,10 @@ int sensor_signature(PtcClient& client, const std::string& action, const std::st
       return kExitUsage;
     }
     std::string secret, error;
-    if (!regular_or_absent(key_out, error)) {  // before a session starts that no file would hold
-      std::fprintf(stderr, "hesai sensor: %s\n", error.c_str());
+    // Before a session starts that no file would hold: the key's path is checked and its
+    // temporary file made (and removed at once: an interrupted request leaves none behind).
+    if (AtomicFile probe(key_out); probe.create(error) != kExitOk) {
+      std::fprintf(stderr, "hesai sensor: %s (no session started)\n", error.c_str());
       return kExitInput;
     }
     if (const int st = read_secret(secret_file, secret, error); st != kExitOk) {
@@ -376,7 +388,12 @@ int sensor_signature(PtcClient& client, const std::string& action, const std::st
     const int wst = write_file(key_out, hex, 0600, error);
     secure_wipe(hex.data(), hex.size());
     if (wst != kExitOk) {
-      std::fprintf(stderr, "hesai sensor: %s\n", error.c_str());
+      // The folder changed since the check: a session whose key nobody holds is stopped.
+      Bytes r;
+      const bool stopped = client.request(ptc::Command::signature_stop, {}, r).ok();
+      std::fprintf(stderr, "hesai sensor: %s; %s\n", error.c_str(),
+                   stopped ? "the session is stopped (no file holds its key)"
+                           : "the session could not be stopped: run 'hesai sensor signature stop'");
       return wst;
     }
     if (json) std::printf("{\"session\":\"started\",\"session_key_file\":%s}\n", json_string(key_out.c_str()).c_str());
@@ -435,7 +452,7 @@ int cmd_sensor(Args& args) {
     }
     const std::string a = args.take();
     if (a == "--help" || a == "-h") {
-      std::printf("%s%s", kSensorUsage, kTlsOptionsHelp);
+      std::printf("%s%s%s", kSensorUsage, kTlsOptionsHelp, kSerialPinHelp);
       return kExitOk;
     }
     if (a == "--json") json = true;
@@ -509,6 +526,9 @@ int cmd_sensor(Args& args) {
 
 int SensorLink::fetch(const DecodeOptions& options, Pipeline& pipeline, std::string& error, bool require_sync) {
   const std::string origin = client_.host() + ":" + std::to_string(client_.port());
+  // Ctrl-C (or SIGTERM) ends the request in flight at once, here and in the session that follows
+  // over this client; the requests made after it (the session's stop) still run.
+  client_.set_stop(&g_stop);
   if (!ask_model(client_, model_)) {
     error = "cannot fetch the calibration from the sensor (see above)";
     return kExitInput;

@@ -5,12 +5,12 @@
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
-#include <fstream>
 #include <vector>
 
 #include "hesai/ptc.h"
 #include "hesai/ptc_settings.h"
 #include "hesai_port/base/clock.h"
+#include "hesai_port/base/text.h"
 #include "sensor.h"
 #include "settings_file.h"
 
@@ -114,7 +114,7 @@ bool parse_value(const Wanted& w, Model model, const Settings& current, Settings
   bool ok = false;
   if (form_only && (w.setting == Setting::fov || w.setting == Setting::rpm)) {
     ok = w.setting == Setting::fov || all_digits(t, 5);
-    if (!ok) error = "rpm: '" + t + "' is not a number of revolutions per minute";
+    if (!ok) error = "rpm: '" + port::terminal_text(t) + "' is not a number of revolutions per minute";
     return ok;
   }
   switch (w.setting) {
@@ -162,7 +162,7 @@ bool parse_value(const Wanted& w, Model model, const Settings& current, Settings
     }
   }
   if (!ok)
-    error = std::string(ptc::setting_name(w.setting)) + ": '" + t + "' is not allowed" +
+    error = std::string(ptc::setting_name(w.setting)) + ": '" + port::terminal_text(t) + "' is not allowed" +
             (model != Model::unknown ? std::string(" on the ") + model_name(model) : std::string()) +
             "; allowed: " + allowed_text(w.setting, model);
   return ok;
@@ -300,7 +300,7 @@ int sensor_set(PtcClient& client, const std::vector<std::string>& pairs) {
     Setting s;
     if (eq == std::string::npos || !ptc::setting_from_name(p.data(), eq, s)) {
       std::fprintf(stderr, "hesai sensor: set takes KEY=VALUE with KEY one of rpm, return_mode, standby, sync_angle, "
-                           "destination, fov; got '%s' (nothing written)\n", p.c_str());
+                           "destination, fov; got '%s' (nothing written)\n", port::terminal_text(p).c_str());
       return kExitUsage;
     }
     for (const Wanted& w : wanted)
@@ -333,22 +333,9 @@ int sensor_set(PtcClient& client, const std::vector<std::string>& pairs) {
 }
 
 int sensor_apply(PtcClient& client, const std::string& file, bool dry_run) {
-  // At most 64 KiB: a settings file holds six keys.
-  constexpr std::size_t kMaxFileBytes = 65536;
   std::string bytes, error;
-  std::ifstream in(file, std::ios::binary);
-  char buf[4096];
-  while (in && bytes.size() <= kMaxFileBytes) {
-    in.read(buf, sizeof buf);
-    bytes.append(buf, static_cast<std::size_t>(in.gcount()));
-  }
-  if (!in.is_open() || in.bad()) {
-    std::fprintf(stderr, "hesai sensor: cannot read '%s': %s (nothing written)\n", file.c_str(), std::strerror(errno));
-    return kExitUsage;
-  }
-  if (bytes.size() > kMaxFileBytes) {
-    std::fprintf(stderr, "hesai sensor: '%s' is larger than %zu bytes: not a settings file (nothing written)\n",
-                 file.c_str(), kMaxFileBytes);
+  if (!read_settings_file(file, bytes, error)) {
+    std::fprintf(stderr, "hesai sensor: %s (nothing written)\n", error.c_str());
     return kExitUsage;
   }
   std::vector<Wanted> wanted;

@@ -13,30 +13,16 @@
 #include <unistd.h>
 
 #include "hesai_port/base/clock.h"
+#include "hesai_port/base/text.h"
 #include "hesai_port/net/tls.h"
+#include "wait.h"
 
 namespace hesai::port {
 namespace {
 
-// Milliseconds left until `deadline_ns`, at least 0, rounded up.
-int ms_left(std::int64_t deadline_ns) {
-  const std::int64_t left = deadline_ns - monotonic_ns();
-  if (left <= 0) return 0;
-  const std::int64_t ms = (left + 999999) / 1000000;
-  return ms > 60000 ? 60000 : static_cast<int>(ms);
-}
-
-// Waits until `fd` is ready for `events` or the deadline passes: true when ready.
-bool wait_ready(int fd, short events, std::int64_t deadline_ns) {
-  for (;;) {
-    pollfd p{fd, events, 0};
-    const int timeout = ms_left(deadline_ns);
-    const int r = poll(&p, 1, timeout);
-    if (r > 0) return true;
-    if (r == 0 && monotonic_ns() >= deadline_ns) return false;
-    if (r < 0 && errno != EINTR) return true;  // the next call reports the error
-  }
-}
+// How a certificate names a serial (subject_names_serial), for the refusals.
+constexpr const char* kSerialRule =
+    "its serialNumber, or its CN where it has none, must equal the serial exactly";
 
 std::string hex_byte(std::uint8_t b) {
   char text[8];
@@ -89,9 +75,9 @@ PtcTransport::Io TcpTransport::connect(const std::string& host, std::uint16_t po
     return Io::error;
   }
   if (rc != 0) {
-    if (!wait_ready(fd_, POLLOUT, deadline_ns)) {
-      error = "no connection";
-      return Io::timeout;
+    if (const Wait w = wait_fd(fd_, POLLOUT, deadline_ns, stop_); w != Wait::ready) {
+      error = w == Wait::stopped ? "interrupted" : "no connection";
+      return w == Wait::stopped ? Io::stopped : Io::timeout;
     }
     int so_error = 0;
     socklen_t len = sizeof so_error;
@@ -111,7 +97,8 @@ PtcTransport::Io TcpTransport::send_all(const std::uint8_t* data, std::size_t si
     if (n > 0) {
       done += static_cast<std::size_t>(n);
     } else if (n < 0 && (errno == EAGAIN || errno == EWOULDBLOCK || errno == EINTR)) {
-      if (!wait_ready(fd_, POLLOUT, deadline_ns)) return Io::timeout;
+      if (const Wait w = wait_fd(fd_, POLLOUT, deadline_ns, stop_); w != Wait::ready)
+        return w == Wait::stopped ? Io::stopped : Io::timeout;
     } else {
       return (errno == EPIPE || errno == ECONNRESET) ? Io::closed : Io::error;
     }
@@ -128,7 +115,8 @@ PtcTransport::Io TcpTransport::receive_exact(std::uint8_t* data, std::size_t siz
     } else if (n == 0) {
       return Io::closed;
     } else if (errno == EAGAIN || errno == EWOULDBLOCK || errno == EINTR) {
-      if (!wait_ready(fd_, POLLIN, deadline_ns)) return Io::timeout;
+      if (const Wait w = wait_fd(fd_, POLLIN, deadline_ns, stop_); w != Wait::ready)
+        return w == Wait::stopped ? Io::stopped : Io::timeout;
     } else {
       return errno == ECONNRESET ? Io::closed : Io::error;
     }
@@ -165,6 +153,9 @@ PtcResult PtcClient::request(ptc::Command command, ByteView payload, std::vector
   std::lock_guard<std::mutex> lock(mutex_);
   response.clear();
   const std::int64_t deadline = monotonic_ns() + static_cast<std::int64_t>(timeout_ms_) * 1000000;
+  // A request started once the flag is up runs to its deadline (the clean-up after a stop).
+  active_stop_ = stop_ != nullptr && !stop_->load() ? stop_ : nullptr;
+  if (transport_) transport_->set_stop(active_stop_);
   if (!transport_) {
     if (PtcResult r = open(command, deadline); !r.ok()) return r;
   }
@@ -175,14 +166,18 @@ PtcResult PtcClient::open(ptc::Command command, std::int64_t deadline) {
   std::string error;
   if (!tls_) {
     auto tcp = std::make_unique<TcpTransport>();
+    tcp->set_stop(active_stop_);
     const PtcTransport::Io io = tcp->connect(connect_host_, port_, deadline, error);
+    if (io == PtcTransport::Io::stopped) return fail(PtcOutcome::stopped, command, "interrupted while connecting");
     if (io == PtcTransport::Io::timeout) return fail(PtcOutcome::timeout, command, error + " within " + seconds());
     if (io != PtcTransport::Io::ok) return fail(PtcOutcome::unreachable, command, error);
     transport_ = std::move(tcp);
     return PtcResult{};
   }
   auto tls = std::make_unique<TlsTransport>();
+  tls->set_stop(active_stop_);
   const PtcTransport::Io io = tls->connect(tls_, connect_host_, port_, deadline, error);
+  if (io == PtcTransport::Io::stopped) return fail(PtcOutcome::stopped, command, "interrupted while connecting");
   if (io == PtcTransport::Io::timeout) return fail(PtcOutcome::timeout, command, error + " within " + seconds());
   if (io != PtcTransport::Io::ok && !tls->tcp_connected()) return fail(PtcOutcome::unreachable, command, error);
   if (io != PtcTransport::Io::ok) return fail(PtcOutcome::tls, command, "TLS: " + error);
@@ -192,7 +187,7 @@ PtcResult PtcClient::open(ptc::Command command, std::int64_t deadline) {
   if (!o.expect_serial.empty() && !subject_names_serial(subject, o.expect_serial))
     return fail(PtcOutcome::tls, command,
                 "TLS: the unit's certificate (" + subject_text(subject) + ") does not name the expected serial '" +
-                    o.expect_serial + "' (--expect-serial); no command was sent");
+                    terminal_text(o.expect_serial) + "' (--expect-serial; " + kSerialRule + "); no command was sent");
   transport_ = std::move(tls);
   if (o.insecure) return PtcResult{};
   // The serial the unit gives for itself: its certificate must name it.
@@ -211,8 +206,9 @@ PtcResult PtcClient::open(ptc::Command command, std::int64_t deadline) {
   serial = first == std::string::npos ? std::string() : serial.substr(first, serial.find_last_not_of(' ') - first + 1);
   if (!subject_names_serial(subject, serial))
     return fail(PtcOutcome::tls, command,
-                "TLS: the unit's certificate (" + subject_text(subject) + ") does not name the serial '" + serial +
-                    "' of its inventory (0x07): not the unit it claims to be");
+                "TLS: the unit's certificate (" + subject_text(subject) + ") does not name the serial '" +
+                    terminal_text(serial) + "' of its inventory (0x07; " + kSerialRule +
+                    "): not the unit it claims to be");
   return PtcResult{};
 }
 
@@ -223,6 +219,7 @@ PtcResult PtcClient::exchange(ptc::Command command, ByteView payload, std::vecto
     const std::string cause = transport_ ? transport_->last_error() : std::string();
     switch (io) {
       case PtcTransport::Io::timeout: return fail(PtcOutcome::timeout, command, std::string("no ") + during + " within " + seconds());
+      case PtcTransport::Io::stopped: return fail(PtcOutcome::stopped, command, std::string("interrupted during the ") + during);
       case PtcTransport::Io::closed: return fail(PtcOutcome::cut_short, command, std::string("the sensor closed the connection within the ") + during);
       default:
         if (!cause.empty()) return fail(PtcOutcome::tls, command, std::string("TLS error during the ") + during + ": " + cause);

@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <cstring>
 #include <memory>
+#include <string_view>
 #include <fcntl.h>
 #include <netinet/in.h>
 #include <poll.h>
@@ -35,8 +36,8 @@ void wipe_string(std::string& s) {
   s.clear();
 }
 
-void put_text(std::vector<std::uint8_t>& out, std::size_t at, const char* text, std::size_t field) {
-  for (std::size_t i = 0; i < field && text[i] != '\0'; ++i) out[at + i] = static_cast<std::uint8_t>(text[i]);
+void put_text(std::vector<std::uint8_t>& out, std::size_t at, std::string_view text, std::size_t field) {
+  for (std::size_t i = 0; i < field && i < text.size(); ++i) out[at + i] = static_cast<std::uint8_t>(text[i]);
 }
 
 void put_be16(std::vector<std::uint8_t>& out, std::size_t at, std::uint16_t v) {
@@ -308,7 +309,7 @@ std::vector<std::uint8_t> PtcServer::answer(std::uint8_t command, const std::vec
     case Command::inventory: {
       const bool qt128 = model == Model::qt128c2x;
       std::vector<std::uint8_t> out(qt128 ? ptc::kInvQt128Bytes : ptc::kInvBytes, 0);
-      put_text(out, ptc::kInvSerial, "STANDIN", ptc::kInvSerialBytes);
+      put_text(out, ptc::kInvSerial, content_.serial, ptc::kInvSerialBytes);
       put_text(out, ptc::kInvDate, "2026-11-25", ptc::kInvDateBytes);
       const std::uint8_t mac[6] = {0x02, 0, 0, 0, 0, 0x01};
       std::memcpy(out.data() + ptc::kInvMac, mac, sizeof mac);

@@ -10,6 +10,8 @@
 
 #include "hesai/ct.h"
 #include "hesai_port/base/clock.h"
+#include "hesai_port/base/text.h"
+#include "wait.h"
 
 #if HESAI_WITH_TLS
 #include <csignal>
@@ -35,8 +37,6 @@ const char* file_kind(mode_t mode) {
   if (S_ISBLK(mode)) return "a block device";
   return "not a regular file";
 }
-
-bool is_word_char(char c) { return (c >= '0' && c <= '9') || (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z'); }
 
 }  // namespace
 
@@ -93,20 +93,28 @@ bool read_private_key_file(const std::string& path, std::string& pem, std::strin
 
 bool subject_names_serial(const std::vector<SubjectName>& names, const std::string& serial) {
   if (serial.empty()) return false;
+  // The one name the certificate gives: its serialNumber where it has one, else its CN; two of
+  // the field that decides name no one unit.
+  std::size_t serial_numbers = 0, cns = 0;
+  const SubjectName* serial_number = nullptr;
+  const SubjectName* cn = nullptr;
   for (const SubjectName& n : names) {
-    const std::string& v = n.value;
-    for (std::size_t at = v.find(serial); at != std::string::npos; at = v.find(serial, at + 1)) {
-      const std::size_t end = at + serial.size();
-      if ((at == 0 || !is_word_char(v[at - 1])) && (end == v.size() || !is_word_char(v[end]))) return true;
+    if (n.field == "serialNumber") {
+      ++serial_numbers;
+      serial_number = &n;
+    } else if (n.field == "CN") {
+      ++cns;
+      cn = &n;
     }
   }
-  return false;
+  if (serial_numbers > 0) return serial_numbers == 1 && serial_number->value == serial;
+  return cns == 1 && cn->value == serial;
 }
 
 std::string subject_text(const std::vector<SubjectName>& names) {
   if (names.empty()) return "no CN and no serialNumber";
   std::string out;
-  for (const SubjectName& n : names) out += (out.empty() ? "" : ", ") + n.field + "=" + n.value;
+  for (const SubjectName& n : names) out += (out.empty() ? "" : ", ") + n.field + "=" + terminal_text(n.value);
   return out;
 }
 
@@ -145,20 +153,6 @@ class SigpipeGuard {
   sigset_t pipe_{}, old_{};
   bool was_pending_ = false, blocked_ = false;
 };
-
-// Waits until `fd` is ready for `events` or the deadline passes: true when ready (or when poll
-// fails: the next call reports the error).
-bool wait_ready(int fd, short events, std::int64_t deadline_ns) {
-  for (;;) {
-    const std::int64_t left = deadline_ns - monotonic_ns();
-    if (left <= 0) return false;
-    const std::int64_t ms = (left + 999999) / 1000000;
-    pollfd p{fd, events, 0};
-    const int r = poll(&p, 1, ms > 60000 ? 60000 : static_cast<int>(ms));
-    if (r > 0) return true;
-    if (r < 0 && errno != EINTR) return true;
-  }
-}
 
 // OpenSSL's reasons in its error queue, "reason; reason" (the queue emptied).
 std::string openssl_reasons() {
@@ -342,6 +336,7 @@ TlsTransport::~TlsTransport() {
 PtcTransport::Io TlsTransport::connect(std::shared_ptr<TlsContext> context, const std::string& host, std::uint16_t port,
                                        std::int64_t deadline_ns, std::string& error) {
   context_ = std::move(context);
+  tcp_.set_stop(stop_);
   if (const Io io = tcp_.connect(host, port, deadline_ns, error); io != Io::ok) return io;
   fd_ = tcp_.fd();
   ERR_clear_error();
@@ -380,9 +375,9 @@ PtcTransport::Io TlsTransport::handshake(bool client, std::int64_t deadline_ns, 
     // 0 (a controlled end) and negative returns (a failure, or I/O to wait for) alike.
     const int e = SSL_get_error(ssl_, r);
     if (e == SSL_ERROR_WANT_READ || e == SSL_ERROR_WANT_WRITE) {
-      if (!wait_ready(fd_, e == SSL_ERROR_WANT_READ ? POLLIN : POLLOUT, deadline_ns)) {
-        error = "no TLS handshake";
-        return Io::timeout;
+      if (const Wait w = wait_fd(fd_, e == SSL_ERROR_WANT_READ ? POLLIN : POLLOUT, deadline_ns, stop_); w != Wait::ready) {
+        error = w == Wait::stopped ? "interrupted" : "no TLS handshake";
+        return w == Wait::stopped ? Io::stopped : Io::timeout;
       }
       continue;
     }
@@ -420,7 +415,8 @@ PtcTransport::Io TlsTransport::send_all(const std::uint8_t* data, std::size_t si
     }
     const int e = SSL_get_error(ssl_, r);
     if (e == SSL_ERROR_WANT_READ || e == SSL_ERROR_WANT_WRITE) {
-      if (!wait_ready(fd_, e == SSL_ERROR_WANT_READ ? POLLIN : POLLOUT, deadline_ns)) return Io::timeout;
+      if (const Wait w = wait_fd(fd_, e == SSL_ERROR_WANT_READ ? POLLIN : POLLOUT, deadline_ns, stop_); w != Wait::ready)
+        return w == Wait::stopped ? Io::stopped : Io::timeout;
       continue;
     }
     if (e == SSL_ERROR_SSL) {
@@ -456,7 +452,8 @@ PtcTransport::Io TlsTransport::receive_exact(std::uint8_t* data, std::size_t siz
     }
     const int e = SSL_get_error(ssl_, r);
     if (e == SSL_ERROR_WANT_READ || e == SSL_ERROR_WANT_WRITE) {
-      if (!wait_ready(fd_, e == SSL_ERROR_WANT_READ ? POLLIN : POLLOUT, deadline_ns)) return Io::timeout;
+      if (const Wait w = wait_fd(fd_, e == SSL_ERROR_WANT_READ ? POLLIN : POLLOUT, deadline_ns, stop_); w != Wait::ready)
+        return w == Wait::stopped ? Io::stopped : Io::timeout;
       continue;
     }
     if (e == SSL_ERROR_ZERO_RETURN) {

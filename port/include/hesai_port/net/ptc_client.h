@@ -7,17 +7,20 @@
 // A response's announced length is checked against the command's bound
 // (ptc::max_response_bytes, 1 MiB for files) before any byte of its payload is stored. After any
 // framing error (another magic, another command's echo, a length past the bound, an answer cut
-// short, a timeout) the connection is closed; the next request connects again.
+// short, a timeout) the connection is closed; the next request connects again. With a stop flag
+// (set_stop), a request in flight ends within 100 ms of the flag going up.
 //
 // The byte stream is a PtcTransport: plain TCP (TcpTransport), or PTCS, PTC over TLS (TlsTransport,
 // hesai_port/net/tls.h) once use_tls() is called. Over TLS, each new connection is checked before
 // the request goes out: the chain to the CA (TlsContext), then the serial. The unit's certificate
-// must name, in its subject's CN or serialNumber, the expected serial when one is given (before
-// any command is sent), and the serial of the unit's own inventory (0x07, asked first on every
-// connection; skipped with the insecure option, which checks no chain either); a mismatch names
-// both.
+// must name (subject_names_serial: its serialNumber, or its CN where it has none, equal to the
+// serial, byte for byte) the expected serial when one is given (before any command is sent), and
+// the serial of the unit's own inventory (0x07, asked first on every connection; skipped with the
+// insecure option, which checks no chain either); a mismatch names both, escaped for a terminal
+// (terminal_text), as either may hold anything.
 #pragma once
 
+#include <atomic>
 #include <cstdint>
 #include <memory>
 #include <mutex>
@@ -38,13 +41,18 @@ bool random_bytes(std::uint8_t* out, std::size_t n);
 /// A connected byte stream with deadlines (monotonic_ns() values).
 class PtcTransport {
  public:
-  enum class Io { ok, timeout, closed, error };
+  enum class Io { ok, timeout, closed, error, stopped };
   virtual ~PtcTransport() = default;
+  /// From now on, every wait ends within 100 ms once `*stop` is true (Io::stopped); null: never.
+  void set_stop(const std::atomic<bool>* stop) { stop_ = stop; }
   virtual Io send_all(const std::uint8_t* data, std::size_t size, std::int64_t deadline_ns) = 0;
   /// Reads exactly `size` bytes; closed when the peer ends the stream first.
   virtual Io receive_exact(std::uint8_t* data, std::size_t size, std::int64_t deadline_ns) = 0;
   /// After Io::error or Io::closed: the cause, when the transport knows more than errno (TLS).
   virtual std::string last_error() const { return {}; }
+
+ protected:
+  const std::atomic<bool>* stop_ = nullptr;
 };
 
 /// Plain TCP over IPv4.
@@ -76,6 +84,7 @@ enum class PtcOutcome {
   sensor_error,  ///< a non-zero return code (return_code)
   io_error,      ///< a socket error other than the above
   tls,           ///< PTCS: the handshake failed or the unit's certificate is not the one expected
+  stopped,       ///< the stop flag (set_stop) went up during the request
 };
 
 struct PtcResult {
@@ -107,6 +116,14 @@ class PtcClient {
   /// the announced length, which is at most ptc::max_response_bytes(command)). Requests from
   /// several threads are serialised: one is on the wire at a time.
   PtcResult request(ptc::Command command, ByteView payload, std::vector<std::uint8_t>& response);
+  /// A flag (a signal handler's, say) that ends the request in flight, within 100 ms of its going
+  /// up, as PtcOutcome::stopped (the connection closed). A request started while it is up runs to
+  /// its own deadline: a program's clean-up after a stop (ending a signature session) still
+  /// reaches the unit. Null: none. The flag must outlive the client.
+  void set_stop(const std::atomic<bool>* stop) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    stop_ = stop;
+  }
   /// Closes the connection (the next request opens another).
   void close() {
     std::lock_guard<std::mutex> lock(mutex_);
@@ -131,6 +148,8 @@ class PtcClient {
   std::shared_ptr<TlsContext> tls_;          // null: plain TCP
   std::unique_ptr<PtcTransport> transport_;  // connected, or null
   std::mutex mutex_;                         // one request on the wire at a time
+  const std::atomic<bool>* stop_ = nullptr;         // set_stop()
+  const std::atomic<bool>* active_stop_ = nullptr;  // the request's: stop_, unless it was up at its start
 };
 
 }  // namespace hesai::port

@@ -4,7 +4,7 @@
 // both randoms, hesai_session_key()).
 //
 // Answers: 0x05/0xA9/0xA8 the files byte for byte ('unsupported command' without one); 0x07 an
-// inventory in the model's layout (serial "STANDIN", MAC 02:00:00:00:00:01, versions "standin");
+// inventory in the model's layout (serial StandInContent::serial, "STANDIN" by default, MAC 02:00:00:00:00:01, versions "standin");
 // 0x08 the configuration it keeps (47 bytes: IP 127.0.0.1, mask 255.0.0.0, destination
 // 127.0.0.1:2368, GPS port 10110, the capture's spin rate (600 when unknown), UDP sequence on,
 // clock source GPS, or PTP when a PTP state was given, everything else 0); the set commands
@@ -62,6 +62,7 @@ struct StandInContent {
   std::array<std::uint8_t, 256> refuse{};  ///< a non-zero entry: the set command of that code answers it
   std::array<bool, 256> ignore{};          ///< true: the set command of that code is acknowledged, not applied
   std::size_t config_bytes = 47;           ///< bytes of the configuration answer (fewer: cut short)
+  std::string serial = "STANDIN";          ///< the inventory's serial (bytes as they are, cut to its 18 bytes)
 };
 
 class PtcServer {

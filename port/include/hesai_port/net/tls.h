@@ -44,11 +44,14 @@ struct SubjectName {
   std::string value;
 };
 
-/// Whether `serial` appears in one of `names`: equal to a value, or a word of it (bounded by the
-/// value's ends or by characters other than letters and digits, "Hesai QT128C2X 1234" names
-/// "1234"; "12345" does not). An empty serial appears nowhere.
+/// Whether the certificate whose subject entries are `names` is the unit of `serial`. A
+/// certificate names one serial: its serialNumber attribute where it has one (its CN is then only
+/// a name), else its CN; that whole value must equal `serial`, byte for byte. "CN=Hesai QT128C2X
+/// 1234" is not the certificate of unit "1234" (nor of "QT128C2X"); a subject with two CNs and
+/// no serialNumber, or with two serialNumbers, names no unit. An empty serial is nobody's.
 bool subject_names_serial(const std::vector<SubjectName>& names, const std::string& serial);
-/// "CN=STANDIN, serialNumber=QT-1", or "no CN and no serialNumber", for messages.
+/// "CN=STANDIN, serialNumber=QT-1", or "no CN and no serialNumber", for messages: each value
+/// escaped for a terminal (terminal_text, hesai_port/base/text.h), as a certificate may hold anything.
 std::string subject_text(const std::vector<SubjectName>& names);
 
 struct TlsClientOptions {
