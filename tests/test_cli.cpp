@@ -979,6 +979,48 @@ TEST(Cli, StatsCountsSignatures) {
   EXPECT_EQ(j["signature_invalid"], 0);
 }
 
+// A signed packet sent again in the same session is refused and counted as replayed (issue #44,
+// finding 1): 1100 QT128 packets signed in order, then packet 1090 again (in the window, already
+// accepted), packets 0 and 5 again (more than kReplayWindow = 1024 numbers behind the newest,
+// 1099) and packet 1095 again: four replays. The decode writes exactly the unique packets' points
+// (the CSV of the capture without the replays); without a key the same packets are not judged.
+TEST(Cli, ReplayedSignedPacketsAreRefused) {
+  const auto real = pcap_payloads("qt128c2x_dual.pcap");
+  ASSERT_GE(real.size(), 1100u);
+  std::uint8_t key[32];
+  for (int i = 0; i < 32; ++i) key[i] = static_cast<std::uint8_t>(0x40 + i);
+  std::vector<std::vector<std::uint8_t>> unique;
+  for (std::size_t k = 0; k < 1100; ++k) {
+    unique.push_back(real[k]);
+    qt128_seal(unique.back(), key);
+  }
+  auto replayed = unique;
+  for (std::size_t k : {std::size_t{1090}, std::size_t{0}, std::size_t{5}, std::size_t{1095}}) replayed.push_back(unique[k]);
+  const std::string dir = temp_dir();
+  write_pcap(dir + "/unique.pcap", unique);
+  write_pcap(dir + "/replayed.pcap", replayed);
+  const std::string with_key = " --session-key " + hex32(key);
+
+  auto j = json_numbers(run_cli("stats " + dir + "/replayed.pcap --json" + with_key).out);
+  auto u = json_numbers(run_cli("stats " + dir + "/unique.pcap --json" + with_key).out);
+  EXPECT_EQ(u["signature_valid"], 1100);
+  EXPECT_EQ(u["replayed"], 0);
+  EXPECT_EQ(j["packets"], 1104);
+  EXPECT_EQ(j["replayed"], 4);
+  EXPECT_EQ(j["signature_valid"], 1100);  // the replays verify, but are not counted as valid packets
+  EXPECT_EQ(j["points"], u["points"]);
+  EXPECT_EQ(j["duplicates"], 0);  // refused before the loss accounting
+  const CmdResult a = run_cli("decode " + dir + "/replayed.pcap --out -" + with_key);
+  const CmdResult b = run_cli("decode " + dir + "/unique.pcap --out -" + with_key);
+  ASSERT_EQ(a.status, 0) << a.err;
+  EXPECT_GT(b.out.size(), 100000u);
+  EXPECT_TRUE(a.out == b.out) << "the replays' points were written";
+  // Without a key nothing is verified, so nothing is judged a replay: the copies are duplicates.
+  j = json_numbers(run_cli("stats " + dir + "/replayed.pcap --json").out);
+  EXPECT_EQ(j["replayed"], 0);
+  EXPECT_EQ(j["signature_unverified"], 1104);
+}
+
 // The functional-safety stream of safety_stream.h (each lidar state, faults, one stall), as a
 // capture: stats --json and the text summary report what the test built.
 TEST(Cli, StatsReportsFunctionalSafety) {

@@ -311,6 +311,30 @@ def cut_bags(hesai, work, base, scan_msg, scans):
           'Footer without Data End: exit %d, %s' % (code, err))
 
 
+def hostile_topics(hesai, work, pcap):
+    """Two sensors in one bag, one on a topic holding '"' and '\\' (printable, so it names its
+    sensor): `stats --json` stays valid JSON and names both topics exactly (issue #42)."""
+    payloads = mp.pcap_payloads(pcap)[:200]
+    topics = ['/lidar"front\\top', '/lidar/rear']
+    bag = mp.Bag()
+    bag.schema(1, 'pandar_msgs/msg/PandarScan')
+    for cid, topic in enumerate(topics, 1):
+        bag.channel(cid, 1, topic)
+    for i, scan in enumerate(mp.scan_messages(payloads, 20)):
+        bag.message(1 + i % 2, scan[0][0], mp.cdr_scan(scan, 'hesai'))
+    path = os.path.join(work, 'hostile_topics.mcap')
+    with open(path, 'wb') as f:
+        f.write(bag.finish())
+    r = run(hesai, ['stats', path, '--json'])
+    try:
+        got = json.loads(r.stdout)
+    except ValueError as e:
+        check(False, 'stats --json of a bag whose topic holds \'"\': not JSON (%s): %r' % (e, r.stdout[:300]))
+        return
+    check(r.returncode == 0 and [s['source'] for s in got.get('sensors', [])] == topics,
+          'hostile topics: exit %d, sources %r' % (r.returncode, [s.get('source') for s in got.get('sensors', [])]))
+
+
 def bounded_memory(hesai, work, pcap):
     """`stats` on a bag of more than 256 MiB (the capture's packets as one chunk, repeated) peaks
     under 64 MiB resident, as the kernel reports it for the child (wait4's rusage)."""
@@ -369,6 +393,7 @@ def main():
         print('%s: %d packets, 3 bags agree with the pcap' % (name, len(payloads)))
     replay_sends_payloads(hesai, work, os.path.join(data_dir, 'pandar40p_dual.pcap'))
     damaged_files(hesai, work, os.path.join(data_dir, 'pandar64_dual.pcap'))
+    hostile_topics(hesai, work, os.path.join(data_dir, 'pandar64_dual.pcap'))
     if FAILURES:
         print('%d failures' % len(FAILURES))
         return 1

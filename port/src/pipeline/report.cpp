@@ -4,6 +4,7 @@
 
 #include "hesai/decoder.h"
 #include "hesai/safety.h"
+#include "hesai_port/base/text.h"
 
 namespace hesai::port {
 
@@ -50,7 +51,8 @@ void health_json(std::string& out, LostBy lost_by, const Counts& c, std::size_t 
 }
 
 std::string sensor_json(const SensorReport& r) {
-  std::string out = "{\"source\":\"" + r.source + "\",\"model\":\"" + model_name(r.model) + "\",";
+  // The source is a peer's address or a bag's topic, which may hold '"' or '\\': escaped.
+  std::string out = "{\"source\":" + json_string(r.source) + ",\"model\":\"" + model_name(r.model) + "\",";
   add(out, "packets", r.packets);
   add(out, "lost", r.lost);
   health_json(out, r.lost_by, r.health, channel_count(r.model));
