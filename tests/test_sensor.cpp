@@ -841,7 +841,7 @@ TEST(Sensor, SessionKeyFileIsWrittenAtomicallyAndNeverThroughALink) {
   ASSERT_EQ(mkfifo(fifo.c_str(), 0600), 0);
   r = run(start + folder);
   EXPECT_EQ(r.status, 2);
-  EXPECT_NE(r.err.find("it is a folder"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("it is a directory"), std::string::npos) << r.err;
   const int fifo_reader = open(fifo.c_str(), O_RDONLY | O_NONBLOCK);  // so that a regression writes, not hangs
   r = run(start + fifo);
   EXPECT_EQ(r.status, 2);

@@ -14,6 +14,8 @@
 #include "hesai/hkdf.h"
 #include "hesai/ptc.h"
 #include "hesai/model.h"
+#include "hesai_port/base/files.h"
+#include "hesai_port/base/random.h"
 #include "hesai_port/base/text.h"
 #include "commands.h"
 
@@ -120,102 +122,11 @@ std::string mac_text(const std::uint8_t m[6]) {
 
 using port::terminal_text;
 
-// What lstat found at a path that is not a regular file, for the refusal.
-const char* file_kind(mode_t mode) {
-  if (S_ISLNK(mode)) return "a symbolic link";
-  if (S_ISDIR(mode)) return "a folder";
-  if (S_ISFIFO(mode)) return "a FIFO";
-  if (S_ISSOCK(mode)) return "a socket";
-  if (S_ISCHR(mode) || S_ISBLK(mode)) return "a device";
-  return "not a regular file";
-}
-
-// False, with a message, when `path` exists and is not a regular file (lstat: a link is not).
-bool regular_or_absent(const std::string& path, std::string& error) {
-  struct stat st {};
-  if (lstat(path.c_str(), &st) != 0 || S_ISREG(st.st_mode)) return true;
-  error = "refusing to write '" + path + "': it is " + file_kind(st.st_mode) +
-          ", not a regular file (nothing written, it is left as it is)";
-  return false;
-}
-
-// A file written atomically over `path`: create() makes a new file in the same folder (a random
-// name, created with O_CREAT | O_EXCL | O_NOFOLLOW and mode 0600), commit() sets its mode, writes
-// it, fsyncs it and renames it over `path`. A reader holding the old file open keeps the old
-// bytes; a path that exists and is not a regular file (a symbolic link, by lstat, a folder, a
-// FIFO) is refused and left as it is; a temporary file not committed is removed. Each returns an
-// exit status (kExitInput with `error` on failure).
-class AtomicFile {
- public:
-  explicit AtomicFile(std::string path) : path_(std::move(path)) {}
-  ~AtomicFile() { discard(); }
-  AtomicFile(const AtomicFile&) = delete;
-  AtomicFile& operator=(const AtomicFile&) = delete;
-
-  int create(std::string& error) {
-    if (!regular_or_absent(path_, error)) return kExitInput;
-    const std::size_t slash = path_.rfind('/');
-    folder_ = slash == std::string::npos ? "" : path_.substr(0, slash + 1);
-    const std::string name = slash == std::string::npos ? path_ : path_.substr(slash + 1);
-    std::uint8_t random[8];
-    if (name.empty() || !port::random_bytes(random, sizeof random)) {
-      error = "cannot write '" + path_ + "': " + (name.empty() ? "not a file name" : "no random name for the temporary file");
-      return kExitInput;
-    }
-    char suffix[24];
-    std::snprintf(suffix, sizeof suffix, ".%02x%02x%02x%02x%02x%02x%02x%02x.tmp", random[0], random[1], random[2],
-                  random[3], random[4], random[5], random[6], random[7]);
-    temp_ = folder_ + "." + name + suffix;
-    fd_ = ::open(temp_.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0600);
-    if (fd_ < 0) {
-      error = "cannot write '" + path_ + "': cannot create '" + temp_ + "': " + std::strerror(errno);
-      return kExitInput;
-    }
-    return kExitOk;
-  }
-
-  int commit(const Bytes& bytes, mode_t mode, std::string& error) {
-    std::size_t done = 0;
-    int err = fchmod(fd_, mode) == 0 ? 0 : errno;
-    while (err == 0 && done < bytes.size()) {
-      const ssize_t n = ::write(fd_, bytes.data() + done, bytes.size() - done);
-      if (n > 0) done += static_cast<std::size_t>(n);
-      else if (n < 0 && errno != EINTR) err = errno;
-    }
-    if (err == 0 && fsync(fd_) != 0) err = errno;
-    if (::close(fd_) != 0 && err == 0) err = errno;
-    fd_ = -1;
-    if (err == 0 && ::rename(temp_.c_str(), path_.c_str()) != 0) err = errno;
-    if (err != 0) {
-      error = "cannot write '" + path_ + "': " + std::strerror(err);
-      discard();
-      return kExitInput;
-    }
-    temp_.clear();
-    // The rename itself lasts once the folder's entry is on disk (best effort).
-    if (const int dir = ::open(folder_.empty() ? "." : folder_.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC); dir >= 0) {
-      (void)fsync(dir);
-      ::close(dir);
-    }
-    return kExitOk;
-  }
-
- private:
-  void discard() {
-    if (fd_ >= 0) ::close(fd_);
-    fd_ = -1;
-    if (!temp_.empty()) ::unlink(temp_.c_str());
-    temp_.clear();
-  }
-
-  std::string path_, folder_, temp_;
-  int fd_ = -1;
-};
-
+// The atomic writer of hesai_port/base/files.h, as an exit status and a message.
 int write_file(const std::string& path, const Bytes& bytes, mode_t mode, std::string& error) {
-  AtomicFile file(path);
-  if (const int st = file.create(error); st != kExitOk) return st;
-  return file.commit(bytes, mode, error);
+  const port::Status s = port::write_file_atomic(path, bytes.data(), bytes.size(), mode);
+  error = s.message();
+  return exit_status(s);
 }
 
 // Whether a downloaded file parses for `model`; `text` says so ("fits the QT128C2X (128
@@ -366,9 +277,12 @@ int sensor_signature(PtcClient& client, const std::string& action, const std::st
     std::string secret, error;
     // Before a session starts that no file would hold: the key's path is checked and its
     // temporary file made (and removed at once: an interrupted request leaves none behind).
-    if (AtomicFile probe(key_out); probe.create(error) != kExitOk) {
-      std::fprintf(stderr, "hesai sensor: %s (no session started)\n", error.c_str());
-      return kExitInput;
+    {
+      port::AtomicFile probe(key_out);  // removed again at the end of this block
+      if (const port::Status s = probe.create(); !s.ok()) {
+        std::fprintf(stderr, "hesai sensor: %s (no session started)\n", s.message().c_str());
+        return kExitInput;
+      }
     }
     if (const int st = read_secret(secret_file, secret, error); st != kExitOk) {
       std::fprintf(stderr, "hesai sensor: %s\n", error.c_str());

@@ -32,18 +32,6 @@ std::string hex_byte(std::uint8_t b) {
 
 }  // namespace
 
-bool random_bytes(std::uint8_t* out, std::size_t n) {
-  const int fd = ::open("/dev/urandom", O_RDONLY | O_CLOEXEC);
-  std::size_t done = 0;
-  while (fd >= 0 && done < n) {
-    const ssize_t got = ::read(fd, out + done, n - done);
-    if (got <= 0) break;
-    done += static_cast<std::size_t>(got);
-  }
-  if (fd >= 0) ::close(fd);
-  return done == n;
-}
-
 TcpTransport::~TcpTransport() {
   if (fd_ >= 0) ::close(fd_);
 }

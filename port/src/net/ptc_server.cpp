@@ -17,7 +17,8 @@
 #include "hesai/ptc.h"
 #include "hesai/ptc_settings.h"
 #include "hesai_port/base/clock.h"
-#include "hesai_port/net/ptc_client.h"  // random_bytes
+#include "hesai_port/base/random.h"
+#include "hesai_port/net/ptc_client.h"
 #include "hesai_port/net/tls.h"
 
 namespace hesai::port {

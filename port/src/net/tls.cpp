@@ -10,6 +10,7 @@
 
 #include "hesai/ct.h"
 #include "hesai_port/base/clock.h"
+#include "hesai_port/base/files.h"
 #include "hesai_port/base/text.h"
 #include "wait.h"
 
@@ -28,15 +29,6 @@ namespace hesai::port {
 namespace {
 
 constexpr std::size_t kMaxKeyBytes = 64 * 1024;
-
-const char* file_kind(mode_t mode) {
-  if (S_ISDIR(mode)) return "a directory";
-  if (S_ISFIFO(mode)) return "a FIFO";
-  if (S_ISSOCK(mode)) return "a socket";
-  if (S_ISCHR(mode)) return "a character device";
-  if (S_ISBLK(mode)) return "a block device";
-  return "not a regular file";
-}
 
 }  // namespace
 

@@ -34,10 +34,6 @@ namespace hesai::port {
 
 class TlsContext;
 
-/// Fills `out` with `n` random bytes from the kernel (/dev/urandom), for the randoms of a
-/// signature session. False when it cannot.
-bool random_bytes(std::uint8_t* out, std::size_t n);
-
 /// A connected byte stream with deadlines (monotonic_ns() values).
 class PtcTransport {
  public:
