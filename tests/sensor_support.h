@@ -10,6 +10,7 @@
 
 #include <chrono>
 #include <cstdio>
+#include <cstdlib>
 #include <string>
 
 #include "test_support.h"
@@ -30,11 +31,20 @@ struct Ran {
 };
 
 // Runs `hesai ARGS` (shell words) with the key variables of the test's own environment removed.
+// Natively through tests/tools/peak_rss.c, so that max_rss_kib is the program's own peak and not
+// this test process's resident set at the fork; under an emulator, wait4's figure (which the
+// memory bounds do not read there).
 inline Ran run(const std::string& args, const std::string& env = "") {
   Ran r;
   const std::string out = temp_path("stdout"), err = temp_path("stderr");
-  const std::string cmd = "exec env -u HESAI_SESSION_KEY -u HESAI_SECRET " + env + " " + cli() + " " + args + " >" + out +
-                          " 2>" + err;
+#if defined(HESAI_CLI_EMULATOR)
+  const std::string peak;
+#else
+  const std::string peak_file = temp_path("peak_rss");
+  const std::string peak = std::string(HESAI_PEAK_RSS_PATH) + " " + peak_file + " ";
+#endif
+  const std::string cmd = "exec env -u HESAI_SESSION_KEY -u HESAI_SECRET " + env + " " + peak + cli() + " " + args + " >" +
+                          out + " 2>" + err;
   const auto t0 = std::chrono::steady_clock::now();
   const pid_t pid = fork();
   if (pid == 0) {
@@ -47,6 +57,10 @@ inline Ran run(const std::string& args, const std::string& env = "") {
   r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   r.status = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
   r.max_rss_kib = u.ru_maxrss;
+#if !defined(HESAI_CLI_EMULATOR)
+  r.max_rss_kib = std::atol(read_text(peak_file).c_str());
+  std::remove(peak_file.c_str());
+#endif
   r.out = read_text(out);
   r.err = read_text(err);
   std::remove(out.c_str());

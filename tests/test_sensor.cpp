@@ -361,15 +361,18 @@ TEST(Sensor, LargestCalibrationDrippedOrWholeStaysBounded) {
 #endif
   const std::string out = temp_path("large_calibration.csv");
 #if !defined(HESAI_CLI_EMULATOR)
-  // The baseline: the same command on the same path, answered with a 16-byte calibration.
+  // The baseline: the same command on the same path, answered with a 16-byte calibration; the
+  // least of three runs, as which pages of the shared libraries a run touches varies by a few
+  // hundred KiB from run to run.
   long baseline_kib = 0;
-  {
+  for (int i = 0; i < 3; ++i) {
     std::vector<std::uint8_t> reply = header(0x47, 0x74, 0x05, 0, 16);
     reply.resize(reply.size() + 16, '#');
     HostileServer server(reply, false);
     ASSERT_NE(server.port(), 0);
-    baseline_kib = run("sensor calibration 127.0.0.1 --ptc-port " + std::to_string(server.port()) + " --timeout 1 --out " + out)
-                       .max_rss_kib;
+    const long kib =
+        run("sensor calibration 127.0.0.1 --ptc-port " + std::to_string(server.port()) + " --timeout 1 --out " + out).max_rss_kib;
+    if (i == 0 || kib < baseline_kib) baseline_kib = kib;
   }
 #endif
   {
