@@ -638,6 +638,52 @@ TEST(SensorAttack, SessionStoppedByAThirdPartyIsStartedAgain) {
   expect_consistent(r);
 }
 
+// issue #44, finding 2: a PTC port that goes silent once the session started (the stand-in's
+// --silent-after-session: connections accepted, requests read, none answered) must not stall
+// reception. The stand-in sends its capture at about 5 000 packets a second (rate 0.48: 1800
+// packets in 0.173 s recorded) from the moment the session starts, renumbered so that no loop
+// replays the one before, for longer than the run (killed after it); 'listen --sensor --seconds 4'
+// polls every 0.2 s with a PTC deadline of 0.4 s, longer than the poll interval (on a receive loop
+// that waits on PTC, polls then ran back to back and one batch of datagrams was read per poll).
+// Against a quiet run of the same stream: at least 99 % of its packets, the run over within its
+// --seconds + 1 s (the final 0x2F waits out one deadline), and the polls that timed out counted.
+TEST(SensorAttack, SilentPtcPortStallsNeitherReceptionNorTheEnd) {
+  const std::string secret = secret_file();
+  const auto listen = [&](const std::string& standin_options) {
+    const int port = free_udp_port();
+    StandIn s("qt128c2x_dual.pcap", "127.0.0.3",
+              "--to 127.0.0.1:" + std::to_string(port) +
+                  " --rate 0.48 --loop 20 --renumber --quiet --wait-for-session --secret-file " + secret + " " +
+                  standin_options);
+    EXPECT_NE(s.port(), 0) << s.stderr_text();
+    return run("listen --bind 127.0.0.1 --port " + std::to_string(port) + " --gps-port 0 --sensor 127.0.0.3 --ptc-port " +
+               std::to_string(s.port()) + " --secret-file " + secret + " --calibration " + kQtAngles +
+               " --seconds 4 --session-poll 0.2 --timeout 0.4 --json --quiet");
+  };
+  const Ran quiet = listen("");
+  const Ran silent = listen("--silent-after-session");
+  std::remove(secret.c_str());
+  ASSERT_EQ(quiet.status, 0) << quiet.err;
+  const long long quiet_packets = json_number(quiet.out, "packets");
+  // The quiet run is the measure: at least 3 of its 4 s of the stream (15 000 packets).
+  EXPECT_GE(quiet_packets, 15000) << quiet.out;
+  EXPECT_EQ(json_number(quiet.out, "session_poll_timeouts"), 0) << quiet.out;
+  EXPECT_EQ(silent.status, 0) << silent.err;
+  const long long silent_packets = json_number(silent.out, "packets");
+  EXPECT_GE(silent_packets * 100, quiet_packets * 99) << "silent " << silent_packets << ", quiet " << quiet_packets
+                                                      << "\n" << silent.out << silent.err;
+  EXPECT_LT(silent.seconds, 4.0 + 1.0) << silent.err;
+  EXPECT_GT(json_number(silent.out, "session_poll_timeouts"), 0) << silent.out;
+  // The stand-in still signs: the session is not lost, only unanswered.
+  EXPECT_EQ(json_number(silent.out, "session_restarts"), 0) << silent.out << silent.err;
+  EXPECT_EQ(json_number(silent.out, "signature_invalid"), 0) << silent.out;
+  EXPECT_EQ(json_number(silent.out, "unsigned_rejected"), 0) << silent.out;
+  EXPECT_EQ(json_number(silent.out, "replayed"), 0) << silent.out;
+  std::printf("received %lld of the quiet run's %lld (%.2f %%); the silent run took %.2f s, the quiet one %.2f s\n",
+              silent_packets, quiet_packets, 100.0 * static_cast<double>(silent_packets) / static_cast<double>(quiet_packets),
+              silent.seconds, quiet.seconds);
+}
+
 // One datagram of another model (a Pandar64 packet) from the sensor's address: rejected and
 // counted, the run goes on, the session is not touched.
 TEST(SensorAttack, PacketOfAnotherModelFromTheSensorIsCountedNotFatal) {

@@ -107,7 +107,9 @@ int cmd_listen(Args& args) {
                   "                          status and clock source say where its times come from (JSON:\n"
                   "                          ptp_status, time_source ptp, gps or free_run)\n"
                   "  --require-sync          with --sensor: exit 2 before recording when the unit runs free\n"
-                  "  --session-poll S        ask the unit whether it still signs every S seconds (default 1)\n"
+                  "  --session-poll S        ask the unit whether it still signs every S seconds (default 1),\n"
+                  "                          off the receive path: a poll unanswered within --timeout is\n"
+                  "                          counted (session_poll_timeouts) and reception goes on\n"
                   "  --signature-grace S     packets with no valid signature for S seconds mean the session\n"
                   "                          was lost: it is started again (default 1)\n"
                   "  --ptc-port N            the sensor's PTC port (default 9347)\n"
@@ -115,7 +117,7 @@ int cmd_listen(Args& args) {
                   "  --tls ...               PTCS: the PTC of --sensor over TLS (the options below)\n"
                   "  --json                  the summary as one JSON object (keys as in 'hesai stats --json',\n"
                   "                          and kernel_drops (null where unknown), foreign_packets,\n"
-                  "                          foreign_model_packets, session_restarts)\n"
+                  "                          foreign_model_packets, session_restarts, session_poll_timeouts)\n"
                   "  --quiet                 no statistics once a second\n%s%s%s%s",
                   port::UdpReceiver::method(), kDecodeOptionsHelp, kOutputOptionsHelp, kKeyOptionsHelp, kTlsOptionsHelp);
       return kExitOk;
@@ -306,6 +308,7 @@ int cmd_listen(Args& args) {
   if (sink)
     if (const port::Status s = sink->close(); !s.ok()) std::fprintf(stderr, "hesai listen: %s\n", s.message().c_str());
   const std::uint64_t restarts = session ? session->restarts() : 0;
+  const std::uint64_t poll_timeouts = session ? session->poll_timeouts() : 0;
   if (json) {
     std::string j = stats_json(pipeline.stats(), pipeline.sensors());
     // kernel_drops: null where the receive path cannot know it (the portable path), never 0.
@@ -313,16 +316,17 @@ int cmd_listen(Args& args) {
     j.insert(j.size() - 1, ",\"kernel_drops\":" + drops + ",\"foreign_packets\":" + std::to_string(foreign) + ",\"foreign_model_packets\":" +
                                std::to_string(pipeline.foreign_model_packets()) +
                                ",\"session_restarts\":" + std::to_string(restarts) +
+                               ",\"session_poll_timeouts\":" + std::to_string(poll_timeouts) +
                                (link ? ",\"ptp_status\":" + json_string(link->ptp_status().c_str()) +
                                            ",\"time_source\":" + json_string(link->time_source().c_str())
                                      : std::string()));
     std::printf("%s\n", j.c_str());
   } else {
     std::printf("%s  kernel_drops          %s\n  foreign_packets       %llu\n  foreign_model_packets %llu\n"
-                "  session_restarts      %llu\n",
+                "  session_restarts      %llu\n  session_poll_timeouts %llu\n",
                 stats_text(pipeline).c_str(), kernel_drops(points_rx).c_str(), static_cast<unsigned long long>(foreign),
                 static_cast<unsigned long long>(pipeline.foreign_model_packets()),
-                static_cast<unsigned long long>(restarts));
+                static_cast<unsigned long long>(restarts), static_cast<unsigned long long>(poll_timeouts));
   }
   return fatal ? kExitInput : status;
 }

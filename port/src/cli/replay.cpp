@@ -74,6 +74,7 @@ struct StandIn {
   port::TlsServerOptions tls;  // --tls-cert, --tls-key, --client-ca: PTCS
   bool wait_for_session = false;
   bool never_sign = false;  // sessions accepted, no packet signed (a misbehaving unit)
+  bool silent_after_session = false;  // PTC read and never answered once a session started
   int ptp_state = -1;       // --ptp-state: -1 none (clock source GPS, unlocked)
   // For tests, not in --help (docs/TESTING.md): --refuse-set CMD[:CODE] (the set command CMD,
   // 0x.. or decimal, answers CODE, default 1), --ignore-set CMD (acknowledged, not applied),
@@ -165,6 +166,7 @@ int open_stand_in(const StandIn& o, const std::string& capture, port::PtcServer&
   content.ignore = o.ignore;
   content.config_bytes = o.config_bytes;
   content.reboot_ms = o.reboot_ms;
+  content.silent_after_session = o.silent_after_session;
   std::string error;
   const std::pair<const std::string*, std::string*> files[] = {
       {&o.calibration, &content.calibration}, {&o.firetimes, &content.firetimes}, {&o.channel_config, &content.channel_config}};
@@ -251,6 +253,8 @@ int cmd_replay(Args& args) {
                   "  --wait-for-session      send nothing until a signature session starts\n"
                   "  --never-sign            accept signature sessions but sign no packet (a unit that\n"
                   "                          misbehaves, for tests)\n"
+                  "  --silent-after-session  once a signature session starts, accept PTC connections and\n"
+                  "                          read requests but answer none (a unit whose PTC hangs, for tests)\n"
                   "  --ptp-state STATE       clock source PTP, in STATE (free_run, tracking, locked, frozen)\n"
                   "                          for the status (0x09) and PTP diagnostics (0x06); without it\n"
                   "                          the clock source is GPS, unlocked (free running)\n"
@@ -272,6 +276,7 @@ int cmd_replay(Args& args) {
     else if (a == "--renumber") renumber_sequence = true;
     else if (a == "--wait-for-session") stand_in.wait_for_session = true;
     else if (a == "--never-sign") stand_in.never_sign = true;
+    else if (a == "--silent-after-session") stand_in.silent_after_session = true;
     else if (parse_stand_in_test_option(a, args, stand_in, error)) {
       if (!error.empty()) return usage_error("replay", error);
     }
@@ -312,6 +317,8 @@ int cmd_replay(Args& args) {
     return usage_error("replay", "--client-ca (mTLS) needs --tls-cert and --tls-key");
   if (stand_in.wait_for_session && stand_in.secret_file.empty())
     return usage_error("replay", "--wait-for-session needs --secret-file (no session can start without it)");
+  if (stand_in.silent_after_session && (!serving || stand_in.secret_file.empty()))
+    return usage_error("replay", "--silent-after-session needs --serve-ptc and --secret-file (no session can start without them)");
 
   port::CaptureFile file;
   if (!open_capture(capture, file)) return kExitInput;

@@ -182,6 +182,7 @@ bool PtcServer::answer_pending(Connection& c) {
   if (c.in.size() < whole) return true;
   const std::vector<std::uint8_t> request(c.in.begin() + ptc::kHeaderBytes, c.in.begin() + static_cast<std::ptrdiff_t>(whole));
   c.in.erase(c.in.begin(), c.in.begin() + static_cast<std::ptrdiff_t>(whole));
+  if (silent()) return true;  // read, never answered (the idle limit still closes the connection)
   std::uint8_t code = 0;
   const std::vector<std::uint8_t> payload = answer(header.command, request, code);
   c.out.assign(ptc::kHeaderBytes, 0);
@@ -270,6 +271,7 @@ void PtcServer::serve_tls(int fd) {
     if (ptc::parse_header(ByteView{h, sizeof h}, header) != Error::ok || header.length > kMaxRequestBytes) return;
     request.resize(header.length);
     if (tls->receive_exact(request.data(), request.size(), wait_deadline()) != PtcTransport::Io::ok) return;
+    if (silent()) continue;  // read, never answered
     std::uint8_t code = 0;
     const std::vector<std::uint8_t> payload = answer(header.command, request, code);
     std::uint8_t out[ptc::kHeaderBytes];

@@ -18,7 +18,11 @@
 // (refuse) or be acknowledged and not applied (ignore), and cut the configuration short. 0x2E with
 // a 32-byte client random: a fresh lidar random (from /dev/urandom), 'unsupported command' without
 // a secret, 'invalid input parameter' for another payload size; 0x2D the session state; 0x2F ends
-// the session. Any other command: 'unsupported command'.
+// the session. Any other command: 'unsupported command'. For tests, StandInContent can make the
+// port go silent once a session has started (silent_after_session: the answer to that 0x2E is
+// sent; from then on connections are still accepted and requests read, and none is answered, as a
+// unit whose PTC service hangs while its TCP stack runs: a client connects at once and waits out
+// its whole deadline for the answer).
 //
 // Limits, so that no client can hold the service (or hesai replay) for long:
 // - up to kMaxConnections (8) connections are served at once, by one thread that polls them all
@@ -63,6 +67,7 @@ struct StandInContent {
   std::array<bool, 256> ignore{};          ///< true: the set command of that code is acknowledged, not applied
   std::size_t config_bytes = 47;           ///< bytes of the configuration answer (fewer: cut short)
   std::string serial = "STANDIN";          ///< the inventory's serial (bytes as they are, cut to its 18 bytes)
+  bool silent_after_session = false;       ///< once a session started: requests read, none answered
 };
 
 class PtcServer {
@@ -116,6 +121,8 @@ class PtcServer {
   std::vector<std::uint8_t> config_answer() const;
   /// True while the unit is down after a reboot.
   bool rebooting() const;
+  /// True once silent_after_session holds and a session has started: no request is answered.
+  bool silent() const { return content_.silent_after_session && sessions_started_ > 0; }
 
   int fd_ = -1;
   std::uint16_t port_ = 0;
