@@ -78,11 +78,14 @@ struct StandIn {
   int ptp_state = -1;       // --ptp-state: -1 none (clock source GPS, unlocked)
   // For tests, not in --help (docs/TESTING.md): --refuse-set CMD[:CODE] (the set command CMD,
   // 0x.. or decimal, answers CODE, default 1), --ignore-set CMD (acknowledged, not applied),
-  // --config-bytes N (the configuration answer cut to N bytes), --reboot-seconds S (down after 0x10).
+  // --config-bytes N (the configuration answer cut to N bytes), --reboot-seconds S|never (down after
+  // 0x10; never: no restart).
   std::array<std::uint8_t, 256> refuse{};
   std::array<bool, 256> ignore{};
   std::size_t config_bytes = 47;
   int reboot_ms = 1500;
+  std::uint32_t cut_after_set = 0;  // --cut-after-set N[:S]: the N-th set command handled, its connection
+  int cut_down_ms = 0;              // closed unanswered, then down for S seconds (default 0)
   bool test_hooks = false;
 };
 
@@ -108,7 +111,8 @@ bool parse_command_byte(const std::string& text, std::uint8_t& out) {
 // sets `error`.
 bool parse_stand_in_test_option(const std::string& a, Args& args, StandIn& o, std::string& error) {
   std::string v;
-  if (a != "--refuse-set" && a != "--ignore-set" && a != "--config-bytes" && a != "--reboot-seconds" && a != "--ptp-state")
+  if (a != "--refuse-set" && a != "--ignore-set" && a != "--config-bytes" && a != "--reboot-seconds" && a != "--ptp-state" &&
+      a != "--cut-after-set")
     return false;
   if (!args.value(a, v)) {
     error = a + " needs a value";
@@ -134,13 +138,25 @@ bool parse_stand_in_test_option(const std::string& a, Args& args, StandIn& o, st
   } else if (a == "--ignore-set") {
     if (!parse_command_byte(v, command)) error = "--ignore-set takes a command byte, got '" + v + "'";
     else o.ignore[command] = true;
+  } else if (a == "--cut-after-set") {
+    const std::size_t colon = v.find(':');
+    std::uint64_t n = 0;
+    float seconds = 0;
+    if (!parse_u64(v.substr(0, colon), n) || n == 0 || n > 1000 ||
+        (colon != std::string::npos &&
+         (!parse_float(v.substr(colon + 1), seconds) || !(seconds >= 0) || seconds > 600)))
+      error = "--cut-after-set takes N[:SECONDS] (N 1 to 1000, SECONDS 0 to 600), got '" + v + "'";
+    o.cut_after_set = static_cast<std::uint32_t>(n);
+    o.cut_down_ms = static_cast<int>(seconds * 1000);
   } else if (a == "--config-bytes") {
     std::uint64_t n = 0;
     if (!parse_u64(v, n) || n > 47) error = "--config-bytes takes 0 to 47, got '" + v + "'";
     else o.config_bytes = static_cast<std::size_t>(n);
   } else {
     float seconds = 0;
-    if (!parse_float(v, seconds) || !(seconds >= 0) || seconds > 600) error = "--reboot-seconds takes 0 to 600, got '" + v + "'";
+    if (v == "never") o.reboot_ms = -1;  // 0x10 acknowledged, no restart
+    else if (!parse_float(v, seconds) || !(seconds >= 0) || seconds > 600)
+      error = "--reboot-seconds takes 0 to 600 or never, got '" + v + "'";
     else o.reboot_ms = static_cast<int>(seconds * 1000);
   }
   return true;
@@ -167,6 +183,8 @@ int open_stand_in(const StandIn& o, const std::string& capture, port::PtcServer&
   content.config_bytes = o.config_bytes;
   content.reboot_ms = o.reboot_ms;
   content.silent_after_session = o.silent_after_session;
+  content.cut_after_set = o.cut_after_set;
+  content.cut_down_ms = o.cut_down_ms;
   std::string error;
   const std::pair<const std::string*, std::string*> files[] = {
       {&o.calibration, &content.calibration}, {&o.firetimes, &content.firetimes}, {&o.channel_config, &content.channel_config}};

@@ -185,6 +185,10 @@ bool PtcServer::answer_pending(Connection& c) {
   if (silent()) return true;  // read, never answered (the idle limit still closes the connection)
   std::uint8_t code = 0;
   const std::vector<std::uint8_t> payload = answer(header.command, request, code);
+  if (cut_) {  // --cut-after-set: handled, not answered
+    cut_ = false;
+    return false;
+  }
   c.out.assign(ptc::kHeaderBytes, 0);
   ptc::encode_header(header.command, code, static_cast<std::uint32_t>(payload.size()), c.out.data());
   c.out.insert(c.out.end(), payload.begin(), payload.end());
@@ -274,6 +278,10 @@ void PtcServer::serve_tls(int fd) {
     if (silent()) continue;  // read, never answered
     std::uint8_t code = 0;
     const std::vector<std::uint8_t> payload = answer(header.command, request, code);
+    if (cut_) {  // --cut-after-set: handled, not answered
+      cut_ = false;
+      return;
+    }
     std::uint8_t out[ptc::kHeaderBytes];
     ptc::encode_header(header.command, code, static_cast<std::uint32_t>(payload.size()), out);
     if (tls->send_all(out, sizeof out, wait_deadline()) != PtcTransport::Io::ok ||
@@ -301,6 +309,10 @@ std::vector<std::uint8_t> PtcServer::answer(std::uint8_t command, const std::vec
         settings_ = asked;
         if (setting == ptc::Setting::sync_angle) sync_centi_ = static_cast<std::uint16_t>(asked.sync_angle * 100u);
         if (setting == ptc::Setting::rpm) motor_rpm_ = asked.rpm;
+      }
+      if (++sets_seen_ == content_.cut_after_set) {
+        cut_ = true;
+        down_until_ns_ = monotonic_ns() + ms_to_ns(content_.cut_down_ms);
       }
       return {};
     }
@@ -330,7 +342,10 @@ std::vector<std::uint8_t> PtcServer::answer(std::uint8_t command, const std::vec
       return out;
     }
     case Command::reboot:
-      down_until_ns_ = monotonic_ns() + ms_to_ns(content_.reboot_ms);
+      if (content_.reboot_ms >= 0) {
+        down_until_ns_ = monotonic_ns() + ms_to_ns(content_.reboot_ms);
+        opened_ns_ = down_until_ns_;  // the uptime counts from the restart
+      }
       return {};
     case Command::ptp_diagnostics: {
       if (request.size() != 1 || request[0] != ptc::kPtpQueryStatus) break;

@@ -10,12 +10,14 @@
 // clock source GPS, or PTP when a PTP state was given, everything else 0); the set commands
 // 0x17, 0x1E, 0x1C, 0x18 (the angle kept in 0.01 degree), 0x20 and 0x22 change it (a payload of
 // another size: 'invalid input parameter'), 0x23 reports its FOV; 0x09 a status with the model's
-// temperature count (each 25.00 C), the uptime since open(), the motor speed set by
+// temperature count (each 25.00 C), the uptime since open() or the last reboot, the motor speed set by
 // set_motor_speed() (0 in standby) and the PTP state of StandInContent; 0x06 with query 1 the PTP
 // status (offset 0, the state, the uptime in ms); 0x10 is acknowledged, then for
 // StandInContent::reboot_ms the unit is down: every connection, open or new, is closed unanswered
 // (over TLS too). For tests, StandInContent can make a set command answer a return code
-// (refuse) or be acknowledged and not applied (ignore), and cut the configuration short. 0x2E with
+// (refuse) or be acknowledged and not applied (ignore), cut the configuration short, and handle
+// its N-th set command (applied, refused or ignored as the others) then close that connection
+// without an answer, and be down for a while after (cut_after_set, cut_down_ms). 0x2E with
 // a 32-byte client random: a fresh lidar random (from /dev/urandom), 'unsupported command' without
 // a secret, 'invalid input parameter' for another payload size; 0x2D the session state; 0x2F ends
 // the session. Any other command: 'unsupported command'. For tests, StandInContent can make the
@@ -62,12 +64,16 @@ struct StandInContent {
   std::string calibration, firetimes, channel_config;  ///< file bytes; empty: not served
   std::string secret;                                  ///< shared secret; empty: no signature sessions
   int ptp_state = -1;            ///< 0 free run .. 3 frozen: clock source PTP; -1: clock source GPS, unlocked
-  int reboot_ms = 1500;          ///< how long the unit is down after 0x10
+  int reboot_ms = 1500;          ///< how long the unit is down after 0x10 (its uptime then counts anew);
+                                 ///< -1: 0x10 is acknowledged and nothing happens (a unit that does not restart)
   std::array<std::uint8_t, 256> refuse{};  ///< a non-zero entry: the set command of that code answers it
   std::array<bool, 256> ignore{};          ///< true: the set command of that code is acknowledged, not applied
   std::size_t config_bytes = 47;           ///< bytes of the configuration answer (fewer: cut short)
   std::string serial = "STANDIN";          ///< the inventory's serial (bytes as they are, cut to its 18 bytes)
   bool silent_after_session = false;       ///< once a session started: requests read, none answered
+  std::uint32_t cut_after_set = 0;  ///< non-zero: the set command of that rank (1: the first) is handled, then
+                                    ///< its connection closed unanswered; 0: never
+  int cut_down_ms = 0;              ///< after that cut, how long the unit is down (as after 0x10)
 };
 
 class PtcServer {
@@ -129,6 +135,8 @@ class PtcServer {
   ptc::Settings settings_;        // what 0x08 reports; set commands change it
   std::uint16_t sync_centi_ = 0;  // the sync angle in 0.01 degree
   std::atomic<std::int64_t> down_until_ns_{0};
+  std::uint32_t sets_seen_ = 0;  // set commands answered so far (cut_after_set)
+  bool cut_ = false;             // answer(): close this connection, do not send the answer
   std::shared_ptr<TlsContext> tls_;
   StandInContent content_;
   std::int64_t opened_ns_ = 0;
