@@ -5,7 +5,7 @@
 // Expectations: the values the test asks for, read back through 'sensor config --json' (the
 // stand-in keeps what the set commands write, hesai_port/net/ptc_server.h); the allowed values of
 // each model as nebula and the manuals give them (hesai/ptc_settings.h); the stand-in's test
-// options (--refuse-set, --ignore-set, --config-bytes, --reboot-seconds, docs/TESTING.md) make
+// options (--refuse-set, --ignore-set, --config-bytes, --reboot-seconds, --cut-after-set, docs/TESTING.md) make
 // the misbehaving unit.
 #include <gtest/gtest.h>
 
@@ -203,6 +203,75 @@ TEST(SensorSet, AcknowledgedButNotAppliedIsCaughtOnReadBack) {
   EXPECT_EQ(r.status, 2);
   EXPECT_TRUE(has(r.out, "return_mode: last -> first\n")) << r.out;  // written in order until the one that did not take
   EXPECT_TRUE(has(r.err, "acknowledged sync_angle=15 but reads back sync_angle=off")) << r.err;
+}
+
+// A unit that applies a set and then closes the connection unanswered (--cut-after-set 2: after
+// the second set command): the first key confirmed, the second sent and not confirmed, the third
+// not sent, each said on stdout; the configuration read back on a new connection shows the second
+// applied (the stand-in applied it: its state is what the test asked). Exit 2.
+TEST(SensorSet, CutAfterASetSaysWhatWasConfirmedSentAndNotSent) {
+  StandIn s("qt128c2x_dual.pcap", "127.0.0.1", standin_options("--cut-after-set 2"));
+  ASSERT_NE(s.port(), 0) << s.stderr_text();
+  const long long rpm = json_number(run("sensor config" + at(s) + " --json").out, "spin_rate_rpm");
+  ASSERT_NE(rpm, 1200);
+  const Ran r = run("sensor set" + at(s) + " rpm=1200 return_mode=first standby=on");
+  EXPECT_EQ(r.status, 2) << r.err;
+  EXPECT_TRUE(has(r.err, "closed the connection")) << r.err;  // the cause, as before
+  EXPECT_EQ(r.out, "rpm: " + std::to_string(rpm) + " -> 1200\n"
+                   "confirmed: rpm=1200\n"
+                   "not confirmed: return_mode=first (sent; state unknown)\n"
+                   "not sent: standby=on\n"
+                   "unit has: rpm=1200 (asked 1200)\n"
+                   "unit has: return_mode=first (asked first)\n"
+                   "unit has: standby=off (asked on)\n");
+  const std::string config = run("sensor config" + at(s) + " --json").out;
+  EXPECT_EQ(json_number(config, "spin_rate_rpm"), 1200);
+  EXPECT_EQ(json_text(config, "return_mode_name"), "first");
+  EXPECT_EQ(json_number(config, "standby_mode"), 0);  // never sent
+}
+
+// The same cut, and the unit then down for 5 s (--cut-after-set 2:5): the read-back fails too,
+// and each key's value is "unknown".
+TEST(SensorSet, CutAfterASetWithTheReadBackFailingSaysUnknown) {
+  StandIn s("qt128c2x_dual.pcap", "127.0.0.1", standin_options("--cut-after-set 2:5"));
+  ASSERT_NE(s.port(), 0) << s.stderr_text();
+  const Ran r = run("sensor set" + at(s) + " standby=on sync_angle=45 return_mode=first");
+  EXPECT_EQ(r.status, 2) << r.err;
+  EXPECT_EQ(r.out, "standby: off -> on\n"
+                   "confirmed: standby=on\n"
+                   "not confirmed: sync_angle=45 (sent; state unknown)\n"
+                   "not sent: return_mode=first\n"
+                   "unit has: standby=unknown (asked on)\n"
+                   "unit has: sync_angle=unknown (asked 45)\n"
+                   "unit has: return_mode=unknown (asked first)\n");
+  EXPECT_TRUE(has(r.err, "cannot read the configuration back")) << r.err;
+  EXPECT_LT(r.seconds, 4.0);  // one read-back, not a wait for the unit
+}
+
+// apply with the cut after its second write: the same three states, after the differs and changed
+// lines.
+TEST(SensorApply, CutAfterASetSaysWhatWasConfirmedSentAndNotSent) {
+  StandIn s("qt128c2x_dual.pcap", "127.0.0.1", standin_options("--cut-after-set 2"));
+  ASSERT_NE(s.port(), 0) << s.stderr_text();
+  const std::string file = write_file("cut.json", "{\"sync_angle\": 30, \"return_mode\": \"strongest\", "
+                                                  "\"destination\": \"127.0.0.7:2368,10110\"}\n");
+  const Ran r = run("sensor apply" + at(s) + " " + file);
+  EXPECT_EQ(r.status, 2) << r.err;
+  EXPECT_TRUE(has(r.err, "closed the connection")) << r.err;
+  EXPECT_EQ(r.out, "differs: sync_angle off -> 30\n"
+                   "differs: return_mode last -> strongest\n"
+                   "differs: destination 127.0.0.1:2368,10110 -> 127.0.0.7:2368,10110\n"
+                   "changed: sync_angle off -> 30\n"
+                   "confirmed: sync_angle=30\n"
+                   "not confirmed: return_mode=strongest (sent; state unknown)\n"
+                   "not sent: destination=127.0.0.7:2368,10110\n"
+                   "unit has: sync_angle=30 (asked 30)\n"
+                   "unit has: return_mode=strongest (asked strongest)\n"
+                   "unit has: destination=127.0.0.1:2368,10110 (asked 127.0.0.7:2368,10110)\n");
+  const std::string config = run("sensor config" + at(s) + " --json").out;
+  EXPECT_EQ(json_text(config, "return_mode_name"), "strongest");
+  EXPECT_EQ(json_text(config, "destination_ip"), "127.0.0.1");
+  std::remove(file.c_str());
 }
 
 // A configuration answer cut short (30 of its 38 required bytes): ptc_payload_length, exit 2,
@@ -414,6 +483,8 @@ TEST(SensorStandIn, OptionsAreChecked) {
   for (const char* bad : {"--serve-ptc 127.0.0.1:0 --ptp-state synced", "--serve-ptc 127.0.0.1:0 --refuse-set 0x1FF",
                           "--serve-ptc 127.0.0.1:0 --refuse-set 0x17:0", "--serve-ptc 127.0.0.1:0 --ignore-set x",
                           "--serve-ptc 127.0.0.1:0 --config-bytes 48", "--serve-ptc 127.0.0.1:0 --reboot-seconds -1",
+                          "--serve-ptc 127.0.0.1:0 --cut-after-set 0", "--serve-ptc 127.0.0.1:0 --cut-after-set 2:x",
+                          "--cut-after-set 1",
                           "--ptp-state locked", "--refuse-set 0x17"}) {
     SCOPED_TRACE(bad);
     const Ran r = run(replay + bad);

@@ -179,9 +179,19 @@ int read_settings(PtcClient& client, Settings& out) {
   return kExitOk;
 }
 
-// Writes setting `s` (its value in `value`), then reads the configuration back into `now`. Exit status:
-// kExitInput, saying why, for a return code or a value that did not take.
-int write_setting(PtcClient& client, Model model, Setting s, const Settings& value, Settings& now) {
+// What became of one setting of a change.
+enum class Written {
+  confirmed,    // acknowledged and read back
+  refused,      // answered with a return code: not applied
+  not_applied,  // acknowledged, read back with another value
+  no_answer,    // sent, not answered (the connection closed, a timeout): state unknown
+  not_read,     // acknowledged, the read-back failed: state unknown
+  not_sent,     // the connection could not be made: not sent
+};
+
+// Writes setting `s` (its value in `value`), then reads the configuration back into `now`. Says why
+// on stderr for anything but `confirmed`.
+Written write_setting(PtcClient& client, Model model, Setting s, const Settings& value, Settings& now) {
   std::uint8_t payload[ptc::kMaxSetPayloadBytes];
   std::size_t size = 0;
   ptc::encode_setting(s, value, payload, size);
@@ -197,20 +207,66 @@ int write_setting(PtcClient& client, Model model, Setting s, const Settings& val
                         " over the unit's HTTP API, not PTC (not done here)")
                            .c_str()
                      : "");
-    return kExitInput;
+    return Written::refused;
   }
   if (!result.ok()) {
     std::fprintf(stderr, "hesai sensor: %s\n", result.message.c_str());
-    return kExitInput;
+    return result.outcome == port::PtcOutcome::unreachable ? Written::not_sent : Written::no_answer;
   }
-  if (const int st = read_settings(client, now); st != kExitOk) return st;
+  if (read_settings(client, now) != kExitOk) return Written::not_read;
   if (!ptc::same_setting(s, value, now)) {
     std::fprintf(stderr, "hesai sensor: %s:%u acknowledged %s=%s but reads back %s=%s\n", client.host().c_str(),
                  client.port(), ptc::setting_name(s), value_text(s, model, value).c_str(), ptc::setting_name(s),
                  value_text(s, model, now).c_str());
-    return kExitInput;
+    return Written::not_applied;
   }
-  return kExitOk;
+  return Written::confirmed;
+}
+
+// Writes `keys` in order, each read back; prints each one confirmed as "KEY: BEFORE -> AFTER"
+// (`set`) or "changed: KEY BEFORE -> AFTER" (`apply`). On the first that is not confirmed it stops
+// and says, on stdout, what became of every key (confirmed; refused; not applied; not confirmed:
+// sent, state unknown; not sent), then reads the configuration once more, on a new connection,
+// and prints what the unit has for each key ("unknown" when that read fails too). Exit status:
+// kExitOk, or kExitInput after such a stop.
+int write_all(PtcClient& client, Model model, const std::vector<Setting>& keys, Settings current,
+              const Settings& target, bool apply) {
+  std::size_t failed = 0;
+  Written outcome = Written::confirmed;
+  for (; failed < keys.size(); ++failed) {
+    const Setting s = keys[failed];
+    Settings now;
+    outcome = write_setting(client, model, s, target, now);
+    if (outcome != Written::confirmed) break;
+    std::printf(apply ? "changed: %s %s -> %s\n" : "%s: %s -> %s\n", ptc::setting_name(s),
+                value_text(s, model, current).c_str(), value_text(s, model, now).c_str());
+    current = now;
+  }
+  if (failed == keys.size()) return kExitOk;
+  const auto asked = [&](Setting s) { return std::string(ptc::setting_name(s)) + "=" + value_text(s, model, target); };
+  for (std::size_t i = 0; i < keys.size(); ++i) {
+    const std::string key = asked(keys[i]);
+    const Written w = i < failed ? Written::confirmed : i > failed ? Written::not_sent : outcome;
+    switch (w) {
+      case Written::confirmed: std::printf("confirmed: %s\n", key.c_str()); break;
+      case Written::refused: std::printf("refused: %s\n", key.c_str()); break;
+      case Written::not_applied: std::printf("not applied: %s (acknowledged; reads back otherwise)\n", key.c_str()); break;
+      case Written::no_answer: std::printf("not confirmed: %s (sent; state unknown)\n", key.c_str()); break;
+      case Written::not_read: std::printf("not confirmed: %s (acknowledged, not read back; state unknown)\n", key.c_str()); break;
+      case Written::not_sent: std::printf("not sent: %s\n", key.c_str()); break;
+    }
+  }
+  // What the unit has now, on a connection of its own (the last one may be dead or out of step).
+  client.close();
+  Settings now;
+  const bool known = read_settings(client, now) == kExitOk;
+  if (!known)
+    std::fprintf(stderr, "hesai sensor: %s:%u: cannot read the configuration back: what the unit has is unknown\n",
+                 client.host().c_str(), client.port());
+  for (const Setting s : keys)
+    std::printf("unit has: %s=%s (asked %s)\n", ptc::setting_name(s), known ? value_text(s, model, now).c_str() : "unknown",
+                value_text(s, model, target).c_str());
+  return kExitInput;
 }
 
 // The unit's model and settings, and every wanted value checked against the model (kExitUsage
@@ -322,14 +378,9 @@ int sensor_set(PtcClient& client, const std::vector<std::string>& pairs) {
   Model model = Model::unknown;
   Settings current, target;
   if (const int st = prepare(client, wanted, model, current, target); st != kExitOk) return st;
-  for (const Wanted& w : wanted) {
-    Settings now;
-    if (const int st = write_setting(client, model, w.setting, target, now); st != kExitOk) return st;
-    std::printf("%s: %s -> %s\n", ptc::setting_name(w.setting), value_text(w.setting, model, current).c_str(),
-                value_text(w.setting, model, now).c_str());
-    current = now;
-  }
-  return kExitOk;
+  std::vector<Setting> keys;
+  for (const Wanted& w : wanted) keys.push_back(w.setting);
+  return write_all(client, model, keys, current, target, false);
 }
 
 int sensor_apply(PtcClient& client, const std::string& file, bool dry_run) {
@@ -368,14 +419,7 @@ int sensor_apply(PtcClient& client, const std::string& file, bool dry_run) {
     std::printf("dry run: nothing written\n");
     return kExitOk;
   }
-  for (const Setting s : differ) {
-    Settings now;
-    if (const int st = write_setting(client, model, s, target, now); st != kExitOk) return st;
-    std::printf("changed: %s %s -> %s\n", ptc::setting_name(s), value_text(s, model, current).c_str(),
-                value_text(s, model, now).c_str());
-    current = now;
-  }
-  return kExitOk;
+  return write_all(client, model, differ, current, target, true);
 }
 
 int sensor_reboot(PtcClient& client, double wait_s) {
