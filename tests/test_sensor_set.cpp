@@ -432,14 +432,36 @@ TEST(SensorReboot, WaitsUntilTheUnitAnswersAgain) {
   EXPECT_TRUE(has(now.err, "reboot requested")) << now.err;
   EXPECT_EQ(run("sensor info" + at(s)).status, 2);
   const Ran r = run("sensor reboot" + at(s) + " --wait 2");
-  EXPECT_EQ(r.status, 2);  // the 0x10 itself finds the unit down
-  EXPECT_TRUE(has(r.err, "0x10")) << r.err;
+  EXPECT_EQ(r.status, 2);  // the uptime asked before the 0x10 finds the unit down
+  EXPECT_TRUE(has(r.err, "reboot not sent")) << r.err;
   usleep(5200000);  // up again
   const Ran late = run("sensor reboot" + at(s) + " --wait 2");
   EXPECT_EQ(late.status, 2);
   EXPECT_TRUE(has(late.err, "did not answer within 2.0 s of its reboot")) << late.err;
   EXPECT_LT(late.seconds, 3.5);  // the wait; a unit that closes connections costs no timeout
   EXPECT_EQ(run("sensor reboot" + at(s) + " --wait 0").status, 1);  // usage
+}
+
+// reboot --wait asks for a sign that the unit restarted: it went down (a poll unanswered), or its
+// uptime (0x09) went down. A unit that acknowledges 0x10 and goes on as before (--reboot-seconds
+// never) is exit 2 at the end of the wait; one back within 0.2 s, before the first poll, is told
+// by its uptime (the stand-in's counts anew from the restart).
+TEST(SensorReboot, ARestartIsCheckedNotAssumed) {
+  {
+    StandIn s("pandar64_dual.pcap", "127.0.0.1", standin_options("--reboot-seconds never"));
+    ASSERT_NE(s.port(), 0) << s.stderr_text();
+    const Ran r = run("sensor reboot" + at(s) + " --wait 2");
+    EXPECT_EQ(r.status, 2) << r.err;
+    EXPECT_TRUE(has(r.err, "acknowledged the reboot but did not restart within 2.0 s")) << r.err;
+    EXPECT_FALSE(has(r.err, "answers again")) << r.err;
+    EXPECT_LT(r.seconds, 3.5);
+  }
+  StandIn s("pandar64_dual.pcap", "127.0.0.1", standin_options("--reboot-seconds 0.2"));
+  ASSERT_NE(s.port(), 0) << s.stderr_text();
+  usleep(2200000);  // an uptime of 2 s before the reboot
+  const Ran r = run("sensor reboot" + at(s) + " --wait 5");
+  EXPECT_EQ(r.status, 0) << r.err;
+  EXPECT_TRUE(has(r.err, "s (its uptime went down)")) << r.err;
 }
 
 // listen --sensor: the status and clock source first; --require-sync ends a run on a free-running
@@ -483,6 +505,7 @@ TEST(SensorStandIn, OptionsAreChecked) {
   for (const char* bad : {"--serve-ptc 127.0.0.1:0 --ptp-state synced", "--serve-ptc 127.0.0.1:0 --refuse-set 0x1FF",
                           "--serve-ptc 127.0.0.1:0 --refuse-set 0x17:0", "--serve-ptc 127.0.0.1:0 --ignore-set x",
                           "--serve-ptc 127.0.0.1:0 --config-bytes 48", "--serve-ptc 127.0.0.1:0 --reboot-seconds -1",
+                          "--serve-ptc 127.0.0.1:0 --reboot-seconds always",
                           "--serve-ptc 127.0.0.1:0 --cut-after-set 0", "--serve-ptc 127.0.0.1:0 --cut-after-set 2:x",
                           "--cut-after-set 1",
                           "--ptp-state locked", "--refuse-set 0x17"}) {

@@ -86,7 +86,7 @@ constexpr const char* kSensorUsage =
     "  apply FILE [--dry-run]  the settings of a JSON file ({\"rpm\": 600, \"return_mode\": \"last\"}):\n"
     "                          prints what differs, writes only that, reads it back; --dry-run\n"
     "                          writes nothing\n"
-    "  reboot [--wait SECONDS] restart the unit (0x10); with --wait, until it answers again\n"
+    "  reboot [--wait SECONDS] restart the unit (0x10); with --wait, until it answers again, restarted\n"
     "\n"
     "  --ptc-port N            PTC port (default 9347)\n"
     "  --timeout SECONDS       the deadline of each request, connecting included (default 3)\n"

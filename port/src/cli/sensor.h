@@ -42,7 +42,8 @@ int sensor_config(port::PtcClient& client, bool json);
 int sensor_set(port::PtcClient& client, const std::vector<std::string>& pairs);
 /// sensor apply HOST FILE [--dry-run]: the JSON file's settings, only those that differ.
 int sensor_apply(port::PtcClient& client, const std::string& file, bool dry_run);
-/// sensor reboot HOST [--wait SECONDS]: 0x10, then (wait > 0) the inventory asked until it answers.
+/// sensor reboot HOST [--wait SECONDS]: 0x10; with a wait, the status (0x09) asked before it and then
+/// until the unit answers having restarted (a poll unanswered first, or its uptime gone down).
 int sensor_reboot(port::PtcClient& client, double wait_s);
 
 /// The unit's time source before a run (listen --sensor): the clock source (0x08) and the status

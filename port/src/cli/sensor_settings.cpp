@@ -422,7 +422,36 @@ int sensor_apply(PtcClient& client, const std::string& file, bool dry_run) {
   return write_all(client, model, differ, current, target, true);
 }
 
+namespace {
+
+// The unit's uptime from its status (0x09); false, having said why, when it cannot be had.
+bool ask_uptime(PtcClient& client, Model model, std::uint32_t& uptime_s, bool quiet) {
+  Bytes r;
+  const PtcResult result = client.request(ptc::Command::status, {}, r);
+  if (!result.ok()) {
+    if (!quiet) std::fprintf(stderr, "hesai sensor: %s\n", result.message.c_str());
+    return false;
+  }
+  ptc::Status status;
+  if (const Error e = ptc::parse_status(ByteView{r.data(), r.size()}, model, status); e != Error::ok) {
+    if (!quiet) payload_error(client, "status", e, r.size());
+    return false;
+  }
+  uptime_s = status.uptime_s;
+  return true;
+}
+
+}  // namespace
+
 int sensor_reboot(PtcClient& client, double wait_s) {
+  // With --wait, the uptime before: a unit that restarted reports less (or drops the connection
+  // on its way down).
+  Model model = Model::unknown;
+  std::uint32_t uptime_before = 0;
+  if (wait_s > 0 && (!ask_model(client, model) || !ask_uptime(client, model, uptime_before, false))) {
+    std::fprintf(stderr, "hesai sensor: reboot not sent\n");
+    return kExitInput;
+  }
   Bytes r;
   if (!ask(client, ptc::Command::reboot, {}, r)) return kExitInput;
   client.close();
@@ -434,20 +463,33 @@ int sensor_reboot(PtcClient& client, double wait_s) {
   const std::int64_t start = port::monotonic_ns();
   const std::int64_t deadline = start + static_cast<std::int64_t>(wait_s * 1e9);
   std::int64_t next = std::min(start + 1000000000, deadline);  // a wait of a second or less: one poll at its end
+  bool dropped = false;      // a poll found the unit down (refused, closed, silent): it went down
+  bool answered = false;     // a poll was answered, without a sign of a restart
+  std::uint32_t uptime = 0;  // the last answer's
   while (next <= deadline) {
     port::sleep_until_ns(next);
-    Bytes inv;
-    const PtcResult result = client.request(ptc::Command::inventory, {}, inv);
-    if (result.ok()) {
-      std::fprintf(stderr, "%s:%u answers again after %.1f s\n", client.host().c_str(), client.port(),
-                   static_cast<double>(port::monotonic_ns() - start) / 1e9);
-      return kExitOk;
+    if (ask_uptime(client, model, uptime, true)) {
+      if (dropped || uptime < uptime_before) {
+        std::fprintf(stderr, "%s:%u answers again after %.1f s (%s)\n", client.host().c_str(), client.port(),
+                     static_cast<double>(port::monotonic_ns() - start) / 1e9,
+                     dropped ? "it was down" : "its uptime went down");
+        return kExitOk;
+      }
+      answered = true;  // not down yet, or not restarting: asked again until the wait runs out
+    } else {
+      dropped = true;
+      client.close();
     }
-    client.close();
     next = port::monotonic_ns() + 250000000;
   }
-  std::fprintf(stderr, "hesai sensor: %s:%u did not answer within %.1f s of its reboot\n", client.host().c_str(),
-               client.port(), wait_s);
+  if (answered && !dropped)
+    std::fprintf(stderr,
+                 "hesai sensor: %s:%u acknowledged the reboot but did not restart within %.1f s: it kept answering and "
+                 "its uptime did not go down (%u s, %u s before the reboot)\n",
+                 client.host().c_str(), client.port(), wait_s, uptime, uptime_before);
+  else
+    std::fprintf(stderr, "hesai sensor: %s:%u did not answer within %.1f s of its reboot\n", client.host().c_str(),
+                 client.port(), wait_s);
   return kExitInput;
 }
 
