@@ -315,6 +315,33 @@ std::string ssl_failure(SSL* ssl, const TlsContext& context) {
   return reasons;
 }
 
+// After a write that found the connection closed: the alert the peer sent before it closed, if
+// one is there to read (a unit that refuses this client's certificate sends it and may reset the
+// connection at once, before the client's first request goes out: TLS 1.3 ends the client's
+// handshake before the server has checked its certificate). Empty when none: no error but the
+// close. The socket is non-blocking: this does not wait.
+std::string alert_before_close(SSL* ssl, const TlsContext& context) {
+  ERR_clear_error();
+  std::uint8_t byte = 0;
+  std::size_t n = 0;
+  int r = 0;
+  {
+    SigpipeGuard guard;
+    r = SSL_read_ex(ssl, &byte, 1, &n);
+  }
+  if (r != 1 && SSL_get_error(ssl, r) == SSL_ERROR_SSL) {
+    const int reason = ERR_GET_REASON(ERR_peek_error());
+#ifdef SSL_R_UNEXPECTED_EOF_WHILE_READING
+    if (reason != SSL_R_UNEXPECTED_EOF_WHILE_READING) return ssl_failure(ssl, context);
+#else
+    (void)reason;
+    return ssl_failure(ssl, context);
+#endif
+  }
+  ERR_clear_error();
+  return {};
+}
+
 }  // namespace
 
 TlsTransport::~TlsTransport() {
@@ -418,6 +445,10 @@ PtcTransport::Io TlsTransport::send_all(const std::uint8_t* data, std::size_t si
     const int saved = errno;
     ERR_clear_error();
     if (e == SSL_ERROR_ZERO_RETURN || saved == 0 || saved == EPIPE || saved == ECONNRESET) {
+      if (std::string alert = alert_before_close(ssl_, *context_); !alert.empty()) {
+        error_ = std::move(alert);  // the cause, not its consequence
+        return Io::error;
+      }
       error_ = "the peer closed the connection";
       return Io::closed;
     }
