@@ -5,6 +5,7 @@
 
 namespace hesai::kernels {
 std::uint32_t kernel_call_counts[detail::kKernelCount];
+bool reference_scan = false;
 }  // namespace hesai::kernels
 
 namespace hesai::detail {
@@ -16,6 +17,8 @@ std::uint32_t kernel_calls(Kernel k) noexcept { return kernels::kernel_call_coun
 void reset_kernel_calls() noexcept {
   for (std::uint32_t& c : kernels::kernel_call_counts) c = 0;
 }
+
+void use_reference_scan(bool on) noexcept { kernels::reference_scan = on; }
 
 const char* kernel_name(Kernel k) noexcept {
   switch (k) {

@@ -40,6 +40,10 @@ std::uint32_t kernel_calls(Kernel k) noexcept;
 void reset_kernel_calls() noexcept;
 /// "avx512_columns"...
 const char* kernel_name(Kernel k) noexcept;
+/// While set, every decode with a UnitScan scans the units by the reference scalar scan (the C
+/// loop that the firmware builds run), whatever the path: for the tests that compare the hosted
+/// branch-free scan with it. Clear at the start.
+void use_reference_scan(bool on) noexcept;
 #endif
 
 }  // namespace hesai::detail
