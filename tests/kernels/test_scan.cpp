@@ -1,8 +1,9 @@
 // The hosted unit scans (UnitScan: blockage markers, repeated dual returns, distances beyond the
 // rated range) against the reference scalar scan that the firmware builds run
 // (sensors/block_points.h scan_units, forced by hesai::detail::use_reference_scan): the branch-free
-// scalar scan, by every DecodePath, on every packet of every bundled capture and on packets whose
-// units are randomised.
+// scalar scan (DecodePath::portable) and the AVX2 scan (DecodePath::avx2 and best on x86-64), on
+// every packet of every bundled capture and on packets whose units are randomised. The AVX2 scan
+// must have run where it is claimed (its kernel counter), not the scalar scan in its place.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -39,6 +40,13 @@ const Capture kCaptures[] = {{"pandar40p_dual.pcap", Model::pandar40p},
                              {"pandar_xt32.pcap", Model::pandar_xt32},
                              {"pandar_xt32m2x.pcap", Model::pandar_xt32m2x}};
 
+// Whether DecodePath `path` scans by the AVX2 scan here (a packet without a channel map).
+bool vector_scan(DecodePath path) {
+  if (path == DecodePath::portable || !decode_simd_available()) return false;
+  const char* isa = decode_simd_name();
+  return std::strcmp(isa, "avx2") == 0 || std::strcmp(isa, "avx512") == 0;
+}
+
 ::testing::AssertionResult same_scan(const UnitScan& want, const UnitScan& got) {
   if (want.blockage_units != got.blockage_units)
     return ::testing::AssertionFailure() << "blockage_units " << got.blockage_units << ", reference " << want.blockage_units;
@@ -60,12 +68,13 @@ const Capture kCaptures[] = {{"pandar40p_dual.pcap", Model::pandar40p},
   return ::testing::AssertionSuccess();
 }
 
-// Scans one packet by the reference and by every hosted path, and compares. The scan's summary,
-// for the tests' own checks.
+// Scans one packet by the reference and by every hosted path, and compares; `vector_scans` counts
+// the decodes the AVX2 scan should have taken. The scan's summary, for the tests' own checks.
 struct Summary {
   std::uint64_t blockage = 0, duplicates = 0, beyond = 0, packets = 0;
 };
-void compare_paths(Decoder& d, const Packet& p, Summary& sum, const std::string& what) {
+void compare_paths(Decoder& d, const Packet& p, bool mapped, std::uint32_t& vector_scans, Summary& sum,
+                   const std::string& what) {
   static PacketPoints pts;
   PacketInfo info;
   UnitScan want;
@@ -77,20 +86,32 @@ void compare_paths(Decoder& d, const Packet& p, Summary& sum, const std::string&
     UnitScan got;
     ASSERT_EQ(d.decode(view(p), info, pts, got, Returns::all, path), Error::ok) << what;
     EXPECT_TRUE(same_scan(want, got)) << what << ", DecodePath " << static_cast<int>(path);
+    if (!mapped && vector_scan(path)) ++vector_scans;
   }
   sum.blockage += want.blockage_units, sum.duplicates += want.duplicate_returns, sum.beyond += want.beyond_rated_range;
   ++sum.packets;
+}
+
+void expect_vector_scans(std::uint32_t want, const std::string& what) {
+  const std::uint32_t got = detail::kernel_calls(detail::Kernel::avx2_scan);
+  if (want > 0) {
+    EXPECT_GT(got, 0u) << what << ": the AVX2 scan never ran (the scalar scan in its place)";
+  }
+  EXPECT_EQ(got, want) << what << ": calls of the AVX2 scan";
 }
 
 TEST(Scan, EveryPacketOfEveryCaptureEqualsTheReference) {
   for (const Capture& cap : kCaptures) {
     const auto packets = pcap_payloads(cap.file);
     ASSERT_FALSE(packets.empty()) << cap.file;
+    detail::reset_kernel_calls();
     Decoder d(cap.model);
+    std::uint32_t vector_scans = 0;
     Summary sum;
     for (std::size_t i = 0; i < packets.size(); ++i)
-      compare_paths(d, packets[i], sum, std::string(cap.file) + " packet " + std::to_string(i));
+      compare_paths(d, packets[i], false, vector_scans, sum, std::string(cap.file) + " packet " + std::to_string(i));
     EXPECT_EQ(sum.packets, packets.size());
+    expect_vector_scans(vector_scans, cap.file);
   }
 }
 
@@ -190,8 +211,10 @@ TEST(Scan, RandomisedUnitsEqualTheReference) {
   ASSERT_EQ(parse_channel_config_csv(view(config_text), config).error, Error::ok);
   std::mt19937 rng(20261129);
   for (const Capture& cap : kCaptures) {
+    detail::reset_kernel_calls();
     Decoder d(cap.model);
     ASSERT_EQ(d.set_channel_config(config), cap.model == Model::qt128c2x ? Error::ok : Error::invalid_argument);
+    std::uint32_t vector_scans = 0;
     Summary sum;
     bool dual = false, mapped = false;
     for (const Variant& v : variants(cap, config)) {
@@ -210,7 +233,7 @@ TEST(Scan, RandomisedUnitsEqualTheReference) {
         const std::string what = std::string(cap.file) + " returns " + std::to_string(info.returns) + " unit bytes " +
                                  std::to_string(u.bytes) + (v.mapped ? " customised" : "") + " iteration " +
                                  std::to_string(iteration);
-        compare_paths(d, q, sum, what);
+        compare_paths(d, q, v.mapped, vector_scans, sum, what);
       }
     }
     // The randomised units reach every count (blockage only where distance 1 is a marker).
@@ -224,6 +247,7 @@ TEST(Scan, RandomisedUnitsEqualTheReference) {
       EXPECT_GT(sum.blockage, 0u);
       EXPECT_TRUE(mapped);
     }
+    expect_vector_scans(vector_scans, cap.file);
   }
 }
 

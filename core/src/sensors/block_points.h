@@ -158,7 +158,9 @@ HESAI_ALWAYS_INLINE inline void scan_units_branch_free(const kernels::BlockRef* 
 }
 #endif
 
-// The packet's unit scan: the branch-free loop, on the microcontrollers the reference loop.
+// The packet's unit scan, by the fastest scan here: on x86-64 the AVX2 scan where `path` runs
+// vector code and the units need no channel map, else the branch-free loop; on the
+// microcontrollers the reference loop.
 template <std::size_t kUnitBytes>
 HESAI_ALWAYS_INLINE inline void scan_packet(const kernels::BlockRef* blocks, std::size_t block_count,
                                             std::size_t unit_count, const PacketInfo& info,
@@ -167,7 +169,26 @@ HESAI_ALWAYS_INLINE inline void scan_packet(const kernels::BlockRef* blocks, std
 #if HESAI_KERNEL_COUNTERS
   if (kernels::reference_scan) return scan_units<kUnitBytes>(blocks, block_count, unit_count, info, min_distance, scan);
 #endif
+#if defined(HESAI_KERNELS_X86)
+  const kernels::VectorIsa isa = kernels::vector_isa(path);
+  if (isa != kernels::VectorIsa::none && !has_channel_map(blocks, block_count)) {
+    kernels::ScanConstants k;
+    k.block = blocks, k.blocks = block_count, k.units = unit_count, k.unit_bytes = kUnitBytes;
+    k.limit = beyond_limit(info), k.min_distance = min_distance, k.markers = min_distance > 1, k.dual = info.returns == 2;
+    kernels::ScanOutput o;
+    o.blockage = o.beyond = o.duplicates = 0;
+    o.blockage_by_channel = scan.blockage_by_channel.data();
+    for (std::size_t f = 0; f < kernels::kMaxBlocks / 2; ++f) o.repeated[f] = f < kMaxDualFirings ? scan.repeated[f].data() : nullptr;
+    if (kernels::scan_vector(k, isa, o)) {
+      scan.blockage_units = static_cast<std::uint16_t>(o.blockage);
+      scan.beyond_rated_range = static_cast<std::uint16_t>(o.beyond);
+      scan.duplicate_returns = static_cast<std::uint16_t>(o.duplicates);
+      return;
+    }
+  }
+#else
   (void)path;
+#endif
   scan_units_branch_free<kUnitBytes>(blocks, block_count, unit_count, info, min_distance, scan);
 #else
   (void)path;
