@@ -182,7 +182,9 @@ enum class Stage {
   decode_columns_portable,
   decode_columns_avx2,
   decode_portable,  // Points by the scalar loop
-  decode_avx2       // Points by the AVX2 code where AVX-512 is present
+  decode_avx2,      // Points by the AVX2 code where AVX-512 is present
+  decode_scan,      // Points and the unit scan (UnitScan), best path
+  decode_scan_portable  // the same by the scalar code
 };
 
 void finish_counters(benchmark::State& state, std::uint64_t bytes, std::uint64_t points) {
@@ -209,7 +211,9 @@ void BM_Decoder(benchmark::State& state, hesai::Model model, Stage stage) {
   static hesai::PacketPoints out;
   static hesai::PacketColumns<hesai::kMaxPointsPerPacket> columns;
   const hesai::DecodePath path =
-      stage == Stage::decode_columns_portable || stage == Stage::decode_portable ? hesai::DecodePath::portable
+      stage == Stage::decode_columns_portable || stage == Stage::decode_portable ||
+              stage == Stage::decode_scan_portable
+          ? hesai::DecodePath::portable
       : stage == Stage::decode_columns_avx2 || stage == Stage::decode_avx2       ? hesai::DecodePath::avx2
                                                                                  : hesai::DecodePath::best;
   for (const Bytes& p : packets) {
@@ -222,6 +226,7 @@ void BM_Decoder(benchmark::State& state, hesai::Model model, Stage stage) {
   std::size_t i = 0;
   std::uint64_t bytes = 0, points = 0;
   hesai::PacketInfo info;
+  hesai::UnitScan scan;
   for (auto _ : state) {
     const Bytes& p = packets[i];
     i = i + 1 == packets.size() ? 0 : i + 1;
@@ -232,6 +237,10 @@ void BM_Decoder(benchmark::State& state, hesai::Model model, Stage stage) {
                stage == Stage::decode_columns_avx2) {
       e = decoder.decode({p.data(), p.size()}, info, columns, path);
       points += columns.count;
+    } else if (stage == Stage::decode_scan || stage == Stage::decode_scan_portable) {
+      e = decoder.decode({p.data(), p.size()}, info, out, scan, hesai::Returns::all, path);
+      points += out.count;
+      benchmark::DoNotOptimize(scan);
     } else {
       e = decoder.decode({p.data(), p.size()}, info, out, path);
       points += out.count;
@@ -542,6 +551,9 @@ void register_all() {
                                  Stage::decode_columns_avx2);
     benchmark::RegisterBenchmark(("BM_" + n + "_decode_portable").c_str(), BM_Decoder, s.model, Stage::decode_portable);
     benchmark::RegisterBenchmark(("BM_" + n + "_decode_avx2").c_str(), BM_Decoder, s.model, Stage::decode_avx2);
+    benchmark::RegisterBenchmark(("BM_" + n + "_decode_scan").c_str(), BM_Decoder, s.model, Stage::decode_scan);
+    benchmark::RegisterBenchmark(("BM_" + n + "_decode_scan_portable").c_str(), BM_Decoder, s.model,
+                                 Stage::decode_scan_portable);
   }
   benchmark::RegisterBenchmark("BM_QT128C2X_decode_signed", BM_Decoder, hesai::Model::qt128c2x, Stage::decode_signed);
   // Frames (issue #43): a whole capture through decode() and the FrameAssembler, point by point

@@ -114,6 +114,8 @@ def markdown(context, rows, reps):
         ('`Point` decode, %s (`BM_<Sensor>_decode`)' % best, 'BM_%s_decode'),
         ('`Point` decode, AVX2 (`..._decode_avx2`)', 'BM_%s_decode_avx2'),
         ('`Point` decode, scalar (`..._decode_portable`)', 'BM_%s_decode_portable'),
+        ('`Point` decode with the unit scan, %s (`BM_<Sensor>_decode_scan`)' % best, 'BM_%s_decode_scan'),
+        ('`Point` decode with the unit scan, scalar (`..._decode_scan_portable`)', 'BM_%s_decode_scan_portable'),
         ('columns decode, %s (`BM_<Sensor>_decode_columns`)' % best, 'BM_%s_decode_columns'),
         ('columns decode, AVX2 (`..._decode_columns_avx2`)', 'BM_%s_decode_columns_avx2'),
         ('columns decode, scalar (`..._decode_columns_portable`)', 'BM_%s_decode_columns_portable'),
@@ -132,6 +134,7 @@ def markdown(context, rows, reps):
         ('`Point` decode / write_points', 'BM_%s_decode', 'BM_Baseline_write_points_%s', 1.5),
         ('columns decode / write_xyzt', 'BM_%s_decode_columns', 'BM_Baseline_write_xyzt_%s', 2.0),
         ('rpm change on every packet / steady decode', 'BM_%s_decode_rpm_changes', 'BM_%s_decode', 1.3),
+        ('decode with the unit scan / decode (issue #43)', 'BM_%s_decode_scan', 'BM_%s_decode', 1.15),
     )
     for label, num, den, limit in ratios:
         for kind in ('median', 'worst'):

@@ -132,7 +132,7 @@ COMPONENTS = [
     ('sensors/: identify, validate, decode (every sensor)', 'sensors',
      ['decoder', 'pandar40', 'pandar64', 'qt128', 'qt64', 'xt', 'registry', 'tables']),
     ('kernels/: the per-point code, the beam-cache rebuild, the vector path choice', 'kernels',
-     ['beam_cache', 'vector_isa', 'x86_columns', 'x86_points', 'neon_columns', 'neon_points', 'armv7m_loops',
+     ['beam_cache', 'vector_isa', 'x86_columns', 'x86_points', 'x86_scan', 'neon_columns', 'neon_points', 'armv7m_loops',
       'kernel_counters']),
     ('base/: error names, x86-64 CPU features', 'base', ['error', 'cpu_x86']),
     ('crc/: CRC-32/MPEG-2', 'crc', ['crc32', 'crc32_arm', 'crc32_x86']),

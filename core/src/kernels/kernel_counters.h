@@ -11,6 +11,8 @@
 #if HESAI_KERNEL_COUNTERS
 namespace hesai::kernels {
 extern std::uint32_t kernel_call_counts[detail::kKernelCount];
+// detail::use_reference_scan().
+extern bool reference_scan;
 }  // namespace hesai::kernels
 #define HESAI_COUNT_KERNEL(name) \
   (void)++::hesai::kernels::kernel_call_counts[static_cast<std::size_t>(::hesai::detail::Kernel::name)]

@@ -87,6 +87,30 @@ bool columns_vector(const PacketConstants& k, VectorIsa isa, PointColumns out, s
 // The same as Points at out[count...].
 bool points_vector(const PacketConstants& k, VectorIsa isa, Point* out, std::size_t& count) noexcept;
 
+// What the unit scan (the sensors' UnitScan) needs of a packet: its blocks, with no channel maps.
+struct ScanConstants {
+  const BlockRef* block;       // [block]
+  std::size_t blocks;          // at most kMaxBlocks
+  std::size_t units;           // units per block; unit j is channel j
+  std::size_t unit_bytes;      // 3 or 4
+  std::uint32_t limit;         // distances above it are beyond the rated range
+  std::uint16_t min_distance;  // a repeated return's smallest distance
+  bool markers;                // distance 1 is a blockage marker
+  bool dual;                   // blocks 2f and 2f + 1 are the two returns of firing f
+};
+// Where it writes: counts, per-channel blockage counters (kMaxChannels of them, each advanced by
+// one a marker, wrapping as a std::uint8_t), and each firing's repeated-return bits (bit c % 8 of
+// byte c / 8; a null row keeps none), OR-ed in.
+struct ScanOutput {
+  std::uint32_t blockage, beyond, duplicates;
+  std::uint8_t* blockage_by_channel;
+  std::uint8_t* repeated[kMaxBlocks / 2];
+};
+// The scalar scan's counts and bits for the units of k, added to `out`; false (nothing written)
+// when `isa` has no scan here or for this block size (AVX2, chosen for AVX-512 too: steps of
+// eight units, at most kMaxChannels of them).
+bool scan_vector(const ScanConstants& k, VectorIsa isa, ScanOutput& out) noexcept;
+
 }  // namespace hesai::kernels
 
 #endif  // HESAI_KERNELS_VECTOR

@@ -49,15 +49,22 @@ HESAI_ALWAYS_INLINE inline bool has_channel_map(const kernels::BlockRef* blocks,
   return mapped;
 }
 
+// The largest raw distance within the rated range: distance x unit > rated  <=>  distance >
+// floor(rated / unit), for whole numbers; the limit is far above the smallest kept distance
+// (50 000 or 12 500 at 4 mm). 0xFFFF (none beyond) where the model has no rated range.
+HESAI_ALWAYS_INLINE inline std::uint32_t beyond_limit(const PacketInfo& info) noexcept {
+  const std::uint32_t rated_mm = 1000u * rated_range_m(info.model);
+  return rated_mm != 0 && info.dis_unit_mm != 0 ? rated_mm / info.dis_unit_mm : 0xFFFFu;
+}
+
 // Blockage markers, repeated dual returns and distances beyond the rated range, from the units
-// themselves (UnitScan, decoder.h); `scan` was reset by the caller.
+// themselves (UnitScan, decoder.h); `scan` was reset by the caller. The reference: the firmware
+// builds run it; the hosted scans below (branch-free, AVX2) are tested against it
+// (tests/kernels/test_scan.cpp).
 template <std::size_t kUnitBytes>
 HESAI_NOINLINE_FOR_SIZE void scan_units(const kernels::BlockRef* blocks, std::size_t block_count, std::size_t unit_count,
                                         const PacketInfo& info, std::uint16_t min_distance, UnitScan& scan) noexcept {
-  // distance x unit > rated  <=>  distance > floor(rated / unit), for whole numbers; the limit is far
-  // above the smallest kept distance (50 000 or 12 500 at 4 mm).
-  const std::uint32_t rated_mm = 1000u * rated_range_m(info.model);
-  const std::uint32_t limit = rated_mm != 0 && info.dis_unit_mm != 0 ? rated_mm / info.dis_unit_mm : 0xFFFFu;
+  const std::uint32_t limit = beyond_limit(info);
   const bool markers = min_distance > 1;  // distance 1 is a marker only where it is not a point
   std::uint32_t blockage = 0, beyond = 0, duplicates = 0;
   for (std::size_t b = 0; b < block_count; ++b) {
@@ -91,6 +98,104 @@ HESAI_NOINLINE_FOR_SIZE void scan_units(const kernels::BlockRef* blocks, std::si
   scan.duplicate_returns = static_cast<std::uint16_t>(duplicates);
 }
 
+// Where the units are scanned without a branch on them: every target but the microcontrollers
+// (ARM M profile), whose firmware images run the reference scan_units alone (a short pipeline,
+// and flash and instruction budgets: docs/FIRMWARE.md).
+#if !(defined(__ARM_ARCH_PROFILE) && __ARM_ARCH_PROFILE == 'M')
+#define HESAI_SCAN_BRANCH_FREE 1
+#else
+#define HESAI_SCAN_BRANCH_FREE 0
+#endif
+
+#if HESAI_SCAN_BRANCH_FREE
+// scan_units without a branch on the units (their distances and reflectivities: blockage markers,
+// empty and repeated returns come in no order a predictor learns): every test evaluated in full,
+// the counts advanced by 0 or 1, the blockage counter and the repeated bit written for every unit.
+template <std::size_t kUnitBytes>
+HESAI_ALWAYS_INLINE inline void scan_units_branch_free(const kernels::BlockRef* blocks, std::size_t block_count,
+                                                       std::size_t unit_count, const PacketInfo& info,
+                                                       std::uint16_t min_distance, UnitScan& scan) noexcept {
+  const std::uint32_t limit = beyond_limit(info);
+  const bool markers = min_distance > 1;  // distance 1 is a marker only where it is not a point
+  std::uint32_t blockage = 0, beyond = 0, duplicates = 0;
+  for (std::size_t b = 0; b < block_count; ++b) {
+    const std::uint8_t* u = blocks[b].units;
+    const std::uint8_t* const map = blocks[b].channel_of;
+    if (!markers) {  // the same for every block of the packet
+      for (std::size_t j = 0; j < unit_count; ++j, u += kUnitBytes) beyond += load_le16(u) > limit;
+      continue;
+    }
+    for (std::size_t j = 0; j < unit_count; ++j, u += kUnitBytes) {
+      const std::uint32_t distance = load_le16(u);
+      beyond += distance > limit;
+      const std::uint32_t marker = distance == 1;
+      blockage += marker;
+      std::uint8_t& count = scan.blockage_by_channel[(map != nullptr ? map[j] : j) % kMaxChannels];
+      count = static_cast<std::uint8_t>(count + marker);
+    }
+  }
+  if (info.returns == 2) {  // blocks 2i and 2i + 1 are the two returns of a firing
+    std::uint8_t spare[kMaxChannels / 8];  // the bits of firings beyond kMaxDualFirings, dropped
+    for (std::size_t b = 0; b + 1 < block_count; b += 2) {
+      const std::uint8_t* u0 = blocks[b].units;
+      const std::uint8_t* u1 = blocks[b + 1].units;
+      const std::uint8_t* const map = blocks[b + 1].channel_of;
+      std::uint8_t* const row = b / 2 < kMaxDualFirings ? scan.repeated[b / 2].data() : spare;
+      for (std::size_t j = 0; j < unit_count; ++j, u0 += kUnitBytes, u1 += kUnitBytes) {
+        const std::uint32_t d0 = load_le16(u0);
+        const std::uint32_t repeated = static_cast<std::uint32_t>(d0 >= min_distance) &
+                                       static_cast<std::uint32_t>(d0 == load_le16(u1)) &
+                                       static_cast<std::uint32_t>(u0[2] == u1[2]);
+        duplicates += repeated;
+        const std::size_t ch = (map != nullptr ? map[j] : j) % kMaxChannels;
+        row[ch / 8] = static_cast<std::uint8_t>(row[ch / 8] | repeated << (ch % 8));
+      }
+    }
+  }
+  scan.blockage_units = static_cast<std::uint16_t>(blockage);
+  scan.beyond_rated_range = static_cast<std::uint16_t>(beyond);
+  scan.duplicate_returns = static_cast<std::uint16_t>(duplicates);
+}
+#endif
+
+// The packet's unit scan, by the fastest scan here: on x86-64 the AVX2 scan where `path` runs
+// vector code and the units need no channel map, else the branch-free loop; on the
+// microcontrollers the reference loop.
+template <std::size_t kUnitBytes>
+HESAI_ALWAYS_INLINE inline void scan_packet(const kernels::BlockRef* blocks, std::size_t block_count,
+                                            std::size_t unit_count, const PacketInfo& info,
+                                            std::uint16_t min_distance, DecodePath path, UnitScan& scan) noexcept {
+#if HESAI_SCAN_BRANCH_FREE
+#if HESAI_KERNEL_COUNTERS
+  if (kernels::reference_scan) return scan_units<kUnitBytes>(blocks, block_count, unit_count, info, min_distance, scan);
+#endif
+#if defined(HESAI_KERNELS_X86)
+  const kernels::VectorIsa isa = kernels::vector_isa(path);
+  if (isa != kernels::VectorIsa::none && !has_channel_map(blocks, block_count)) {
+    kernels::ScanConstants k;
+    k.block = blocks, k.blocks = block_count, k.units = unit_count, k.unit_bytes = kUnitBytes;
+    k.limit = beyond_limit(info), k.min_distance = min_distance, k.markers = min_distance > 1, k.dual = info.returns == 2;
+    kernels::ScanOutput o;
+    o.blockage = o.beyond = o.duplicates = 0;
+    o.blockage_by_channel = scan.blockage_by_channel.data();
+    for (std::size_t f = 0; f < kernels::kMaxBlocks / 2; ++f) o.repeated[f] = f < kMaxDualFirings ? scan.repeated[f].data() : nullptr;
+    if (kernels::scan_vector(k, isa, o)) {
+      scan.blockage_units = static_cast<std::uint16_t>(o.blockage);
+      scan.beyond_rated_range = static_cast<std::uint16_t>(o.beyond);
+      scan.duplicate_returns = static_cast<std::uint16_t>(o.duplicates);
+      return;
+    }
+  }
+#else
+  (void)path;
+#endif
+  scan_units_branch_free<kUnitBytes>(blocks, block_count, unit_count, info, min_distance, scan);
+#else
+  (void)path;
+  scan_units<kUnitBytes>(blocks, block_count, unit_count, info, min_distance, scan);
+#endif
+}
+
 // Optimising for size (-Os, the firmware builds), every sensor calls one shared copy per unit
 // size: inlined into each sensor's block walk it took 0.8 KB more flash on the Cortex-M0+.
 // Optimising for speed it is inlined, where the constant channel count and the absent map of the
@@ -116,7 +221,7 @@ HESAI_NOINLINE_FOR_SIZE void SensorBase::emit_blocks(const Decoder& d, const ker
   }
   const float unit_m = static_cast<float>(info.dis_unit_mm) * 0.001f;
   const std::uint16_t min_distance = sensor_of(d.model_)->min_distance;
-  if (out.scan != nullptr) scan_units<kUnitBytes>(blocks, block_count, unit_count, info, min_distance, *out.scan);
+  if (out.scan != nullptr) scan_packet<kUnitBytes>(blocks, block_count, unit_count, info, min_distance, out.path, *out.scan);
   if (out.compare.into != nullptr) out.compare.fill(blocks, block_count, unit_count, kUnitBytes, info, *out.compare.into);
 #if defined(HESAI_KERNELS_VECTOR)
   const kernels::VectorIsa isa = kernels::vector_isa(out.path);  // none for DecodePath::portable

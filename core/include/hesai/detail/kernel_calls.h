@@ -23,14 +23,16 @@ namespace hesai::detail {
 
 /// The vector kernels, by instruction set and what they write (core/src/kernels/). `*_beams`: the
 /// per-spin-rate beam-cache rebuild (x86-64 only); `armv7m_*`: a packet through the ARMv7E-M
-/// assembly loops.
+/// assembly loops; `avx2_scan`: a packet's unit scan (UnitScan) by AVX2, on the AVX2 and AVX-512
+/// paths alike.
 enum class Kernel : std::uint8_t {
   avx512_columns, avx512_points, avx512_beams,
   avx2_columns, avx2_points, avx2_beams,
   neon_columns, neon_points,
   armv7m_columns, armv7m_points,
+  avx2_scan,
 };
-inline constexpr std::size_t kKernelCount = 10;
+inline constexpr std::size_t kKernelCount = 11;
 
 #if HESAI_KERNEL_COUNTERS
 /// Calls of `k` since the last reset_kernel_calls() (or the program's start): one a packet for
@@ -40,6 +42,10 @@ std::uint32_t kernel_calls(Kernel k) noexcept;
 void reset_kernel_calls() noexcept;
 /// "avx512_columns"...
 const char* kernel_name(Kernel k) noexcept;
+/// While set, every decode with a UnitScan scans the units by the reference scalar scan (the C
+/// loop that the firmware builds run), whatever the path: for the tests that compare the hosted
+/// scans (branch-free scalar, AVX2) with it. Clear at the start.
+void use_reference_scan(bool on) noexcept;
 #endif
 
 }  // namespace hesai::detail
