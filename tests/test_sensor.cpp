@@ -574,6 +574,24 @@ void expect_consistent(const LiveRun& r) {
   EXPECT_EQ(std::count(r.csv.begin(), r.csv.end(), '\n'), 1) << "points of spoofed packets were written";
 }
 
+// Replays within a session (issue #44, finding 1): the stand-in sends its capture twice under one
+// session key, the second time with the first time's UDP sequence numbers (no --renumber): each
+// packet of the second loop verifies, but is not new. listen takes the first loop (1 800 valid
+// signatures, the capture's points: as many as `stats` counts in it) and refuses the second
+// (replayed 1 800), with no restart: a replay is neither a bad signature nor a lost session.
+TEST(SensorAttack, ReplayedSignedPacketsAreRefusedLive) {
+  const LiveRun r = live_run("--wait-for-session", "--count 3600 --seconds 30", [](int, int) {});
+  const Ran file = run("stats " + data_path("qt128c2x_dual.pcap") + " --json");
+  ASSERT_EQ(r.ran.status, 0) << r.ran.err;
+  EXPECT_EQ(json_number(r.ran.out, "packets"), 3600) << r.ran.out;
+  EXPECT_EQ(json_number(r.ran.out, "signature_valid"), 1800) << r.ran.out;
+  EXPECT_EQ(json_number(r.ran.out, "replayed"), 1800) << r.ran.out;
+  EXPECT_EQ(json_number(r.ran.out, "points"), json_number(file.out, "points")) << r.ran.out;
+  EXPECT_EQ(json_number(r.ran.out, "signature_invalid"), 0);
+  EXPECT_EQ(json_number(r.ran.out, "session_restarts"), 0);
+  expect_consistent(r);
+}
+
 // A unit that accepts the session and never signs: nothing it sends after the session's answer
 // is accepted, nor 200 unsigned packets spoofed from its address; the session is started again
 // twice, then the run ends with exit 2, naming the cause, within three graces and the PTC.
