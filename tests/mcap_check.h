@@ -64,6 +64,7 @@ struct Parsed {
   std::string profile;
   std::vector<Record> summary;
   std::vector<std::pair<std::uint64_t, std::vector<std::uint8_t>>> messages;  // log_time, data (via the index)
+  std::vector<std::uint16_t> message_channels;  // messages[i]'s channel id, read from its Message record
   std::uint64_t chunks = 0;
   // Metadata records of the data section, by name: their key-value pairs.
   std::map<std::string, std::map<std::string, std::string>> metadata;
@@ -206,6 +207,7 @@ inline Parsed check_mcap(const std::vector<std::uint8_t>& b) {
         const std::size_t len = static_cast<std::size_t>(le(b, msg + 1, 8)) - 22;
         p.messages.emplace_back(t, std::vector<std::uint8_t>(b.begin() + static_cast<std::ptrdiff_t>(msg + 31),
                                                              b.begin() + static_cast<std::ptrdiff_t>(msg + 31 + len)));
+        p.message_channels.push_back(static_cast<std::uint16_t>(le(b, msg + 9, 2)));
       }
     }
     EXPECT_EQ(map_end + 8 + 4 + 16, ci.body + ci.length);  // message_index_length, "", two sizes

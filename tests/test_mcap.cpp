@@ -10,12 +10,14 @@
 #include <cstdio>
 #include <cstring>
 #include <string>
+#include <tuple>
 #include <utility>
 #include <vector>
 
 #include "hesai_port/formats/mcap.h"
 #include "hesai_port/formats/pointcloud2.h"
 #include "mcap_check.h"
+#include "packet_builder.h"
 #include "test_support.h"
 
 using namespace hesai;
@@ -313,14 +315,16 @@ struct Labelled {
     return false;
   }
 };
-Labelled label(const std::vector<std::uint8_t>& payload) {
-  Decoder dec(Model::pandar64);
+Labelled label(const std::vector<std::uint8_t>& payload, Model model = Model::pandar64,
+               ReturnComparison* compared = nullptr) {
+  Decoder dec(model);
   PacketInfo info;
   PacketPoints pts;
   UnitScan scan;
   ReturnComparison compare;
   Labelled out;
   EXPECT_EQ(dec.decode(view(payload), info, pts, scan, compare), Error::ok);
+  if (compared != nullptr) *compared = compare;
   for (const Point& p : pts) {
     out.points.push_back(p);
     out.types.push_back(static_cast<unsigned>(port::nebula_return_type(info, compare, p)));
@@ -373,6 +377,64 @@ TEST(NebulaReturnType, Pandar64SingleReturnByHand) {
     }
     EXPECT_EQ(l.of(0, 1), want);  // identical to block 1's unit, but single return: no IDENTICAL
   }
+}
+
+// Equal distance is not enough: nebula's hesai_sensor.hpp (is_duplicate) calls a return a
+// duplicate, IDENTICAL, only when both its distance and its reflectivity equal another return's
+// of the firing; otherwise the mode's label (0x39: is_strongest, "no other reflects more"). Packet
+// 0 of qt128c2x_dual.pcap (return mode 0x39 at tail + 12, QT128C2X manual 3.1.2 Tail; 4-byte
+// units, flags 0x1D) with block 2's units rewritten to the distance of block 1's and another
+// reflectivity, re-sealed (CRC1 over the body; the signature is not checked without a key).
+TEST(NebulaReturnType, Qt128EqualDistanceOtherReflectivityIsNotIdentical) {
+  const auto packets = pcap_payloads("qt128c2x_dual.pcap");
+  ASSERT_FALSE(packets.empty());
+  std::vector<std::uint8_t> p = packets[0];
+  const QtOffsets o = qt128_offsets(p);
+  ASSERT_EQ(o.unit, 4u);
+  ASSERT_EQ(p[o.tail + 12], 0x39);
+  // The capture's units (block, 1-based channel: distance, reflectivity), read from its bytes:
+  // channel 1 (31, 2) and (31, 2); channel 6 (40, 41) and (40, 41); channel 7 (49, 44) and (49, 44).
+  auto unit = [&](int block, int channel) {
+    const std::size_t at = 12 + o.block * static_cast<std::size_t>(block - 1) + 2 + o.unit * static_cast<std::size_t>(channel - 1);
+    return std::make_pair(unsigned{load_le16(&p[at])}, unsigned{p[at + 2]});
+  };
+  for (int b = 1; b <= 2; ++b) {
+    EXPECT_EQ(unit(b, 1), std::make_pair(31u, 2u));
+    EXPECT_EQ(unit(b, 6), std::make_pair(40u, 41u));
+    EXPECT_EQ(unit(b, 7), std::make_pair(49u, 44u));
+  }
+  // Channel 6: block 2 reflects 20, block 1 (41) more. Channel 7: block 2 reflects 90, more than
+  // block 1 (44). Same distances, so neither pair is IDENTICAL. Channel 1 left as sent: IDENTICAL.
+  qt128_point(p, 2, 6, 40, 20);
+  qt128_point(p, 2, 7, 49, 90);
+  qt128_seal(p);
+  ReturnComparison compare;
+  const Labelled l = label(p, Model::qt128c2x, &compare);
+  // The rewritten units are those of the points (intensity the raw reflectivity).
+  for (const auto& [block, channel, refl] : {std::tuple<std::size_t, std::size_t, unsigned>{0, 6, 41}, {1, 6, 20}, {0, 7, 44}, {1, 7, 90}})
+    for (std::size_t i = 0; i < l.points.size(); ++i) {
+      if (l.points[i].block == block && l.points[i].channel == channel) {
+        EXPECT_EQ(l.points[i].intensity, refl);
+      }
+    }
+  // ReturnComparison (0-based channels): identical only for channel 1.
+  EXPECT_TRUE(compare.is_identical(0, 0));
+  EXPECT_TRUE(compare.is_identical(1, 0));
+  EXPECT_FALSE(compare.is_identical(0, 5)) << "equal distance, reflectivity 41 vs 20";
+  EXPECT_FALSE(compare.is_identical(1, 5)) << "equal distance, reflectivity 20 vs 41";
+  EXPECT_FALSE(compare.is_identical(0, 6)) << "equal distance, reflectivity 44 vs 90";
+  EXPECT_FALSE(compare.is_identical(1, 6)) << "equal distance, reflectivity 90 vs 44";
+  EXPECT_FALSE(compare.is_weaker(0, 5));
+  EXPECT_TRUE(compare.is_weaker(1, 5));
+  EXPECT_TRUE(compare.is_weaker(0, 6));
+  EXPECT_FALSE(compare.is_weaker(1, 6));
+  // nebula's labels, by hand (0x39: block 1 last, block 2 strongest).
+  EXPECT_EQ(l.of(0, 1), kIdentical);
+  EXPECT_EQ(l.of(1, 1), kIdentical);
+  EXPECT_EQ(l.of(0, 6), kLastStrongest) << "the last return reflects more: it is the strongest too";
+  EXPECT_EQ(l.of(1, 6), kSecondStrongest);
+  EXPECT_EQ(l.of(0, 7), kLast);
+  EXPECT_EQ(l.of(1, 7), kStrongest);
 }
 
 }  // namespace

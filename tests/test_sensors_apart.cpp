@@ -237,10 +237,17 @@ TEST_F(SensorsApart, McapHasATopicPerSensorInLogTimeOrder) {
   for (std::size_t i = 1; i < p.file_order.size(); ++i)
     EXPECT_GE(p.file_order[i].second, p.file_order[i - 1].second) << "message " << i << " logged before the one before it";
   // Each message against its sensor's frame: matched by the sensor its topic names and its width.
+  // And each message on its own sensor's channel: the topic of the channel it is written on names
+  // the sensor its frame_id names (one sensor's frames on the other's topic would pass the rest).
   std::map<std::string, std::uint64_t> messages_of;
-  for (const auto& [log_time, data] : p.messages) {
-    const Cloud c = cloud(data);
+  ASSERT_EQ(p.message_channels.size(), p.messages.size());
+  for (std::size_t m = 0; m < p.messages.size(); ++m) {
+    const Cloud c = cloud(p.messages[m].second);
     const std::string token = c.frame_id.substr(std::string("hesai_").size());
+    const auto channel = topics.find(p.message_channels[m]);
+    ASSERT_NE(channel, topics.end()) << "message " << m << " on channel " << p.message_channels[m] << ", which no Channel record declares";
+    EXPECT_EQ(channel->second, "/hesai/" + token + "/points")
+        << "message " << m << " (frame_id " << c.frame_id << ") is on channel " << channel->first << ", another sensor's topic";
     const std::string sensor = token == "ip_192_168_1_201" ? "192.168.1.201:10000" : "192.168.1.202:10000";
     ASSERT_TRUE(token == "ip_192_168_1_201" || token == "ip_192_168_1_202") << c.frame_id;
     EXPECT_LT(c.max_time_stamp, 1000000000u) << c.frame_id << ": a point's time_stamp overflowed";
