@@ -8,6 +8,7 @@
 #include <cerrno>
 #include <cstring>
 
+#include "hesai_port/base/files.h"
 #include "hesai_port/base/text.h"
 
 namespace hesai::cli {
@@ -164,14 +165,6 @@ class JsonReader {
   std::size_t line_ = 1;
 };
 
-// What fstat found that is not a regular file, for the refusal.
-const char* file_kind(mode_t mode) {
-  if (S_ISFIFO(mode)) return "a FIFO";
-  if (S_ISSOCK(mode)) return "a socket";
-  if (S_ISCHR(mode) || S_ISBLK(mode)) return "a device";
-  return "not a regular file";
-}
-
 }  // namespace
 
 bool read_settings_file(const std::string& path, std::string& bytes, std::string& error) {
@@ -191,7 +184,7 @@ bool read_settings_file(const std::string& path, std::string& bytes, std::string
   if (!S_ISREG(st.st_mode)) {
     error = "cannot read '" + path + "': " +
             (S_ISDIR(st.st_mode) ? std::string(std::strerror(EISDIR))
-                                 : std::string("it is ") + file_kind(st.st_mode) + ", not a regular file");
+                                 : std::string("it is ") + port::file_kind(st.st_mode) + ", not a regular file");
     ::close(fd);
     return false;
   }
