@@ -638,6 +638,25 @@ TEST(SensorAttack, SessionStoppedByAThirdPartyIsStartedAgain) {
   expect_consistent(r);
 }
 
+// The same stop seen by the poll alone (issue #44, finding 9): a grace of 30 s, longer than the
+// run, cannot fire, so only the unit's 0x2D answer ("not signing") can start the session again.
+// Ignoring that answer left the test above passing through its grace.
+TEST(SensorAttack, SessionStoppedByAThirdPartyIsSeenByThePoll) {
+  const LiveRun r = live_run("", "--seconds 3 --signature-grace 30 --session-poll 0.3", [&](int, int ptc) {
+    usleep(500000);
+    EXPECT_EQ(ptc_request(ptc, 0x2F, {}), 0);
+  });
+  EXPECT_EQ(r.ran.status, 0) << r.ran.err;
+  EXPECT_EQ(json_number(r.ran.out, "session_restarts"), 1) << r.ran.out << r.ran.err;
+  EXPECT_NE(r.ran.err.find("signature session lost (the unit says it signs no packets (0x2D))"), std::string::npos)
+      << r.ran.err;
+  EXPECT_EQ(r.ran.err.find("no valid signature for"), std::string::npos) << r.ran.err;
+  EXPECT_GT(json_number(r.ran.out, "unsigned_rejected"), 0) << r.ran.out;  // sent between the stop and the restart
+  // Signed again after the restart: more than the half second before the stop gave (about 260).
+  EXPECT_GT(json_number(r.ran.out, "signature_valid"), 500) << r.ran.out;
+  expect_consistent(r);
+}
+
 // issue #44, finding 2: a PTC port that goes silent once the session started (the stand-in's
 // --silent-after-session: connections accepted, requests read, none answered) must not stall
 // reception. The stand-in sends its capture at about 5 000 packets a second (rate 0.48: 1800
