@@ -3,7 +3,8 @@
 // hesai::decode_simd_name()), HESAI_EXPECT_CRC32 (hesai::crc32_path_name()) and
 // HESAI_EXPECT_SHA256 (hesai::sha256_path_name()). Unset or empty, a variable is not checked.
 // .ci/run and .ci/cross set them from what they know of the CPU (/proc/cpuinfo, the cross
-// toolchain), so that vector code the machine has cannot go unused without a failing test.
+// toolchain), and ctest's simd_path (tests/simd_path.cmake) the same way where none is set, so
+// that vector code the machine has cannot go unused without a failing test.
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>

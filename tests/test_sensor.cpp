@@ -529,8 +529,11 @@ struct LiveRun {
   std::string csv;       // the points written
   std::string standin;   // the stand-in's stderr
 };
+// csv_stall_ms > 0: the CSV goes to a FIFO that the test leaves unread for that long, so that the
+// listener blocks on its first frame and reads nothing meanwhile (its drain of the datagrams
+// received before the session included).
 LiveRun live_run(const std::string& standin_options, const std::string& listen_options,
-                 const std::function<void(int udp_port, int ptc_port)>& attack) {
+                 const std::function<void(int udp_port, int ptc_port)>& attack, int csv_stall_ms = 0) {
   LiveRun r;
   const int port = free_udp_port();
   const std::string secret = secret_file(), csv = temp_path("live.csv"), err = temp_path("live_err");
@@ -540,6 +543,28 @@ LiveRun live_run(const std::string& standin_options, const std::string& listen_o
   if (s.port() == 0 || port == 0) {
     ADD_FAILURE() << s.stderr_text();
     return r;
+  }
+  int fifo = -1;
+  std::thread reader;
+  if (csv_stall_ms > 0) {
+    std::remove(csv.c_str());
+    if (mkfifo(csv.c_str(), 0600) != 0 || (fifo = open(csv.c_str(), O_RDONLY | O_NONBLOCK)) < 0) {
+      ADD_FAILURE() << "no FIFO at " << csv;
+      return r;
+    }
+    reader = std::thread([&r, fifo, csv_stall_ms] {
+      usleep(static_cast<useconds_t>(csv_stall_ms) * 1000);
+      fcntl(fifo, F_SETFL, 0);  // blocking from now on: read until the listener closes it
+      char buf[65536];
+      // Until the listener closes it; before it opened it (nothing read yet), an end is no end.
+      for (int waits = 0; waits < 1000;) {
+        const ssize_t n = read(fifo, buf, sizeof buf);
+        if (n > 0) r.csv.append(buf, static_cast<std::size_t>(n));
+        else if (n == 0 && !r.csv.empty()) break;
+        else if (n < 0 && errno != EINTR) break;
+        else if (n == 0) usleep(10000), ++waits;
+      }
+    });
   }
   const std::string cmd = "exec env -u HESAI_SECRET " + cli() + " listen --bind 127.0.0.1 --port " + std::to_string(port) +
                           " --gps-port 0 --sensor 127.0.0.3 --ptc-port " + std::to_string(s.port()) + " --secret-file " +
@@ -559,7 +584,12 @@ LiveRun live_run(const std::string& standin_options, const std::string& listen_o
   r.ran.status = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
   r.ran.out = read_text(temp_path("live_out"));
   r.ran.err = read_text(err);
-  r.csv = read_text(csv);
+  if (reader.joinable()) {
+    reader.join();
+    close(fifo);
+  } else {
+    r.csv = read_text(csv);
+  }
   r.standin = s.stderr_text();
   for (const std::string& f : {csv, err, temp_path("live_out"), secret}) std::remove(f.c_str());
   return r;
@@ -613,6 +643,41 @@ TEST(SensorAttack, UnitThatNeverSignsEndsTheRunAfterTwoRestarts) {
   EXPECT_LE(json_number(r.ran.out, "unsigned_accepted"), std::stoll(r.ran.err.substr(at + 27))) << r.ran.err;
 }
 
+// The drain's line between before and after the session, by the kernel's receive time (issue #44,
+// finding 9): a unit that never signs sends 1500 unsigned packets when the 0x2E arrives, before
+// it answers (so before the key is agreed), and its stream from 50 ms after the answer. The
+// listener's CSV goes to a FIFO the test leaves unread for 400 ms: its drain stops at the first
+// frame (about 600 packets in) and goes on once the stream's first packets wait behind the rest
+// of the 1500. Exactly those 1500 are accepted, a number the stand-in fixes rather than one the
+// listener reports; each later one is rejected, those the drain reads among them too. With every
+// drained datagram taken as pre-session, the stream's first ones were accepted as well.
+TEST(SensorAttack, OnlyDatagramsReceivedBeforeTheSessionAreAcceptedUnsigned) {
+  // Linux stamps a datagram on arrival only while some socket asks for stamps, and switches that
+  // on from a deferred work item when the first one asks: the listener's first datagrams could be
+  // stamped when read instead, after the session (rejected: safe, but not what is tested here;
+  // seen once in a few runs on a loaded machine). A socket of the test's own keeps it on.
+  const int stamps = socket(AF_INET, SOCK_DGRAM, 0);
+  const int on = 1;
+  ASSERT_EQ(setsockopt(stamps, SOL_SOCKET, SO_TIMESTAMPNS, &on, sizeof on), 0);
+  usleep(100000);
+  const LiveRun r = live_run("--wait-for-session --never-sign --unsigned-before-session 1500",
+                             "--seconds 2 --signature-grace 30 --max-range 200", [](int, int) {}, 400);
+  EXPECT_EQ(r.ran.status, 0) << r.ran.err;
+  // 1500 QT128 datagrams take about 3.5 MB of receive buffer (listen asks for 16 MiB).
+  EXPECT_EQ(json_number(r.ran.out, "kernel_drops"), 0)
+      << "the kernel dropped datagrams: raise net.core.rmem_max (sysctl -w net.core.rmem_max=16777216)\n" << r.ran.out;
+  EXPECT_EQ(json_number(r.ran.out, "unsigned_accepted"), 1500) << r.ran.out << r.ran.err;
+  EXPECT_NE(r.ran.err.find("signature session started (1500 datagrams received before it"), std::string::npos) << r.ran.err;
+  EXPECT_GT(json_number(r.ran.out, "unsigned_rejected"), 300) << r.ran.out;  // the stream, 520 a second
+  EXPECT_GT(std::count(r.csv.begin(), r.csv.end(), '\n'), 1) << "no point of the 1500 written";
+  close(stamps);
+  EXPECT_EQ(json_number(r.ran.out, "signature_valid"), 0) << r.ran.out;
+  EXPECT_EQ(json_number(r.ran.out, "session_restarts"), 0) << r.ran.out << r.ran.err;
+  EXPECT_EQ(json_number(r.ran.out, "signature_missing"),
+            json_number(r.ran.out, "unsigned_accepted") + json_number(r.ran.out, "unsigned_rejected"))
+      << r.ran.out;
+}
+
 // The real stream signed under another key (an attacker on the LAN started a session of its own,
 // 0x2E), plus 200 unsigned packets spoofed from the sensor's address: the spoofed packets and
 // those signed under the other key are rejected, the listener starts a new session, and the
@@ -653,6 +718,25 @@ TEST(SensorAttack, SessionStoppedByAThirdPartyIsStartedAgain) {
   EXPECT_GE(json_number(r.ran.out, "unsigned_rejected"), 50) << r.ran.out;
   EXPECT_GT(json_number(r.ran.out, "signature_valid"), 800) << r.ran.out;  // as above
   EXPECT_NE(r.ran.err.find("signature session lost ("), std::string::npos) << r.ran.err;
+  expect_consistent(r);
+}
+
+// The same stop seen by the poll alone (issue #44, finding 9): a grace of 30 s, longer than the
+// run, cannot fire, so only the unit's 0x2D answer ("not signing") can start the session again.
+// Ignoring that answer left the test above passing through its grace.
+TEST(SensorAttack, SessionStoppedByAThirdPartyIsSeenByThePoll) {
+  const LiveRun r = live_run("", "--seconds 3 --signature-grace 30 --session-poll 0.3", [&](int, int ptc) {
+    usleep(500000);
+    EXPECT_EQ(ptc_request(ptc, 0x2F, {}), 0);
+  });
+  EXPECT_EQ(r.ran.status, 0) << r.ran.err;
+  EXPECT_EQ(json_number(r.ran.out, "session_restarts"), 1) << r.ran.out << r.ran.err;
+  EXPECT_NE(r.ran.err.find("signature session lost (the unit says it signs no packets (0x2D))"), std::string::npos)
+      << r.ran.err;
+  EXPECT_EQ(r.ran.err.find("no valid signature for"), std::string::npos) << r.ran.err;
+  EXPECT_GT(json_number(r.ran.out, "unsigned_rejected"), 0) << r.ran.out;  // sent between the stop and the restart
+  // Signed again after the restart: more than the half second before the stop gave (about 260).
+  EXPECT_GT(json_number(r.ran.out, "signature_valid"), 500) << r.ran.out;
   expect_consistent(r);
 }
 

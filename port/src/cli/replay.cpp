@@ -241,6 +241,7 @@ int cmd_replay(Args& args) {
   std::string capture, to, multicast_if, error, rate_text = "1";
   std::uint64_t loops = 1;
   bool quiet = false, renumber_sequence = false;
+  std::uint64_t unsigned_before_session = 0;  // --unsigned-before-session N (tests)
   std::uint64_t from_port = 0;  // --from-port; 0: the kernel's choice
   StandIn stand_in;
   while (!args.empty()) {
@@ -297,6 +298,11 @@ int cmd_replay(Args& args) {
     else if (a == "--wait-for-session") stand_in.wait_for_session = true;
     else if (a == "--never-sign") stand_in.never_sign = true;
     else if (a == "--silent-after-session") stand_in.silent_after_session = true;
+    else if (a == "--unsigned-before-session") {  // for tests, not in --help (docs/TESTING.md)
+      if (!args.value(a, v) || !parse_u64(v, unsigned_before_session) || unsigned_before_session == 0 ||
+          unsigned_before_session > 100000)
+        return usage_error("replay", "--unsigned-before-session takes 1 to 100000 packets");
+    }
     else if (parse_stand_in_test_option(a, args, stand_in, error)) {
       if (!error.empty()) return usage_error("replay", error);
     }
@@ -352,9 +358,26 @@ int cmd_replay(Args& args) {
   if (!sender.open(to, multicast_if, error)) return usage_error("replay", error);
   std::signal(SIGINT, on_signal);
   std::signal(SIGTERM, on_signal);
+  // --unsigned-before-session N: the first N datagrams of the capture, unsigned, sent when the
+  // first 0x2E arrives and before it is answered (so received before the session's key is agreed);
+  // the stream itself then starts 50 ms after the session (--wait-for-session), or more.
+  std::vector<std::vector<std::uint8_t>> before_session;
+  if (unsigned_before_session > 0) {
+    if (!serving || !stand_in.wait_for_session)
+      return usage_error("replay", "--unsigned-before-session needs --serve-ptc and --wait-for-session");
+    port::CaptureFile first;
+    if (!open_capture(capture, first)) return kExitInput;
+    port::UdpDatagram d;
+    while (before_session.size() < unsigned_before_session && first.next(d) == port::CaptureStatus::datagram)
+      before_session.emplace_back(d.payload.data, d.payload.data + d.payload.size);
+    server.on_first_session([&] {
+      for (const auto& p : before_session) sender.send(p.data(), p.size());
+    });
+  }
   ServerThread ptc_thread(server, serving);
   while (stand_in.wait_for_session && server.sessions_started() == 0 && !g_stop)
     port::sleep_until_ns(port::monotonic_ns() + 10000000);
+  if (unsigned_before_session > 0) port::sleep_until_ns(port::monotonic_ns() + 50000000);
   std::uint8_t key[32] = {};
   const WipeOnExit wipe_key_on_exit(key, sizeof key);  // every return below
   std::uint64_t signed_packets = 0;

@@ -371,6 +371,7 @@ std::vector<std::uint8_t> PtcServer::answer(std::uint8_t command, const std::vec
         code = static_cast<std::uint8_t>(ptc::ReturnCode::unsupported_command);
         return {};
       }
+      if (sessions_started_ == 0 && on_first_session_) on_first_session_();
       if (request.size() != ptc::kRandomBytes || !random_bytes(lidar_random, sizeof lidar_random) ||
           hesai_session_key(ByteView{reinterpret_cast<const std::uint8_t*>(content_.secret.data()), content_.secret.size()},
                             lidar_random, request.data(), key.data()) != Error::ok) {

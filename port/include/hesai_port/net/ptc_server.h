@@ -47,6 +47,7 @@
 #include <array>
 #include <atomic>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <mutex>
 #include <string>
@@ -97,6 +98,9 @@ class PtcServer {
   bool session_key(std::uint8_t key[32]) const;
   /// Sessions started so far.
   std::uint64_t sessions_started() const { return sessions_started_; }
+  /// For tests: called on the server's thread when the first 0x2E arrives, before its key is
+  /// agreed and its answer sent (replay --unsigned-before-session). Call before run().
+  void on_first_session(std::function<void()> f) { on_first_session_ = std::move(f); }
   /// The motor speed the status reports, and the spin rate of the configuration (600 for 0);
   /// call before run().
   void set_motor_speed(std::uint16_t rpm) {
@@ -138,6 +142,7 @@ class PtcServer {
   std::uint32_t sets_seen_ = 0;  // set commands answered so far (cut_after_set)
   bool cut_ = false;             // answer(): close this connection, do not send the answer
   std::shared_ptr<TlsContext> tls_;
+  std::function<void()> on_first_session_;
   StandInContent content_;
   std::int64_t opened_ns_ = 0;
   std::atomic<bool> stop_{false};
