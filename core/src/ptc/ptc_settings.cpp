@@ -138,7 +138,7 @@ std::size_t allowed_spin_rates(Model model, std::uint16_t rates[kMaxSpinRates]) 
   static constexpr std::uint16_t kRates[kMaxSpinRates] = {300, 600, 1200};
   std::size_t n = 0;
   for (std::size_t bit = 0; bit < kMaxSpinRates; ++bit)
-    if ((detail::facts(model).spin_rates >> bit) & 1u) rates[n++] = kRates[bit];
+    if ((static_cast<unsigned>(detail::facts(model).spin_rates) >> bit) & 1u) rates[n++] = kRates[bit];
   return n;
 }
 
