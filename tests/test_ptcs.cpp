@@ -529,7 +529,7 @@ TEST(Ptcs, ListenWithASignatureSessionOverMutualTls) {
   chmod(secret.c_str(), 0600);
   const std::string angles = data_path("calibration/qt128c2x_unit_a_angles.csv");
   const std::string firetimes = data_path("calibration/qt128c2x_firetimes.csv");
-  StandIn s("--to 127.0.0.1:" + std::to_string(port) + " --rate 4 --loop 1000 --quiet --wait-for-session --secret-file " +
+  StandIn s("--to 127.0.0.1:" + std::to_string(port) + " --rate 4 --loop 1000 --renumber --quiet --wait-for-session --secret-file " +
             secret + " --calibration " + angles + " --firetimes " + firetimes + " --tls-cert " + pki().path("server.pem") +
             " --tls-key " + pki().path("server.key") + " --client-ca " + pki().path("ca.pem"));
   ASSERT_NE(s.port(), 0) << s.stderr_text();

@@ -203,7 +203,10 @@ TEST(Sensor, SignatureStartWritesAKeyThatVerifiesTheSession) {
   ASSERT_NE(port, 0);
   const std::string secret = secret_file(), key = temp_path("session.key");
   StandIn s("qt128c2x_dual.pcap", "127.0.0.1",
-            "--to 127.0.0.1:" + std::to_string(port) + " --rate 1 --loop 20 --quiet --wait-for-session --secret-file " + secret);
+            // --renumber: the sequence counts up across loops, as a unit's does (else a listener
+            // that spans two loops refuses the second's packets as replayed).
+            "--to 127.0.0.1:" + std::to_string(port) + " --rate 1 --loop 20 --renumber --quiet --wait-for-session --secret-file " +
+                secret);
   ASSERT_NE(s.port(), 0) << s.stderr_text();
   const std::string at = " 127.0.0.1 --ptc-port " + std::to_string(s.port());
   EXPECT_EQ(run("sensor signature status" + at).out, "signature off\n");
@@ -654,6 +657,9 @@ TEST(SensorAttack, UnitThatNeverSignsEndsTheRunAfterTwoRestarts) {
 TEST(SensorAttack, OnlyDatagramsReceivedBeforeTheSessionAreAcceptedUnsigned) {
   if (std::string(HESAI_TEST_UDP_METHOD) != "recvmmsg")
     GTEST_SKIP() << "the portable receive path (recvfrom) has no kernel receive timestamps to tell these datagrams apart by";
+#if defined(HESAI_CLI_EMULATOR)
+  GTEST_SKIP() << "qemu-user does not translate SO_TIMESTAMPNS for the test's own socket: runs natively only";
+#endif
   // Linux stamps a datagram on arrival only while some socket asks for stamps, and switches that
   // on from a deferred work item when the first one asks: the listener's first datagrams could be
   // stamped when read instead, after the session (rejected: safe, but not what is tested here;
