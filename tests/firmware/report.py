@@ -140,8 +140,8 @@ COMPONENTS = [
     ('crypto/: HKDF', 'crypto', ['hkdf']),
     ('calibration/: calibration files', 'calibration', ['decimal', 'csv_rows', 'angles_csv', 'firetimes_csv', 'channel_config_csv']),
     ('sensors/: GPS packets', 'sensors', ['gps']),
-    ('streams/: frames, rotation, sequence, stream health, safety monitor, stats', 'streams',
-     ['frame', 'rotation', 'sequence', 'health', 'safety', 'stats']),
+    ('streams/: frames, rotation, sequence, replays, stream health, safety monitor, stats', 'streams',
+     ['frame', 'rotation', 'sequence', 'replay', 'health', 'safety', 'stats']),
     ('capi/: the C interface (hesai.h)', 'capi', ['hesai_c']),
     ('ptc/: PTC framing and payloads (hesai/ptc.h, hesai/ptc_settings.h)', 'ptc', ['ptc', 'ptc_settings']),
 ]
