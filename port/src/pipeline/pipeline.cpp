@@ -401,7 +401,6 @@ void Pipeline::assign_frames(Source& src, std::uint64_t index, const PacketInfo&
   std::uint64_t id = 0;
   if (!filtered_) {  // every point is kept: the block's Points as they are
     n = end - first;
-    for (std::size_t i = 0; i < n; ++i) kept_[i] = static_cast<std::uint16_t>(first + i);
     id = src.frames.points(&p[first].azimuth_deg, n, sizeof(Point), ids);
   } else {
     for (std::size_t i = first; i < end; ++i) {
@@ -414,7 +413,7 @@ void Pipeline::assign_frames(Source& src, std::uint64_t index, const PacketInfo&
   }
   if (!sink_) return;
   for (std::size_t k = 0; k < n; ++k) {
-    const Point& q = p[kept_[k]];
+    const Point& q = p[filtered_ ? kept_[k] : first + k];  // unfiltered: the block's points in order
     batch_.push_back(OutPoint{q, id != 0 ? id : ids_[k], index, static_cast<std::uint32_t>(src.order),
                               return_types_ ? nebula_return_type(info, compare_, q) : NebulaReturnType::unknown});
   }

@@ -241,7 +241,7 @@ class Pipeline {
   std::vector<OutPoint> batch_;  // its kept points for the sink (reused: no allocation per packet)
   UnitScan scan_;        // and what its units say beyond them
   ReturnComparison compare_;  // and how each of its returns compares with its firing's others
-  // One block's kept points (assign_frames): their index in points_, azimuth (when filtered) and
+  // One block's kept points (assign_frames): their index in points_ and azimuth (when filtered), and
   // frame id (when they went to more than one frame).
   std::array<std::uint16_t, kMaxPointsPerPacket> kept_;
   std::array<float, kMaxPointsPerPacket> azimuths_;
