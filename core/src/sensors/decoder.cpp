@@ -223,12 +223,14 @@ Error Decoder::decode(ByteView payload, PacketInfo& info, PacketPoints& out, Uni
 
 namespace {
 
-// Each unit against the other returns of its firing, raw (ReturnComparison, decoder.h); `compare`
-// was reset by the caller. Reached only through the decode() form that takes a ReturnComparison.
-void compare_returns(const kernels::BlockRef* blocks, std::size_t block_count, std::size_t unit_count,
-                     std::size_t unit_bytes, const PacketInfo& info, ReturnComparison& compare) noexcept {
+// Each unit against the other returns of its firing, raw (ReturnComparison, decoder.h), into the
+// ReturnComparison at `into`, which the caller reset; the points are made too (false). Reached
+// only through the decode() form that takes a ReturnComparison.
+bool compare_returns(const kernels::BlockRef* blocks, std::size_t block_count, std::size_t unit_count,
+                     std::size_t unit_bytes, const PacketInfo& info, void* into) noexcept {
+  ReturnComparison& compare = *static_cast<ReturnComparison*>(into);
   const std::size_t returns = info.returns;
-  if (returns < 2 || block_count > kMaxBlocksPerPacket) return;
+  if (returns < 2 || block_count > kMaxBlocksPerPacket) return false;
   for (std::size_t first = 0; first + returns <= block_count; first += returns) {
     for (std::size_t b = first; b < first + returns; ++b) {
       const std::uint8_t* u = blocks[b].units;
@@ -248,6 +250,34 @@ void compare_returns(const kernels::BlockRef* blocks, std::size_t block_count, s
       }
     }
   }
+  return false;
+}
+
+// The units whose distance makes a point (raw >= the model's smallest, as the kernels keep them),
+// `step` bytes apart in each block; kStep, when not 0, is the step known at compile time.
+template <std::size_t kStep>
+std::size_t count_kept(const kernels::BlockRef* blocks, std::size_t block_count, std::size_t unit_count,
+                       std::size_t step, std::uint32_t min_distance) noexcept {
+  if (kStep != 0) step = kStep;
+  std::size_t n = 0;
+  for (std::size_t b = 0; b < block_count; ++b) {
+    const std::uint8_t* u = blocks[b].units;
+    for (std::size_t j = 0; j < unit_count; ++j, u += step) n += load_le16(u) >= min_distance ? 1u : 0u;
+  }
+  return n;
+}
+
+// The points decode() (Returns::all) would make of the packet, into the size_t at `into`; none
+// made (true). Reached only through survey().
+bool count_points(const kernels::BlockRef* blocks, std::size_t block_count, std::size_t unit_count,
+                  std::size_t unit_bytes, const PacketInfo& info, void* into) noexcept {
+  const std::uint32_t min_distance = sensor_of(info.model)->min_distance;  // validate() named the model
+  std::size_t& n = *static_cast<std::size_t*>(into);
+  // Every sensor's units are 3 or 4 bytes (block_points.h); a constant step is a shorter loop.
+  if (unit_bytes == 3) n = count_kept<3>(blocks, block_count, unit_count, unit_bytes, min_distance);
+  else if (unit_bytes == 4) n = count_kept<4>(blocks, block_count, unit_count, unit_bytes, min_distance);
+  else n = count_kept<0>(blocks, block_count, unit_count, unit_bytes, min_distance);
+  return true;
 }
 
 // With Returns::distinct, the second returns the scan found repeated left out of points[0, count),
@@ -281,7 +311,7 @@ Error Decoder::decode(ByteView payload, PacketInfo& info, PacketPoints& out, Uni
   o.points = out.points.data();
   o.path = path;
   o.scan = &scan;
-  o.compare = CompareReturns{&compare, compare_returns};
+  o.units = UnitPass{&compare, compare_returns};
   sensor_of(model_)->walk(*this, payload.data, info, o);  // validate() found model_'s packet
   out.count = leave_out_repeats(out.points.data(), o.count, scan, returns);
   return Error::ok;
@@ -324,6 +354,25 @@ Error Decoder::decode(ByteView payload, PacketInfo& info, const PointColumns& co
     return Error::invalid_argument;
   }
   return decode_into(payload, info, nullptr, &columns, columns.capacity, count, path, &scan);
+}
+
+Error Decoder::survey(ByteView payload, PacketInfo& info, UnitScan& scan, std::size_t& points,
+                      DecodePath path) noexcept {
+  scan = UnitScan{};
+  points = 0;
+  const Error e = validate(payload, info);
+  if (e != Error::ok) return e;
+  // The spread at the packet's rate, as the decode() would leave it. Asked for no loop's arrays:
+  // where the CPU path computes the spread alone they are left stale, and a decode() that uses
+  // them rebuilds them first (the same bits); elsewhere update_spin() rebuilds them whole.
+  const std::uint16_t rpm = firetime_correction_ ? info.motor_rpm : 0;
+  if (rpm != spin_.rpm) update_spin(rpm, 0, path);
+  DecodeOutput o;
+  o.path = path;
+  o.scan = &scan;
+  o.units = UnitPass{&points, count_points};
+  sensor_of(model_)->walk(*this, payload.data, info, o);  // validate() found model_'s packet
+  return Error::ok;
 }
 
 bool decode_simd_available() noexcept {
