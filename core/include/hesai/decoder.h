@@ -444,12 +444,12 @@ class Decoder {
   // compare_returns fills a ReturnComparison (the decode() form that takes one), count_points
   // counts the points survey() does not make. Each is handed down by address, so that a program
   // that never calls its form links none of its code (the Cortex-M0+ image's 48 KiB of flash,
-  // tests/firmware). SensorBase::emit_blocks runs it after the unit scan; when it returns true
-  // the packet's points are not made. `into`: the pass's output (a ReturnComparison, a size_t).
+  // tests/firmware). SensorBase::emit_blocks runs it after the unit scan, and makes the points of
+  // the blocks it returns: block_count, or 0. `into`: its output (a ReturnComparison, a size_t).
   // (No member initializers: a default argument below value-initializes it, both null.)
   struct UnitPass {
     void* into;
-    bool (*run)(const kernels::BlockRef* blocks, std::size_t block_count, std::size_t unit_count,
+    std::size_t (*run)(const kernels::BlockRef* blocks, std::size_t block_count, std::size_t unit_count,
                 std::size_t unit_bytes, const PacketInfo& info, void* into) noexcept;
   };
   // Every decode() form: the capacity check, validate(), the sensor's walk into `points` (when not

@@ -212,11 +212,6 @@ HESAI_NOINLINE_FOR_SIZE void SensorBase::emit_blocks(const Decoder& d, const ker
                                                      const PacketInfo& info, DecodeOutput& out) noexcept {
   const Decoder::Geometry& geo_ = d.geo_;
   const Decoder::SpinCache& spin_ = d.spin_;
-  const std::uint16_t min_distance = sensor_of(d.model_)->min_distance;
-  if (out.scan != nullptr) scan_packet<kUnitBytes>(blocks, block_count, unit_count, info, min_distance, out.path, *out.scan);
-  // The units' own pass; Decoder::survey()'s makes no point (and needs no beam cache).
-  if (out.units.run != nullptr && out.units.run(blocks, block_count, unit_count, kUnitBytes, info, out.units.into))
-    return;
   // The beam cache at the packet's spin rate, for the firing loops its blocks use.
   const std::uint16_t rpm = d.firetime_correction_ ? info.motor_rpm : 0;
   if (rpm != spin_.rpm || spin_.stale_loops != 0) {
@@ -225,6 +220,13 @@ HESAI_NOINLINE_FOR_SIZE void SensorBase::emit_blocks(const Decoder& d, const ker
     d.update_spin(rpm, loops, out.path);
   }
   const float unit_m = static_cast<float>(info.dis_unit_mm) * 0.001f;
+  const std::uint16_t min_distance = sensor_of(d.model_)->min_distance;
+  if (out.scan != nullptr) scan_packet<kUnitBytes>(blocks, block_count, unit_count, info, min_distance, out.path, *out.scan);
+  // The units' own pass, which leaves the blocks to make points of: none for Decoder::survey().
+  if (out.units.into != nullptr) block_count = out.units.run(blocks, block_count, unit_count, kUnitBytes, info, out.units.into);
+#if defined(HESAI_KERNELS_VECTOR) || defined(HESAI_KERNELS_ARMV7M)
+  if (block_count == 0) return;  // the vector and assembly loops are not asked to make nothing
+#endif
 #if defined(HESAI_KERNELS_VECTOR)
   const kernels::VectorIsa isa = kernels::vector_isa(out.path);  // none for DecodePath::portable
   if (isa != kernels::VectorIsa::none && block_count <= kernels::kMaxBlocks) {

@@ -224,13 +224,13 @@ Error Decoder::decode(ByteView payload, PacketInfo& info, PacketPoints& out, Uni
 namespace {
 
 // Each unit against the other returns of its firing, raw (ReturnComparison, decoder.h), into the
-// ReturnComparison at `into`, which the caller reset; the points are made too (false). Reached
+// ReturnComparison at `into`, which the caller reset; every block's points are made too. Reached
 // only through the decode() form that takes a ReturnComparison.
-bool compare_returns(const kernels::BlockRef* blocks, std::size_t block_count, std::size_t unit_count,
-                     std::size_t unit_bytes, const PacketInfo& info, void* into) noexcept {
+std::size_t compare_returns(const kernels::BlockRef* blocks, std::size_t block_count, std::size_t unit_count,
+                            std::size_t unit_bytes, const PacketInfo& info, void* into) noexcept {
   ReturnComparison& compare = *static_cast<ReturnComparison*>(into);
   const std::size_t returns = info.returns;
-  if (returns < 2 || block_count > kMaxBlocksPerPacket) return false;
+  if (returns < 2 || block_count > kMaxBlocksPerPacket) return block_count;
   for (std::size_t first = 0; first + returns <= block_count; first += returns) {
     for (std::size_t b = first; b < first + returns; ++b) {
       const std::uint8_t* u = blocks[b].units;
@@ -250,34 +250,30 @@ bool compare_returns(const kernels::BlockRef* blocks, std::size_t block_count, s
       }
     }
   }
-  return false;
+  return block_count;
 }
 
-// The units whose distance makes a point (raw >= the model's smallest, as the kernels keep them),
-// `step` bytes apart in each block; kStep, when not 0, is the step known at compile time.
-template <std::size_t kStep>
+// The units whose distance makes a point (raw >= the model's smallest, as the kernels keep them).
+template <std::size_t kUnitBytes>
 std::size_t count_kept(const kernels::BlockRef* blocks, std::size_t block_count, std::size_t unit_count,
-                       std::size_t step, std::uint32_t min_distance) noexcept {
-  if (kStep != 0) step = kStep;
+                       std::uint32_t min_distance) noexcept {
   std::size_t n = 0;
   for (std::size_t b = 0; b < block_count; ++b) {
     const std::uint8_t* u = blocks[b].units;
-    for (std::size_t j = 0; j < unit_count; ++j, u += step) n += load_le16(u) >= min_distance ? 1u : 0u;
+    for (std::size_t j = 0; j < unit_count; ++j, u += kUnitBytes) n += load_le16(u) >= min_distance ? 1u : 0u;
   }
   return n;
 }
 
 // The points decode() (Returns::all) would make of the packet, into the size_t at `into`; none
-// made (true). Reached only through survey().
-bool count_points(const kernels::BlockRef* blocks, std::size_t block_count, std::size_t unit_count,
-                  std::size_t unit_bytes, const PacketInfo& info, void* into) noexcept {
-  const std::uint32_t min_distance = sensor_of(info.model)->min_distance;  // validate() named the model
-  std::size_t& n = *static_cast<std::size_t*>(into);
-  // Every sensor's units are 3 or 4 bytes (block_points.h); a constant step is a shorter loop.
-  if (unit_bytes == 3) n = count_kept<3>(blocks, block_count, unit_count, unit_bytes, min_distance);
-  else if (unit_bytes == 4) n = count_kept<4>(blocks, block_count, unit_count, unit_bytes, min_distance);
-  else n = count_kept<0>(blocks, block_count, unit_count, unit_bytes, min_distance);
-  return true;
+// made (no block left). Reached only through survey().
+std::size_t count_points(const kernels::BlockRef* blocks, std::size_t block_count, std::size_t unit_count,
+                         std::size_t unit_bytes, const PacketInfo& info, void* into) noexcept {
+  const std::uint16_t min_distance = sensor_of(info.model)->min_distance;  // validate() named the model
+  // Every sensor's units are 3 or 4 bytes (emit_blocks' instances): a constant step is a shorter loop.
+  *static_cast<std::size_t*>(into) = unit_bytes == 3 ? count_kept<3>(blocks, block_count, unit_count, min_distance)
+                                                     : count_kept<4>(blocks, block_count, unit_count, min_distance);
+  return 0;
 }
 
 // With Returns::distinct, the second returns the scan found repeated left out of points[0, count),
@@ -362,16 +358,20 @@ Error Decoder::survey(ByteView payload, PacketInfo& info, UnitScan& scan, std::s
   points = 0;
   const Error e = validate(payload, info);
   if (e != Error::ok) return e;
-  // The spread at the packet's rate, as the decode() would leave it. Asked for no loop's arrays:
-  // where the CPU path computes the spread alone they are left stale, and a decode() that uses
-  // them rebuilds them first (the same bits); elsewhere update_spin() rebuilds them whole.
+  // The spread at the packet's rate, as decode() would leave it, without the per-rate arrays
+  // where the CPU path computes the spread alone (elsewhere update_spin() rebuilds them whole):
+  // the loops left stale are rebuilt by the next decode() that uses them (the same bits). The walk
+  // sees none stale, so that it does not rebuild them now.
   const std::uint16_t rpm = firetime_correction_ ? info.motor_rpm : 0;
   if (rpm != spin_.rpm) update_spin(rpm, 0, path);
+  const std::uint8_t stale = spin_.stale_loops;
+  spin_.stale_loops = 0;
   DecodeOutput o;
   o.path = path;
   o.scan = &scan;
   o.units = UnitPass{&points, count_points};
   sensor_of(model_)->walk(*this, payload.data, info, o);  // validate() found model_'s packet
+  spin_.stale_loops = stale;
   return Error::ok;
 }
 
