@@ -223,10 +223,17 @@ HESAI_NOINLINE_FOR_SIZE void SensorBase::emit_blocks(const Decoder& d, const ker
   const std::uint16_t min_distance = sensor_of(d.model_)->min_distance;
   if (out.scan != nullptr) scan_packet<kUnitBytes>(blocks, block_count, unit_count, info, min_distance, out.path, *out.scan);
   // The units' own pass, which leaves the blocks to make points of: none for Decoder::survey().
-  if (out.units.into != nullptr) block_count = out.units.run(blocks, block_count, unit_count, kUnitBytes, info, out.units.into);
+  // Where vector or assembly code follows, no block left is a return (and the walk's constant
+  // block count stays a constant below); elsewhere the scalar loop runs no block, which takes
+  // less flash than the return (the Cortex-M0+: 4 bytes, not 20).
+  if (out.units.into != nullptr) {
+    const std::size_t left = out.units.run(blocks, block_count, unit_count, kUnitBytes, info, out.units.into);
 #if defined(HESAI_KERNELS_VECTOR) || defined(HESAI_KERNELS_ARMV7M)
-  if (block_count == 0) return;  // the vector and assembly loops are not asked to make nothing
+    if (left == 0) return;
+#else
+    block_count = left;
 #endif
+  }
 #if defined(HESAI_KERNELS_VECTOR)
   const kernels::VectorIsa isa = kernels::vector_isa(out.path);  // none for DecodePath::portable
   if (isa != kernels::VectorIsa::none && block_count <= kernels::kMaxBlocks) {
