@@ -35,6 +35,8 @@
 //   at most kMaxPointsPerPacket (400) points. When the spin rate differs from the previous packet's
 //   (the first packet, a speed change), the per-rate cache is rebuilt first: at most 2 x 128
 //   channels of a few multiplications, no trigonometric call.
+// - survey(): validate(), then a read of each unit's distance (the scan, the point count); at a new
+//   spin rate the spread of the per-rate cache (its arrays too where the CPU path has no spread alone).
 // - Stack: under 1 KiB per call on Cortex-M (docs/FIRMWARE.md: measured and from the call graph).
 //
 // Memory (the caller owns every object; the core has no static RAM but the one CPUID byte on
