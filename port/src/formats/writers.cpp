@@ -21,73 +21,80 @@ std::string os_message(const char* what, const std::string& name, int err) {
 
 // ---- number formatting for CSV ----
 //
-// Every number of a row is written by one digit writer: two digits at a time from a 200-byte
-// table, right to left into a field whose length is known first. Writers may store a few bytes
-// past the end they return (the uint8 fields store 4): a row is built where kCsvMaxRow bytes are
-// free, several hundred more than the longest row.
+// Every number of a row is written by one digit writer: two digits at a time from a table, and
+// numbers below 10^4 (nearly every field: angles, metres, the integer part of a fixed-point
+// field) without a branch, as one 4-byte word shifted by the count of leading zeros. Writers may
+// store up to 4 bytes past the end they return: a row is built where kCsvMaxRow bytes are free,
+// several hundred more than the longest row.
 
+// The two ASCII digits of each value 0..99 as a little-endian 16-bit word (first digit in the
+// low byte): stored with store4 they come out in order on every host.
 struct DigitPairs {
-  char c[200];
+  std::uint16_t w[100];
 };
 constexpr DigitPairs make_digit_pairs() {
   DigitPairs t{};
-  for (int i = 0; i < 100; ++i) {
-    t.c[2 * i] = static_cast<char>('0' + i / 10);
-    t.c[2 * i + 1] = static_cast<char>('0' + i % 10);
-  }
+  for (int i = 0; i < 100; ++i) t.w[i] = static_cast<std::uint16_t>(('0' + i / 10) | ('0' + i % 10) << 8);
   return t;
 }
 constexpr DigitPairs kDigitPairs = make_digit_pairs();
-static_assert(kDigitPairs.c[0] == '0' && kDigitPairs.c[85] == '2' && kDigitPairs.c[199] == '9', "00, 42, 99");
+static_assert(kDigitPairs.w[0] == 0x3030 && kDigitPairs.w[42] == 0x3234 && kDigitPairs.w[99] == 0x3939, "00 42 99");
 
-// The two digits of v < 100.
-inline void put2(char* p, std::uint32_t v) { std::memcpy(p, kDigitPairs.c + 2 * v, 2); }
-
-// Number of decimal digits of v (1 for 0).
-inline int digit_count(std::uint32_t v) {
-  if (v < 100) return v < 10 ? 1 : 2;
-  if (v < 10000) return v < 1000 ? 3 : 4;
-  if (v < 1000000) return v < 100000 ? 5 : 6;
-  if (v < 100000000) return v < 10000000 ? 7 : 8;
-  return v < 1000000000 ? 9 : 10;
+// Bytes 0-3 of w to p[0..3], byte 0 first: one word store on a little-endian host (GCC does not
+// always merge store_le32's four byte stores into one).
+inline void store4(char* p, std::uint32_t w) {
+#if defined(__BYTE_ORDER__) && __BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__
+  std::memcpy(p, &w, sizeof w);
+#else
+  store_le32(reinterpret_cast<std::uint8_t*>(p), w);
+#endif
 }
 
-// Exactly n digits of v < 10^n, leading zeros kept.
-inline void put_digits(char* p, std::uint32_t v, int n) {
-  char* q = p + n;
-  while (q - p >= 2) {
-    q -= 2;
-    put2(q, v % 100u);
-    v /= 100u;
-  }
-  if (q != p) *p = static_cast<char>('0' + v);
+// The four digits of v < 10^4, leading zeros kept, as a little-endian word.
+inline std::uint32_t digits4(std::uint32_t v) {
+  return static_cast<std::uint32_t>(kDigitPairs.w[v / 100u]) | static_cast<std::uint32_t>(kDigitPairs.w[v % 100u]) << 16;
 }
 
-// Exactly 9 digits of v < 10^9 as two independent chains (5 and 4 digits), not one of 9.
-inline void put_9digits(char* p, std::uint32_t v) {
-  put_digits(p, v / 10000u, 5);
-  put_digits(p + 5, v % 10000u, 4);
+// v < 10^4 in 1-4 digits; stores 4 bytes, returns the end of the digits.
+inline char* put_small(char* p, std::uint32_t v) {
+  const std::uint32_t n = 1u + static_cast<std::uint32_t>(v >= 10u) + static_cast<std::uint32_t>(v >= 100u) +
+                          static_cast<std::uint32_t>(v >= 1000u);
+  store4(p, digits4(v) >> (8u * (4u - n)));  // the leading zeros shifted out
+  return p + n;
+}
+
+// Exactly 8 digits of v < 10^8, leading zeros kept.
+inline void put_8digits(char* p, std::uint32_t v) {
+  store4(p, digits4(v / 10000u));
+  store4(p + 4, digits4(v % 10000u));
 }
 
 char* put_u32(char* p, std::uint32_t v) {
-  const int n = digit_count(v);
-  put_digits(p, v, n);
-  return p + n;
+  if (v < 10000u) return put_small(p, v);
+  if (v < 100000000u) {
+    p = put_small(p, v / 10000u);
+    store4(p, digits4(v % 10000u));
+    return p + 4;
+  }
+  p = put_small(p, v / 100000000u);  // at most 42
+  put_8digits(p, v % 100000000u);
+  return p + 8;
 }
 
 char* put_u64(char* p, std::uint64_t v) {
   if (v <= 0xFFFFFFFFu) return put_u32(p, static_cast<std::uint32_t>(v));
-  // 10 to 20 digits: the part above the last 9 (at most 11 digits), then the last 9.
-  std::uint64_t high = v / 1000000000u;
-  if (high > 0xFFFFFFFFu) {
-    p = put_u32(p, static_cast<std::uint32_t>(high / 1000000000u));  // at most 18
-    put_9digits(p, static_cast<std::uint32_t>(high % 1000000000u));
-    p += 9;
-  } else {
+  // 10 to 20 digits: the part above the last 8, then the last 8; time_ns (19 digits) is
+  // 3 + 8 + 8.
+  const std::uint64_t high = v / 100000000u;
+  if (high < 100000000u) {
     p = put_u32(p, static_cast<std::uint32_t>(high));
+  } else {
+    p = put_small(p, static_cast<std::uint32_t>(high / 100000000u));  // at most 1844
+    put_8digits(p, static_cast<std::uint32_t>(high % 100000000u));
+    p += 8;
   }
-  put_9digits(p, static_cast<std::uint32_t>(v % 1000000000u));
-  return p + 9;
+  put_8digits(p, static_cast<std::uint32_t>(v % 100000000u));
+  return p + 8;
 }
 
 char* put_i64(char* p, std::int64_t v) {
@@ -96,29 +103,30 @@ char* put_i64(char* p, std::int64_t v) {
   return put_u64(p, 0 - static_cast<std::uint64_t>(v));  // INT64_MIN too
 }
 
-// Each byte value as its digits, padded to 4 chars, and the digit count in the last char:
-// one 4-byte copy writes a uint8 field.
+// Each byte value's 1-3 digits as a little-endian word, their count in the top byte: one load
+// and one store write a uint8 field (block, channel, return, intensity).
 struct ByteText {
-  char c[256][4];
+  std::uint32_t w[256];
 };
 constexpr ByteText make_byte_text() {
   ByteText t{};
-  for (int i = 0; i < 256; ++i) {
-    const int n = i < 10 ? 1 : i < 100 ? 2 : 3;
-    for (int k = n - 1, v = i; k >= 0; --k, v /= 10) t.c[i][k] = static_cast<char>('0' + v % 10);
-    t.c[i][3] = static_cast<char>(n);
+  for (std::uint32_t i = 0; i < 256; ++i) {
+    const std::uint32_t n = i < 10 ? 1 : i < 100 ? 2 : 3;
+    std::uint32_t w = n << 24;
+    for (std::uint32_t k = 0, v = i; k < n; ++k, v /= 10) w |= ('0' + v % 10) << (8 * (n - 1 - k));
+    t.w[i] = w;
   }
   return t;
 }
 constexpr ByteText kByteText = make_byte_text();
-static_assert(kByteText.c[7][0] == '7' && kByteText.c[7][3] == 1 && kByteText.c[255][2] == '5' &&
-                  kByteText.c[255][3] == 3,
-              "7, 255");
+static_assert(kByteText.w[7] == 0x01000037 && kByteText.w[42] == 0x02003234 && kByteText.w[255] == 0x03353532,
+              "7, 42, 255");
 
-// A uint8 field; stores 4 chars, returns the end of its 1-3 digits.
+// Stores 4 bytes, returns the end of the 1-3 digits.
 inline char* put_u8(char* p, std::uint8_t v) {
-  std::memcpy(p, kByteText.c[v], 4);
-  return p + kByteText.c[v][3];
+  const std::uint32_t w = kByteText.w[v];
+  store4(p, w);
+  return p + (w >> 24);
 }
 
 // The digits of u / 10^D, '.', and the D decimals of u % 10^D (D = 3 or 4).
@@ -128,9 +136,18 @@ char* put_scaled(char* p, std::uint64_t u) {
   constexpr std::uint32_t kScale = D == 3 ? 1000u : 10000u;
   const std::uint64_t whole = u / kScale;
   const auto frac = static_cast<std::uint32_t>(u % kScale);
-  p = whole <= 0xFFFFFFFFu ? put_u32(p, static_cast<std::uint32_t>(whole)) : put_u64(p, whole);
-  *p = '.';
-  put_digits(p + 1, frac, D);
+  if (whole < 10000u) {
+    p = put_small(p, static_cast<std::uint32_t>(whole));
+  } else {
+    p = put_u64(p, whole);
+  }
+  // '.' and the decimals: for 3, the 4 digits of frac < 1000 with their leading '0' replaced.
+  if (D == 3) {
+    store4(p, (digits4(frac) & 0xFFFFFF00u) | static_cast<std::uint32_t>('.'));
+  } else {
+    *p = '.';
+    store4(p + 1, digits4(frac));
+  }
   return p + 1 + D;
 }
 
@@ -138,7 +155,7 @@ char* put_scaled(char* p, std::uint64_t u) {
 // scaled double is rounded by llrint (default rounding mode: to nearest, ties to even, as printf);
 // beyond that, and for inf/NaN, std::to_chars writes the float's exact digits ("inf", "-nan").
 template <int D>
-char* put_fixed_wide(char* p, char* end, float v, double scaled) {
+[[gnu::noinline]] char* put_fixed_wide(char* p, char* end, float v, double scaled) {
   if (scaled > -4.0e18 && scaled < 4.0e18) {  // false for NaN
     const std::int64_t r = std::llrint(scaled);  // |r| >= 2^51: never zero
     if (r < 0) *p++ = '-';
@@ -155,8 +172,8 @@ char* put_fixed_wide(char* p, char* end, float v, double scaled) {
 // 2^24 * 5^4 < 2^34: the double product is exact, and rounding it once to an integer gives
 // printf's digits. For |x| < 2^51, x + 1.5 * 2^52 lies in [2^52, 2^53), where doubles are the
 // integers, so the addition rounds x to an integer in the default rounding mode (ties to even:
-// 1.5 * 2^52 is even) and the subtraction is exact; no call to llrint, which is a libm call
-// where errno must be kept.
+// 1.5 * 2^52 is even) and the subtraction is exact: no call to llrint (a libm call where errno
+// must be kept).
 template <int D>
 char* put_fixed(char* p, char* end, float v) {
   constexpr double kScale = D == 3 ? 1000.0 : 10000.0;
