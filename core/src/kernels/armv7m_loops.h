@@ -94,19 +94,23 @@ Point* hesai_armv7m_points_u4_l0(const ArmPointsBlock* block) noexcept;
 Point* hesai_armv7m_points_u4_l1(const ArmPointsBlock* block) noexcept;
 // The same with the unit scan folded in (issue #43: the units read once). _scan: Q (the sticky
 // saturation flag of APSR, which nothing else on the path sets; clear it first) is set if any unit
-// lies beyond the rated range (raw > limit) or is not kept yet not 0 (a blockage marker, distance
-// 1, or below the smallest kept distance): then the caller counts those exactly in C. _repeat, for
-// the second return of a dual-return firing, at most 32 units a call: the same, and returns in
-// the high word the units that repeat the first return's (the same distance and reflectivity,
-// kept), unit i of n at bit 32 - n + i; the low word is the out pointer.
+// lies beyond the rated range (raw > limit, a QADD a unit) or, in the u4m loops (models whose
+// smallest kept distance is above 1), is not kept yet not 0 (a blockage marker, distance 1, or
+// below the smallest kept distance: an SSAT a unit): then the caller counts those exactly in C.
+// The u4 loop checks neither (models with neither a rated range nor markers; their first returns
+// take the plain loops). _repeat, for the second return of a dual-return firing, at most 32 units
+// a call: the same, and returns in the high word the units that repeat the first return's (the
+// same distance and reflectivity, kept), unit i of n at bit 32 - n + i; the low word is the out
+// pointer.
 Point* hesai_armv7m_points_scan_u3_l0(const ArmPointsBlock* block) noexcept;
 Point* hesai_armv7m_points_scan_u3_l1(const ArmPointsBlock* block) noexcept;
-Point* hesai_armv7m_points_scan_u4_l0(const ArmPointsBlock* block) noexcept;
-Point* hesai_armv7m_points_scan_u4_l1(const ArmPointsBlock* block) noexcept;
+Point* hesai_armv7m_points_scan_u4m_l0(const ArmPointsBlock* block) noexcept;
+Point* hesai_armv7m_points_scan_u4m_l1(const ArmPointsBlock* block) noexcept;
 std::uint64_t hesai_armv7m_points_repeat_u3_l0(const ArmPointsBlock* block) noexcept;
 std::uint64_t hesai_armv7m_points_repeat_u3_l1(const ArmPointsBlock* block) noexcept;
 std::uint64_t hesai_armv7m_points_repeat_u4_l0(const ArmPointsBlock* block) noexcept;
-std::uint64_t hesai_armv7m_points_repeat_u4_l1(const ArmPointsBlock* block) noexcept;
+std::uint64_t hesai_armv7m_points_repeat_u4m_l0(const ArmPointsBlock* block) noexcept;
+std::uint64_t hesai_armv7m_points_repeat_u4m_l1(const ArmPointsBlock* block) noexcept;
 std::size_t hesai_armv7m_columns_u3_l0(const ArmColumnsBlock* block) noexcept;
 std::size_t hesai_armv7m_columns_u3_l1(const ArmColumnsBlock* block) noexcept;
 std::size_t hesai_armv7m_columns_u4_l0(const ArmColumnsBlock* block) noexcept;

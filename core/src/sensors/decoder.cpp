@@ -4,6 +4,8 @@
 // per-point arithmetic is in block_points.h.
 #include "hesai/decoder.h"
 
+#include <cstddef>
+
 #include "hesai/detail/math.h"
 #include "../base/compiler.h"
 #include "../kernels/beam_cache.h"
@@ -255,12 +257,17 @@ void compare_returns(const kernels::BlockRef* blocks, std::size_t block_count, s
 // what the scan folded into the assembly loops costs). Elsewhere as it is (the Cortex-M0+ flash).
 HESAI_ALWAYS_INLINE inline void reset_scan(UnitScan& scan) noexcept {
 #if defined(HESAI_KERNELS_ARMV7M)
-  // Unaligned word stores (ARMv7-M has them): `scan` is 2-byte aligned.
+  // The arrays as one run of bytes, four unaligned word stores a step (ARMv7-M has them; `scan`
+  // is 2-byte aligned).
+  constexpr std::size_t kFirst = offsetof(UnitScan, blockage_by_channel), kBytes = sizeof(UnitScan) - kFirst;
+  static_assert(offsetof(UnitScan, repeated) == kFirst + kMaxChannels && kBytes % 16 == 0, "the arrays, one run");
   const std::uint32_t zero = 0;
   scan.blockage_units = scan.duplicate_returns = scan.beyond_rated_range = 0;
-  for (std::size_t i = 0; i < kMaxChannels; i += 4) __builtin_memcpy(scan.blockage_by_channel.data() + i, &zero, 4);
-  for (auto& row : scan.repeated)
-    for (std::size_t i = 0; i < row.size(); i += 4) __builtin_memcpy(row.data() + i, &zero, 4);
+  std::uint8_t* const bytes = reinterpret_cast<std::uint8_t*>(&scan) + kFirst;
+  for (std::size_t i = 0; i < kBytes; i += 16) {
+    __builtin_memcpy(bytes + i, &zero, 4), __builtin_memcpy(bytes + i + 4, &zero, 4);
+    __builtin_memcpy(bytes + i + 8, &zero, 4), __builtin_memcpy(bytes + i + 12, &zero, 4);
+  }
 #else
   scan = UnitScan{};
 #endif
