@@ -826,7 +826,8 @@ std::uint32_t next_random(std::uint32_t& state) {
 
 // Every sensor's packet with its units rewritten at random, 40 packets each, on both paths: distances
 // 0, 1 (the QT128's blockage marker), 2, at and about the rated ranges' limits (12 500 raw for
-// the QT128's 50 m at 4 mm, 50 000 for the Pandars' 200 m), 65 535 and any, and second returns
+// the QT128's 50 m at 4 mm, 50 000 for the Pandars' 200 m; in odd rounds none beyond), 65 535 and
+// any, and second returns
 // that repeat their first return, or repeat only its distance or only its reflectivity. A QT128
 // unit that is all zero (a resting channel: validate() checks) stays so; the CRCs are sealed again.
 void scans_agree() {
@@ -851,8 +852,10 @@ void scans_agree() {
             case 0: distance = 0; break;
             case 1: distance = 1; break;
             case 2: distance = 2; break;
-            case 3: distance = kEdges[(r >> 8) % 7]; break;
-            case 4: distance = (r >> 8) & 0xFFFFu; break;
+            // Odd rounds stay within every rated range (12 500 raw), so that no distance beyond it
+            // hides a blockage marker the loops missed (both set Q: the packet counted in C).
+            case 3: distance = round % 2 == 0 ? kEdges[(r >> 8) % 7] : kEdges[(r >> 8) % 2]; break;
+            case 4: distance = round % 2 == 0 ? (r >> 8) & 0xFFFFu : (r >> 8) % 12501u; break;
             case 5: case 6: case 7: case 8:
               if (b % 2 == 1) distance = hesai::load_le16(first), u[2] = first[2];
               break;
