@@ -240,9 +240,11 @@ INDIRECT_CALLS = {
 }
 
 
-# The unit scan's loops (issue #43) push r11 too.
-ASSEMBLY_FRAMES = {'hesai_armv7m_points_': 9 * 4 + 4, 'hesai_armv7m_columns_': 9 * 4,
-                   'hesai_armv7m_points_scan_': 9 * 4 + 4, 'hesai_armv7m_points_repeat_': 9 * 4 + 4}
+# Frame bytes and variants of each family; the unit scan's loops (issue #43) push r11 too.
+ASSEMBLY_FRAMES = {'hesai_armv7m_points_': (9 * 4 + 4, ('u3_l0', 'u3_l1', 'u4_l0', 'u4_l1')),
+                   'hesai_armv7m_columns_': (9 * 4, ('u3_l0', 'u3_l1', 'u4_l0', 'u4_l1')),
+                   'hesai_armv7m_points_scan_': (9 * 4 + 4, ('u3_l0', 'u3_l1', 'u4m_l0', 'u4m_l1')),
+                   'hesai_armv7m_points_repeat_': (9 * 4 + 4, ('u3_l0', 'u3_l1', 'u4_l0', 'u4m_l0', 'u4m_l1'))}
 
 
 def call_graph(objects):
@@ -524,8 +526,8 @@ def main():
     frames, edges, names, dynamic = call_graph(args.objects)
     # The assembly loops (kernels/armv7m_loops.cpp) have no -fstack-usage entry: their frames by hand
     # (PUSH of 9 registers, and the Points loops' VPUSH of one), so that the stack figures hold.
-    for name, frame in ASSEMBLY_FRAMES.items():
-        for variant in ('u3_l0', 'u3_l1', 'u4_l0', 'u4_l1', 'u4m_l0', 'u4m_l1'):
+    for name, (frame, variants) in ASSEMBLY_FRAMES.items():
+        for variant in variants:
             frames[name + variant] = frame
             names[name + variant] = name + variant
     memo = {}
