@@ -443,11 +443,11 @@ class Decoder {
   // calls it, which sees the decoder const; spin_ is a cache of the geometry.
   void update_spin(std::uint16_t rpm, unsigned loops, DecodePath path) const noexcept;
   // A pass over a validated packet's raw units that only one caller asks for (sensors/decoder.cpp):
-  // compare_returns fills a ReturnComparison (the decode() form that takes one), count_points
-  // counts the points survey() does not make. Each is handed down by address, so that a program
+  // compare_returns fills a ReturnComparison (the decode() form that takes one), survey_units
+  // scans the units and counts the points survey() does not make. Each is handed down by address, so that a program
   // that never calls its form links none of its code (the Cortex-M0+ image's 48 KiB of flash,
-  // tests/firmware). SensorBase::emit_blocks runs it after the unit scan, and makes the points of
-  // the blocks it returns: block_count, or 0. `into`: its output (a ReturnComparison, a size_t).
+  // tests/firmware). SensorBase::emit_blocks runs it first, and makes the points of the blocks it
+  // returns: block_count, or 0. `into`: its output (a ReturnComparison, survey()'s).
   // (No member initializers: a default argument below value-initializes it, both null.)
   struct UnitPass {
     void* into;

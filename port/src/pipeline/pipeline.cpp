@@ -279,6 +279,8 @@ bool Pipeline::feed(ByteView payload, std::uint64_t source_key, bool pre_session
 }
 
 Error Pipeline::decode(Source& src, ByteView payload, std::uint64_t index, PacketInfo& info) {
+  // (The columns mode decodes every packet: its columnar decode is about what a survey costs.)
+  if (columns_) return src.decoder->decode(payload, info, columns_->room(), column_count_);
   // A packet outside --packets gives the run its counts (points, unit scan) and the frames its
   // blocks at its spin rate's beam spread, as a decoded one does; its points are never made.
   if (!wanted(index)) {
@@ -374,6 +376,12 @@ bool Pipeline::process(Source& src, std::uint64_t index, const PacketInfo& info)
     saturating_follow(stats_.duplicates, before.duplicates, after.duplicates);
     saturating_follow(stats_.reordered, before.reordered, after.reordered);
     saturating_follow(stats_.sequence_resyncs, before.resyncs, after.resyncs);
+  }
+
+  if (columns_) {  // the columns mode: every point kept as decoded, no frames
+    saturating_add(stats_.points, column_count_);
+    if (wanted(index)) columns_->kept(column_count_, index, static_cast<std::uint32_t>(src.order), info);
+    return true;
   }
 
   // Each point goes to the frame of its own azimuth, a block's points at once (FrameAssembler::
