@@ -21,6 +21,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -86,6 +87,47 @@ NebulaReturnType nebula_return_type(const PacketInfo& info, const ReturnComparis
 /// One point record (the layout above); `stamp_ns` is the message's header.stamp, `return_type`
 /// the point's nebula ReturnType.
 void encode_point(const Point& p, NebulaReturnType return_type, std::int64_t stamp_ns, std::uint8_t out[kPointStep]);
+
+/// The data of one PointCloud2 message, its records (the layout above) encoded as the points come.
+/// Its header.stamp, the earliest point's time, is known only once the last point has come: until
+/// then each record holds its point's time after that of the earliest point of the first add(),
+/// and finish() makes them offsets from stamp_ns() (a pass over the records only when a later
+/// point was earlier still). Memory: kPointStep bytes a point, and 8 more a point in a message
+/// whose points' times span 2^31 ns (2.1 s) or more; clear() keeps the storage for the next one.
+/// Not copyable.
+class PointCloud2Data {
+ public:
+  PointCloud2Data() = default;
+  PointCloud2Data(PointCloud2Data&&) = default;
+  PointCloud2Data& operator=(PointCloud2Data&&) = default;
+
+  /// Appends the records of `count` points; `types`: their return types (null: unknown).
+  void add(const Point* points, const NebulaReturnType* types, std::size_t count);
+  /// Room for `points` records in all without growing.
+  void reserve(std::size_t points);
+  /// Points added.
+  std::size_t size() const { return count_; }
+  /// Room for this many points without growing.
+  std::size_t capacity() const { return capacity_; }
+  /// header.stamp: the earliest point's time, ns since the Unix epoch (0 without points).
+  std::int64_t stamp_ns() const { return count_ != 0 ? min_ : 0; }
+  /// Finishes the records and returns them, size() * kPointStep bytes: each byte for byte
+  /// encode_point(point, its type, stamp_ns()). add() after finish() is not allowed until clear().
+  const std::uint8_t* finish();
+  /// No points; the storage stays.
+  void clear();
+
+ private:
+  std::unique_ptr<std::uint8_t[]> bytes_;  // capacity_ records, count_ of them written
+  std::size_t capacity_ = 0;
+  std::size_t count_ = 0;
+  // The records' time_stamp: the point's time minus base_, as a wrapping 32-bit number (exact
+  // while the times span less than 2^31 ns); min_ and max_: the earliest and latest time.
+  std::int64_t base_ = 0, min_ = 0, max_ = 0;
+  // Each point's time, from the first add() that made the span 2^31 ns or more (wide_) on.
+  std::vector<std::int64_t> times_;
+  bool wide_ = false;
+};
 
 /// `name` as a bag records a topic: checked against ROS 2's topic-name rules (rcl's
 /// validate_topic_name, for a name whose substitutions are done): only letters, digits, '_' and
