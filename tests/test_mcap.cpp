@@ -251,6 +251,7 @@ TEST(PointCloud2, DataTimesFromTheEarliestPointWhereverItComes) {
   d.add(later, nullptr, 1);
   EXPECT_EQ(d.size(), 3u);
   EXPECT_EQ(d.stamp_ns(), t0 + 900);
+  (void)d.finish(1);  // in pieces: the first record, then the rest
   EXPECT_EQ(time_stamps(d), (std::vector<std::uint64_t>{100, 600, 0}));
   // The other fields as encode_point writes them; no type given: unknown (0).
   const std::uint8_t* b = d.finish();
@@ -282,6 +283,7 @@ TEST(PointCloud2, DataTimesSpanningSecondsClampAt32Bits) {
   d.add(b, nullptr, 1);
   d.add(c, nullptr, 2);
   EXPECT_EQ(d.stamp_ns(), t0 - 2000000000);
+  (void)d.finish(2);
   EXPECT_EQ(time_stamps(d), (std::vector<std::uint64_t>{2000000000, 3500000000, 0xFFFFFFFFu, 0, 2000000250}));
 }
 
@@ -428,6 +430,39 @@ TEST(NebulaReturnType, Pandar64DualCaptureByHand) {
 
 // The same packet sent in a single-return mode (the tail byte set to 0x37, then 0x38): every
 // block is a firing of its own, every point STRONGEST, then LAST (Pandar64 manual 3.1.2.3).
+// The per-packet table (PacketReturnTypes) gives what nebula_return_type gives, for every model,
+// every return-mode byte, return index and comparison.
+TEST(NebulaReturnType, PacketTableIsTheFunction) {
+  ReturnComparison compare;
+  compare.identical[1][0] = 0x05;  // block 1: channels 1 and 3 identical
+  compare.weaker[1][0] = 0x06;     // channels 2 and 3 weaker
+  compare.weaker[3][1] = 0x01;     // block 3: channel 9 weaker
+  int checked = 0;
+  for (std::size_t m = 0; m < kModelCount; ++m) {
+    for (int mode = 0; mode < 256; ++mode) {
+      PacketInfo info;
+      info.model = static_cast<Model>(m);
+      info.return_mode = static_cast<std::uint8_t>(mode);
+      const port::PacketReturnTypes table(info);
+      for (std::uint8_t block = 0; block < 4; ++block) {
+        for (std::uint8_t channel = 0; channel <= 10; ++channel) {
+          for (std::uint8_t index = 0; index < 6; ++index) {
+            Point p;
+            p.block = block;
+            p.channel = channel;  // 0: none (as channel 1)
+            p.return_index = index;
+            ASSERT_EQ(table(compare, p), port::nebula_return_type(info, compare, p))
+                << "model " << m << " mode " << mode << " block " << int(block) << " channel " << int(channel)
+                << " index " << int(index);
+            ++checked;
+          }
+        }
+      }
+    }
+  }
+  EXPECT_EQ(checked, static_cast<int>(kModelCount) * 256 * 4 * 11 * 6);
+}
+
 TEST(NebulaReturnType, Pandar64SingleReturnByHand) {
   const auto packets = pcap_payloads("pandar64_dual.pcap");
   ASSERT_FALSE(packets.empty());

@@ -265,6 +265,13 @@ constexpr std::uint64_t kNarrowSpan = std::uint64_t{1} << 31;  // wrapping 32-bi
 constexpr std::size_t kTimeAt = 28;                            // time_stamp's offset in a record
 }  // namespace
 
+PacketReturnTypes::PacketReturnTypes(const PacketInfo& info) noexcept
+    : model_(info.model), return_mode_(info.return_mode) {
+  for (std::size_t k = 0; k < 16; ++k)
+    table_[k] = nebula_return_type(info.model, info.return_mode, static_cast<std::uint8_t>(k / 4), (k & 2) != 0,
+                                   (k & 1) != 0);
+}
+
 void encode_point(const Point& p, NebulaReturnType return_type, std::int64_t stamp_ns, std::uint8_t out[kPointStep]) {
   encode_record(p, return_type, time_after(p.time_ns, stamp_ns), out);
 }
@@ -310,15 +317,15 @@ void PointCloud2Data::add(const Point* points, const NebulaReturnType* types, st
   count_ += count;
 }
 
-const std::uint8_t* PointCloud2Data::finish() {
+const std::uint8_t* PointCloud2Data::finish(std::size_t end) {
   std::uint8_t* t = bytes_.get() + kTimeAt;
   if (wide_) {
-    for (std::size_t i = 0; i < count_; ++i) store_le(t + i * kPointStep, time_after(times_[i], min_));
+    for (std::size_t i = finished_; i < end; ++i) store_le(t + i * kPointStep, time_after(times_[i], min_));
   } else if (base_ != min_) {  // every offset grows by base_ - min_ (< 2^31: no clamp)
     const auto shift = static_cast<std::uint32_t>(span(min_, base_));
-    for (std::size_t i = 0; i < count_; ++i) store_le(t + i * kPointStep, load_le32(t + i * kPointStep) + shift);
+    for (std::size_t i = finished_; i < end; ++i) store_le(t + i * kPointStep, load_le32(t + i * kPointStep) + shift);
   }
-  base_ = min_;  // the offsets are from min_ now: a second call changes nothing
+  if (end > finished_) finished_ = end;
   return bytes_.get();
 }
 
@@ -327,6 +334,7 @@ void PointCloud2Data::clear() {
   base_ = min_ = max_ = 0;
   times_.clear();
   wide_ = false;
+  finished_ = 0;
 }
 
 namespace {

@@ -415,8 +415,10 @@ void Pipeline::assign_frames(Source& src, std::uint64_t index, const PacketInfo&
   }
   const std::uint64_t id = src.frames.points(&kept->azimuth_deg, n, sizeof(Point), ids);
   if (!sink_) return;
-  if (types != nullptr)
-    for (std::size_t k = 0; k < n; ++k) types[k] = nebula_return_type(info, compare_, kept[k]);
+  if (types != nullptr) {
+    if (first == 0) type_of_ = PacketReturnTypes(info);  // the packet's first block of points
+    for (std::size_t k = 0; k < n; ++k) types[k] = type_of_(compare_, kept[k]);
+  }
   const auto sensor = static_cast<std::uint32_t>(src.order);
   if (id != 0) {
     run_points(kept, types, n, id, index, sensor);

@@ -206,7 +206,12 @@ void OutputSink::write_mcap_frame(FrameKey key, PointCloud2Data& cloud) {
   WriteResult r = mcap_.begin_message(s.channel, static_cast<std::uint32_t>(key.second), t, t,
                                       pointcloud2_size(head.size(), cloud.size()));
   if (r) r = mcap_.append(head.data(), head.size());
-  if (r) r = mcap_.append(cloud.finish(), cloud.size() * kPointStep);
+  // The records a slice at a time, each finished (its time_stamp) just before it is written.
+  constexpr std::size_t kSlice = 8192;  // records: 256 KiB
+  for (std::size_t i = 0; r && i < cloud.size(); i += kSlice) {
+    const std::size_t end = std::min(cloud.size(), i + kSlice);
+    r = mcap_.append(cloud.finish(end) + i * kPointStep, (end - i) * kPointStep);
+  }
   if (r) r = mcap_.append(&kPointCloud2Tail, 1);
   if (r) r = mcap_.end_message();
   if (!r && deferred_error_.empty()) deferred_error_ = r.message();

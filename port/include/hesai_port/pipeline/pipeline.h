@@ -250,8 +250,10 @@ class Pipeline {
   PacketPoints points_;  // one packet's points (reused)
   UnitScan scan_;        // and what its units say beyond them
   ReturnComparison compare_;  // and how each of its returns compares with its firing's others
-  // The nebula ReturnType of each of points_ (when return_types_), computed a block at a time.
+  // The nebula ReturnType of each of points_ (when return_types_), computed a block at a time
+  // from the packet's table.
   std::array<NebulaReturnType, kMaxPointsPerPacket> types_;
+  PacketReturnTypes type_of_;
   // A filtered packet's kept points (and their return types), gathered a block at a time:
   // gathered_n_ of them so far; reset when the sink has them (flush_points).
   std::array<Point, kMaxPointsPerPacket> gathered_;
