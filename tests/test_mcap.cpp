@@ -445,22 +445,33 @@ TEST(NebulaReturnType, PacketTableIsTheFunction) {
       info.return_mode = static_cast<std::uint8_t>(mode);
       const port::PacketReturnTypes table(info);
       for (std::uint8_t block = 0; block < 4; ++block) {
-        for (std::uint8_t channel = 0; channel <= 10; ++channel) {
-          for (std::uint8_t index = 0; index < 6; ++index) {
+        for (std::uint8_t index = 0; index < 6; ++index) {
+          // A block's points (channel 0: none, as channel 1; 200: beyond every model), and one of
+          // another block among them: of_block() gives each what the function gives.
+          std::vector<Point> points;
+          for (const int channel : {0, 1, 2, 3, 4, 9, 10, 200}) {
             Point p;
             p.block = block;
-            p.channel = channel;  // 0: none (as channel 1)
+            p.channel = static_cast<std::uint8_t>(channel);
             p.return_index = index;
-            ASSERT_EQ(table(compare, p), port::nebula_return_type(info, compare, p))
-                << "model " << m << " mode " << mode << " block " << int(block) << " channel " << int(channel)
-                << " index " << int(index);
+            points.push_back(p);
+          }
+          points[5].block = static_cast<std::uint8_t>(block ^ 1);
+          std::vector<port::NebulaReturnType> types(points.size());
+          table.of_block(compare, points.data(), points.size(), types.data());
+          for (std::size_t i = 0; i < points.size(); ++i) {
+            const port::NebulaReturnType want = port::nebula_return_type(info, compare, points[i]);
+            ASSERT_EQ(table(compare, points[i]), want) << "model " << m << " mode " << mode << " block " << int(block)
+                                                       << " channel " << int(points[i].channel) << " index " << int(index);
+            ASSERT_EQ(types[i], want) << "of_block: model " << m << " mode " << mode << " block " << int(block)
+                                      << " point " << i << " index " << int(index);
             ++checked;
           }
         }
       }
     }
   }
-  EXPECT_EQ(checked, static_cast<int>(kModelCount) * 256 * 4 * 11 * 6);
+  EXPECT_EQ(checked, static_cast<int>(kModelCount) * 256 * 4 * 6 * 8);
 }
 
 TEST(NebulaReturnType, Pandar64SingleReturnByHand) {

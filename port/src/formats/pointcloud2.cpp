@@ -272,6 +272,29 @@ PacketReturnTypes::PacketReturnTypes(const PacketInfo& info) noexcept
                                    (k & 1) != 0);
 }
 
+void PacketReturnTypes::of_block(const ReturnComparison& compare, const Point* points, std::size_t count,
+                                 NebulaReturnType* out) const noexcept {
+  if (count == 0) return;
+  const std::uint8_t block = points[0].block, index = points[0].return_index;
+  if (block >= kMaxBlocksPerPacket || index > 3) {
+    for (std::size_t i = 0; i < count; ++i) out[i] = (*this)(compare, points[i]);
+    return;
+  }
+  const std::uint8_t* identical = compare.identical[block].data();
+  const std::uint8_t* weaker = compare.weaker[block].data();
+  const NebulaReturnType* row = table_ + 4 * static_cast<std::size_t>(index);
+  for (std::size_t i = 0; i < count; ++i) {
+    const Point& p = points[i];
+    const unsigned ch = p.channel > 0 ? p.channel - 1u : 0u;
+    if (p.block != block || p.return_index != index || ch >= kMaxChannels) {
+      out[i] = (*this)(compare, p);
+      continue;
+    }
+    const unsigned bit = ch % 8;
+    out[i] = row[(static_cast<unsigned>(identical[ch / 8]) >> bit & 1u) * 2 + (static_cast<unsigned>(weaker[ch / 8]) >> bit & 1u)];
+  }
+}
+
 void encode_point(const Point& p, NebulaReturnType return_type, std::int64_t stamp_ns, std::uint8_t out[kPointStep]) {
   encode_record(p, return_type, time_after(p.time_ns, stamp_ns), out);
 }
@@ -286,34 +309,31 @@ void PointCloud2Data::reserve(std::size_t points) {
 
 void PointCloud2Data::add(const Point* points, const NebulaReturnType* types, std::size_t count) {
   if (count == 0) return;
-  std::int64_t lo = points[0].time_ns, hi = lo;
-  for (std::size_t i = 1; i < count; ++i) {
-    lo = std::min(lo, points[i].time_ns);
-    hi = std::max(hi, points[i].time_ns);
+  if (count > capacity_ - count_) reserve(std::max(count_ + count, 2 * capacity_));
+  if (count_ == 0) base_ = min_ = max_ = points[0].time_ns;
+  // Each record's time_stamp: its time after base_, wrapping at 32 bits.
+  std::uint8_t* out = bytes_.get() + count_ * kPointStep;
+  const auto base = static_cast<std::uint64_t>(base_);
+  std::int64_t lo = min_, hi = max_;
+  for (std::size_t i = 0; i < count; ++i) {
+    const std::int64_t t = points[i].time_ns;
+    lo = std::min(lo, t);
+    hi = std::max(hi, t);
+    encode_record(points[i], types != nullptr ? types[i] : NebulaReturnType::unknown,
+                  static_cast<std::uint32_t>(static_cast<std::uint64_t>(t) - base), out + i * kPointStep);
   }
-  if (count_ == 0) {
-    base_ = min_ = lo;
-    max_ = hi;
-  } else {
-    min_ = std::min(min_, lo);
-    max_ = std::max(max_, hi);
-  }
-  if (!wide_ && span(min_, max_) >= kNarrowSpan) {
-    // The records so far lie within 2^31 ns of base_: their times come back from the offsets.
+  if (!wide_ && span(lo, hi) >= kNarrowSpan) {
+    // The span reaches 2^31 ns: the offsets no longer tell the times. Those of the records before
+    // these, all within 2^31 ns of base_ (it lies in their span), come back from them.
     wide_ = true;
     times_.resize(count_);
     for (std::size_t i = 0; i < count_; ++i)
       times_[i] = base_ + static_cast<std::int32_t>(load_le32(bytes_.get() + i * kPointStep + kTimeAt));
   }
-  if (count > capacity_ - count_) reserve(std::max(count_ + count, 2 * capacity_));
-  std::uint8_t* out = bytes_.get() + count_ * kPointStep;
-  const auto base = static_cast<std::uint64_t>(base_);
-  for (std::size_t i = 0; i < count; ++i) {
-    const auto offset = static_cast<std::uint32_t>(static_cast<std::uint64_t>(points[i].time_ns) - base);
-    encode_record(points[i], types != nullptr ? types[i] : NebulaReturnType::unknown, offset, out + i * kPointStep);
-  }
   if (wide_)
     for (std::size_t i = 0; i < count; ++i) times_.push_back(points[i].time_ns);
+  min_ = lo;
+  max_ = hi;
   count_ += count;
 }
 

@@ -417,7 +417,7 @@ void Pipeline::assign_frames(Source& src, std::uint64_t index, const PacketInfo&
   if (!sink_) return;
   if (types != nullptr) {
     if (first == 0) type_of_ = PacketReturnTypes(info);  // the packet's first block of points
-    for (std::size_t k = 0; k < n; ++k) types[k] = type_of_(compare_, kept[k]);
+    type_of_.of_block(compare_, kept, n, types);
   }
   const auto sensor = static_cast<std::uint32_t>(src.order);
   if (id != 0) {

@@ -97,6 +97,10 @@ class PacketReturnTypes {
     if (p.return_index > 3) return nebula_return_type(model_, return_mode_, p.return_index, identical, weaker);
     return table_[static_cast<std::size_t>(p.return_index) * 4 + (identical ? 2u : 0u) + (weaker ? 1u : 0u)];
   }
+  /// The same for `count` points into `out`; fastest for the points of one block (one block and
+  /// return index: their comparison rows and table row are read once).
+  void of_block(const ReturnComparison& compare, const Point* points, std::size_t count,
+                NebulaReturnType* out) const noexcept;
 
  private:
   Model model_ = Model::unknown;
