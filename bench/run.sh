@@ -13,7 +13,7 @@ cd "$(dirname "$0")/.."
 if [ -n "${HESAI_BENCH_BUILD:-}" ]; then
   BUILD=$HESAI_BENCH_BUILD
   cmake -B "$BUILD" -DHESAI_BUILD_BENCH=ON >/dev/null
-  cmake --build "$BUILD" -j"${HESAI_JOBS:-2}" --target hesai_bench hesai
+  cmake --build "$BUILD" -j"${HESAI_JOBS:-2}" --target hesai_bench hesai hesai_columns_decode
 else
   BUILD=build/bench
   cmake --preset bench >/dev/null

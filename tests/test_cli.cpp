@@ -20,12 +20,13 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
-#include <map>
-#include <sstream>
 #include <cctype>
+#include <map>
+#include <set>
 #include <sstream>
 #include <string>
 #include <thread>
+#include <utility>
 #include <vector>
 
 #include "hesai/crc32.h"
@@ -1659,6 +1660,51 @@ TEST(Cli, StatsPerSensorObjects) {
   EXPECT_NE(r.out.substr(b).find("\"lost_by\":\"udp_sequence\""), std::string::npos);
   // One sensor: no `sensors` key.
   EXPECT_EQ(run_cli("stats " + data_path("qt128c2x_dual.pcap") + " --json").out.find("\"sensors\""), std::string::npos);
+}
+
+// The keys of a JSON object's top level, in order (strings followed by ':' at depth 1).
+std::vector<std::string> top_level_keys(const std::string& json) {
+  std::vector<std::string> keys;
+  int depth = 0;
+  for (std::size_t i = 0; i < json.size(); ++i) {
+    const char c = json[i];
+    if (c == '{' || c == '[') ++depth;
+    else if (c == '}' || c == ']') --depth;
+    else if (c == '"') {
+      std::size_t end = i + 1;
+      while (end < json.size() && json[end] != '"') end += json[end] == '\\' ? std::size_t{2} : std::size_t{1};
+      if (depth == 1 && end + 1 < json.size() && json[end + 1] == ':') keys.push_back(json.substr(i + 1, end - i - 1));
+      i = end;
+    }
+  }
+  return keys;
+}
+
+// `stats --help` names every key of `stats --json`, and no key it does not have (the list is
+// written by hand beside the JSON writer, report.cpp's stats_json; a key added to one and not the
+// other fails here). Both QT128C2X's functional-safety keys and the per-sensor `sensors` show.
+TEST(Cli, StatsHelpNamesEveryJsonKey) {
+  const CmdResult help = run_cli("stats --help");
+  ASSERT_EQ(help.status, 0);
+  const std::size_t from = help.out.find("\n  --json ");  // the option's paragraph, not the usage line
+  const std::size_t to = help.out.find("\n  --quiet");
+  ASSERT_LT(from, to) << help.out;
+  std::string list = help.out.substr(from + 9, to - from - 9);
+  for (std::size_t open; (open = list.find('(')) != std::string::npos;) list.erase(open, list.find(')', open) - open + 1);
+  std::set<std::string> named;
+  std::string word;
+  for (const char c : list + " ") {
+    if (std::isalnum(static_cast<unsigned char>(c)) || c == '_') word += c;
+    else if (!word.empty()) named.insert(std::exchange(word, std::string()));
+  }
+  named.erase("one");  // "one JSON object: ..."
+  named.erase("JSON");
+  named.erase("object");
+  std::set<std::string> keys;
+  for (const std::string& k : top_level_keys(run_cli("stats " + data_path("qt128c2x_dual.pcap") + " --json").out)) keys.insert(k);
+  ASSERT_GT(keys.size(), 30u);
+  keys.insert("sensors");  // with several sensors only (StatsPerSensorObjects)
+  EXPECT_EQ(named, keys);
 }
 
 }  // namespace

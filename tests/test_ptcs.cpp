@@ -33,6 +33,7 @@
 
 #include "hesai_port/net/ptc_server.h"
 #include "hesai_port/net/tls.h"
+#include "sensor_support.h"
 #include "test_support.h"
 #include "udp_support.h"
 
@@ -53,33 +54,10 @@ using hesai_test::read_text;
 
 std::string temp_path(const std::string& name) { return "/tmp/hesai_ptcs_test_" + std::to_string(getpid()) + "_" + name; }
 
-struct Ran {
-  int status = -1;
-  std::string out, err;
-  double seconds = 0;
-};
+using Ran = hesai_test::CmdResult;
 
 // Runs `hesai ARGS` (shell words) without the key variables of the test's own environment.
-Ran run(const std::string& args) {
-  Ran r;
-  const std::string out = temp_path("stdout"), err = temp_path("stderr");
-  const std::string cmd = "exec env -u HESAI_SESSION_KEY -u HESAI_SECRET " + cli() + " " + args + " >" + out + " 2>" + err;
-  const auto t0 = std::chrono::steady_clock::now();
-  const pid_t pid = fork();
-  if (pid == 0) {
-    execl("/bin/sh", "sh", "-c", cmd.c_str(), static_cast<char*>(nullptr));
-    _exit(127);
-  }
-  int st = 0;
-  if (pid < 0 || waitpid(pid, &st, 0) != pid) return r;
-  r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  r.status = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
-  r.out = read_text(out);
-  r.err = read_text(err);
-  std::remove(out.c_str());
-  std::remove(err.c_str());
-  return r;
-}
+Ran run(const std::string& args) { return hesai_test::run_cli(args); }
 
 // A server-side port nobody listens on (bound, then closed).
 int closed_port() {
@@ -290,41 +268,10 @@ const Pki& pki() {
 
 // ---- Peers ----
 
-// A stand-in sensor: 'hesai replay CAPTURE --serve-ptc 127.0.0.1:0 ...' in the background.
-class StandIn {
- public:
-  explicit StandIn(const std::string& options, const std::string& capture = "qt128c2x_dual.pcap") {
-    err_ = temp_path("standin_" + std::to_string(++count_));
-    const std::string cmd = "exec env -u HESAI_SECRET " + cli() + " replay " + data_path(capture) +
-                            " --serve-ptc 127.0.0.1:0 " + options + " 2>" + err_;
-    pid_ = fork();
-    if (pid_ == 0) {
-      execl("/bin/sh", "sh", "-c", cmd.c_str(), static_cast<char*>(nullptr));
-      _exit(127);
-    }
-    for (int i = 0; i < 200 && port_ == 0; ++i) {
-      const std::string text = read_text(err_);
-      const std::size_t at = text.find("serving PTC on 127.0.0.1:");
-      if (at != std::string::npos && text.find('\n', at) != std::string::npos) port_ = std::stoi(text.substr(at + 25));
-      else usleep(25000);
-    }
-  }
-  ~StandIn() {
-    if (pid_ > 0) {
-      kill(pid_, SIGTERM);
-      waitpid(pid_, nullptr, 0);
-    }
-    std::remove(err_.c_str());
-  }
-  int port() const { return port_; }
-  std::string at() const { return " 127.0.0.1 --ptc-port " + std::to_string(port_); }
-  std::string stderr_text() const { return read_text(err_); }
-
- private:
-  static inline int count_ = 0;
-  pid_t pid_ = -1;
-  int port_ = 0;
-  std::string err_;
+// A stand-in sensor on the loopback (sensor_support.h), a QT128C2X unless `capture` says otherwise.
+struct StandIn : hesai_test::sensor::StandIn {
+  explicit StandIn(const std::string& options, const std::string& capture = "qt128c2x_dual.pcap")
+      : hesai_test::sensor::StandIn(capture, "127.0.0.1", options) {}
 };
 
 // The stand-in's PTC service in this process (PtcServer, as 'hesai replay --serve-ptc' runs it), a

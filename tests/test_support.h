@@ -2,10 +2,14 @@
 // so that golden tests do not depend on the code they check.
 #pragma once
 
+#include <fcntl.h>
 #include <gtest/gtest.h>
+#include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <chrono>
+#include <cerrno>
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
@@ -38,31 +42,71 @@ inline std::string cli() {
 #endif
 }
 
+/// What a run of the program gave: its exit status (-1: it did not exit normally), its stdout and
+/// stderr, its wall time, and its own peak resident set (with run_cli's `peak_rss`, natively).
 struct CmdResult {
   int status = -1;
   std::string out;
   std::string err;
+  double seconds = 0;
+  long max_rss_kib = 0;
 };
 
-// Runs the program with `args` (shell words) and `env` ("NAME=value ...", or empty) as its only
-// key variables: HESAI_SESSION_KEY and HESAI_SECRET of the test's own environment are removed.
-inline CmdResult run_cli(const std::string& args, const std::string& env = "") {
-  CmdResult r;
-  char err_path[] = "/tmp/hesai_cli_err_XXXXXX";
-  const int fd = mkstemp(err_path);
-  if (fd < 0) return r;
+/// A temporary file of this process's, created empty ("" when it cannot be).
+inline std::string temp_file(const char* what) {
+  std::string path = std::string("/tmp/hesai_test_") + what + "_XXXXXX";
+  const int fd = mkstemp(&path[0]);
+  if (fd < 0) return "";
   close(fd);
-  const std::string cmd = "env -u HESAI_SESSION_KEY -u HESAI_SECRET " + env + " " + cli() + " " + args + " 2>" + err_path;
-  FILE* p = popen(cmd.c_str(), "r");
-  if (p) {
-    char buf[65536];
-    std::size_t n;
-    while ((n = std::fread(buf, 1, sizeof buf, p)) > 0) r.out.append(buf, n);
-    const int st = pclose(p);
-    r.status = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
+  return path;
+}
+
+/// Runs the program with `args` (shell words) and `env` ("NAME=value ...", or empty) as its only
+/// key variables: HESAI_SESSION_KEY and HESAI_SECRET of the test's own environment are removed.
+/// stdout is a pipe the test reads to its end, stderr a file. With
+/// `peak_rss`, natively, through tests/tools/peak_rss.c, so that max_rss_kib is the program's own
+/// peak and not this test process's resident set at the fork; otherwise (and under an emulator)
+/// wait4's figure. The one way every test runs the program.
+inline CmdResult run_cli(const std::string& args, const std::string& env = "", bool peak_rss = false) {
+  CmdResult r;
+  const std::string err = temp_file("stderr");
+  int pipe_fds[2];
+  if (err.empty() || pipe2(pipe_fds, O_CLOEXEC) != 0) return r;
+  std::string peak_file, peak;
+#if defined(HESAI_PEAK_RSS_PATH) && !defined(HESAI_CLI_EMULATOR)
+  if (peak_rss) {
+    peak_file = temp_file("peak_rss");
+    peak = std::string(HESAI_PEAK_RSS_PATH) + " " + peak_file + " ";
   }
-  r.err = read_text(err_path);
-  std::remove(err_path);
+#else
+  (void)peak_rss;
+#endif
+  const std::string cmd = "exec env -u HESAI_SESSION_KEY -u HESAI_SECRET " + env + " " + peak + cli() + " " + args + " 2>" + err;
+  const auto t0 = std::chrono::steady_clock::now();
+  const pid_t pid = fork();
+  if (pid == 0) {
+    dup2(pipe_fds[1], 1);  // stdout a pipe, as a shell's `hesai ... | ...` has it
+    execl("/bin/sh", "sh", "-c", cmd.c_str(), static_cast<char*>(nullptr));
+    _exit(127);
+  }
+  close(pipe_fds[1]);
+  char buf[65536];
+  for (ssize_t n; (n = read(pipe_fds[0], buf, sizeof buf)) != 0;) {
+    if (n > 0) r.out.append(buf, static_cast<std::size_t>(n));
+    else if (errno != EINTR) break;
+  }
+  close(pipe_fds[0]);
+  int st = 0;
+  rusage u{};
+  if (pid > 0 && wait4(pid, &st, 0, &u) == pid) {
+    r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    r.status = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
+    r.max_rss_kib = u.ru_maxrss;
+    if (!peak_file.empty()) r.max_rss_kib = std::atol(read_text(peak_file).c_str());
+  }
+  if (!peak_file.empty()) std::remove(peak_file.c_str());
+  r.err = read_text(err);
+  std::remove(err.c_str());
   return r;
 }
 #endif

@@ -789,6 +789,92 @@ void rotations_offsets_and_wraps() {
   // Every decoder as paths_agree() left it, for the counts below: design angles, clockwise.
   for (const Model m : {Model::pandar40p, Model::pandar64, Model::qt128c2x}) fresh_decoder(m);
 }
+
+// The unit scan (issue #43): on the M4F DecodePath::best folds it into the assembly loops (the
+// _scan and _repeat loops, and the exact count in C of a packet that set Q), DecodePath::portable
+// runs the reference scan_units after the C loops. The same UnitScan byte for byte (each filled
+// with 0xA5 first: the reset too), and the same points with Returns::all and Returns::distinct.
+void same_scan_on_every_path(const char* name, hesai::Decoder& decoder, ByteView bytes) {
+  static hesai::UnitScan scans[2];
+  std::uint32_t digests[2][2] = {};
+  std::size_t counts[2][2] = {};
+  const hesai::DecodePath paths[2] = {hesai::DecodePath::best, hesai::DecodePath::portable};
+  for (std::size_t p = 0; p < 2; ++p) {
+    for (std::size_t distinct = 0; distinct < 2; ++distinct) {
+      hesai::PacketInfo info;
+      std::memset(&storage, 0xA5, sizeof storage);
+      std::memset(&scans[p], 0xA5, sizeof scans[p]);
+      check(decoder.decode(bytes, info, points, scans[p], distinct != 0 ? hesai::Returns::distinct : hesai::Returns::all,
+                           paths[p]) == Error::ok,
+            name);
+      digests[p][distinct] = digest(points.points.data(), points.count);
+      counts[p][distinct] = points.count;
+    }
+  }
+  check(std::memcmp(&scans[0], &scans[1], sizeof scans[0]) == 0 && digests[0][0] == digests[1][0] &&
+            digests[0][1] == digests[1][1] && counts[0][0] == counts[1][0] && counts[0][1] == counts[1][1],
+        name);
+}
+
+// xorshift32 (Marsaglia 2003): the same packets on every run.
+std::uint32_t next_random(std::uint32_t& state) {
+  state ^= state << 13;
+  state ^= state >> 17;
+  state ^= state << 5;
+  return state;
+}
+
+// Every sensor's packet with its units rewritten at random, 40 packets each, on both paths: distances
+// 0, 1 (the QT128's blockage marker), 2, at and about the rated ranges' limits (12 500 raw for
+// the QT128's 50 m at 4 mm, 50 000 for the Pandars' 200 m; in odd rounds none beyond), 65 535 and
+// any, and second returns
+// that repeat their first return, or repeat only its distance or only its reflectivity. A QT128
+// unit that is all zero (a resting channel: validate() checks) stays so; the CRCs are sealed again.
+void scans_agree() {
+  print("unit scan: assembly loops against scan_units, every sensor, real and 40 random packets each\n");
+  for (const Subject& s : kSubjects) same_scan_on_every_path(s.name, decoder_for(s.model), s.packet);
+  static const std::uint16_t kEdges[] = {12499, 12500, 12501, 49999, 50000, 50001, 65535};
+  std::uint32_t state = 0x2545F491u;
+  for (const Subject& s : kSubjects) {
+    const BlockLayout l = block_layout(s.model);
+    const std::size_t channels = hesai::channel_count(s.model);
+    const std::size_t unit = (l.stride - 2) / channels;
+    for (int round = 0; round < 40; ++round) {
+      std::memcpy(shifted, s.packet.data, s.packet.size);
+      for (std::size_t b = 0; b < l.blocks; ++b) {
+        for (std::size_t j = 0; j < channels; ++j) {
+          std::uint8_t* u = shifted + l.first + 2 + b * l.stride + j * unit;
+          if (s.model == Model::qt128c2x && (u[0] | u[1] | u[2] | u[3]) == 0) continue;
+          const std::uint8_t* first = u - l.stride;  // the first return's, for a second return
+          const std::uint32_t r = next_random(state);
+          std::uint32_t distance = hesai::load_le16(u);
+          switch (r % 16) {
+            case 0: distance = 0; break;
+            case 1: distance = 1; break;
+            case 2: distance = 2; break;
+            // Odd rounds stay within every rated range (12 500 raw), so that no distance beyond it
+            // hides a blockage marker the loops missed (both set Q: the packet counted in C).
+            case 3: distance = round % 2 == 0 ? kEdges[(r >> 8) % 7] : kEdges[(r >> 8) % 2]; break;
+            case 4: distance = round % 2 == 0 ? (r >> 8) & 0xFFFFu : (r >> 8) % 12501u; break;
+            case 5: case 6: case 7: case 8:
+              if (b % 2 == 1) distance = hesai::load_le16(first), u[2] = first[2];
+              break;
+            case 9:
+              if (b % 2 == 1) distance = hesai::load_le16(first), u[2] = static_cast<std::uint8_t>(first[2] + 1);
+              break;
+            case 10:
+              if (b % 2 == 1) u[2] = first[2];
+              break;
+            default: break;
+          }
+          hesai::store_le16(u, static_cast<std::uint16_t>(distance));
+        }
+      }
+      if (s.model == Model::qt128c2x) check(hesai::qt128::seal(shifted, s.packet.size) == Error::ok, "re-seal");
+      same_scan_on_every_path(s.name, decoder_for(s.model), {shifted, s.packet.size});
+    }
+  }
+}
 #endif  // HESAI_FIRMWARE_TWO_PATHS
 
 // On the Cortex-M4F (and M7) DecodePath::best runs the assembly loops of kernels/armv7m_loops.h,
@@ -920,6 +1006,7 @@ int main() {
   paths_agree();
 #if HESAI_FIRMWARE_TWO_PATHS
   rotations_offsets_and_wraps();
+  scans_agree();
 #endif
   instruction_counts();
   stack_use();

@@ -46,10 +46,25 @@ asm(".equ HESAI_ARMV7M_TABLE, " HESAI_STRING_OF(HESAI_ARMV7M_TABLE) R"(
     @ tables after sin_el). Registers: r0 units, r1 out, r2 dir_cos, r3 sin_el, r4 tag, r5 keep_bias,
     @ r6 block and steps, r7 raw, r8 fire_ns, r9 r10 temporaries; s0-s5 the Point's six floats (one
     @ VSTM), s6-s9 the channel's dir_cos, dir_sin, sin_el, azimuth, s10-s16 the block's constants.
-    .macro HESAI_POINT unit, loop
+    @ scan (issue #43; 0: none): 1 also sets the Q flag where a unit needs the exact scan in C:
+    @ beyond: a distance beyond the rated range (QADD of raw and r11 = 0x7FFFFFFF - limit
+    @ saturates); markers: not kept and not 0, a blockage marker or 1..min-1 (SSAT #1 saturates). 2
+    @ also compares the unit with the first return's, r12 bytes on (distance and reflectivity: the
+    @ low 24 bits of the words) and shifts "repeated" (equal and kept) into lr from the top (RRX);
+    @ without beyond, the unit is read as a word (its distance converted from bits 0-15).
+    .macro HESAI_POINT unit, loop, scan=0, beyond=0, markers=0
+    .if \scan == 2 && \beyond == 0
+    ldr      r7, [r0], #\unit         @ the unit's word: distance, reflectivity, ...
+    vmov     s3, r7
+    vcvt.f32.u16 s3, s3, #0           @ the distance, bits 0-15
+    .else
     ldrh     r7, [r0], #\unit         @ raw distance
+    .if \beyond
+    qadd     r8, r7, r11              @ Q: raw > the rated range's limit
+    .endif
     vmov     s3, r7
     vcvt.f32.u32 s3, s3
+    .endif
     vmul.f32 s3, s3, s12              @ r, the Point's distance_m
     vldmia   r2!, {s6}                @ dir_cos
     vldr     s7, [r2, #(HESAI_ARMV7M_TABLE - 4)]      @ dir_sin
@@ -68,35 +83,82 @@ asm(".equ HESAI_ARMV7M_TABLE, " HESAI_STRING_OF(HESAI_ARMV7M_TABLE) R"(
     adds     r9, r9, r8
     adc      r10, r10, r8, asr #31    @ block time + fire_ns, 64 bits
     strd     r9, r10, [r1, #24]
-    ldrb     r9, [r0, #(2 - \unit)]   @ intensity
+    ldrb     r9, [r0, #(2 - \unit)]   @ intensity (left in r9, 0..255, for the comparison below)
     .if \unit == 4
     ldrb     r10, [r0, #-1]           @ confidence
-    orr      r9, r9, r10, lsl #24
+    orr      r10, r9, r10, lsl #24
+    orr      r10, r10, r4
+    .else
+    orr      r10, r9, r4
     .endif
-    orr      r9, r9, r4
-    str      r9, [r1, #32]            @ intensity, channel, return index, confidence
+    str      r10, [r1, #32]           @ intensity, channel, return index, confidence
     add      r4, r4, #256             @ the next channel
     strb     r6, [r1, #36]            @ block
+    .if \scan == 0
     adds     r7, r5, r7, lsl #16
     it       cs
     addcs    r1, r1, #40              @ kept: the next Point
+    .elseif \scan == 1 && \markers == 0
+    adds     r7, r5, r7, lsl #16
+    it       cs
+    addcs    r1, r1, #40              @ kept: the next Point
+    .elseif \scan == 1
+    adds     r10, r5, r7, lsl #16     @ carry: kept (r7, raw, left for the SSAT)
+    ite      cs
+    addcs    r1, r1, #40              @ kept: the next Point
+    ssatcc   r10, #1, r7              @ not kept: Q if raw >= 1
+    .else
+    .if \beyond
+    ldr      r8, [r0, #-\unit]        @ this unit's word: distance, reflectivity, a byte beyond
+    ldr      r10, [r0, r12]           @ the first return's unit's
+    eor      r8, r8, r10              @ bits 0-23 clear: the same distance and reflectivity
+    .else
+    ldr      r10, [r0, r12]           @ the first return's unit's
+    eor      r8, r7, r10              @ bits 0-23 clear: the same distance and reflectivity
+    .endif
+    adds     r10, r5, r7, lsl #16     @ carry: kept
+    .if \markers
+    itet     cs
+    addcs    r1, r1, #40              @ kept: the next Point
+    ssatcc   r10, #1, r7              @ not kept: Q if raw >= 1
+    .else
+    itt      cs
+    addcs    r1, r1, #40              @ kept: the next Point
+    .endif
+    cmpcs    r9, r8, lsl #8           @ kept: carry iff bits 0-23 are clear (0..255 >= a multiple of 256)
+    rrx      lr, lr                   @ repeated (carry) into bit 31
+    .endif
     .endm
 
-    .macro HESAI_POINTS name, unit, loop
+    .macro HESAI_POINTS name, unit, loop, scan=0, beyond=0, markers=0
     HESAI_FUNCTION \name
+    .if \scan
+    push     {r4-r11, lr}
+    .else
     push     {r4-r10, lr}
+    .endif
     vpush    {s16}
     add      r12, r0, #28
     vldmia   r12, {s10-s16}
+    .if \scan
+    ldrd     r11, r12, [r0, #56]      @ limit_bias, first_offset
+    .endif
     ldmia    r0, {r0-r6}
 1:
-    HESAI_POINT \unit, \loop
-    HESAI_POINT \unit, \loop
+    HESAI_POINT \unit, \loop, \scan, \beyond, \markers
+    HESAI_POINT \unit, \loop, \scan, \beyond, \markers
     subs     r6, r6, #256             @ steps left - 1, in bits 8-31
     bpl      1b
     mov      r0, r1
+    .if \scan == 2
+    mov      r1, lr                   @ the repeated bits, the last unit's in bit 31
+    .endif
     vpop     {s16}
+    .if \scan
+    pop      {r4-r11, pc}
+    .else
     pop      {r4-r10, pc}
+    .endif
     .size \name, . - \name
     .popsection
     .endm
@@ -155,6 +217,17 @@ asm(".equ HESAI_ARMV7M_TABLE, " HESAI_STRING_OF(HESAI_ARMV7M_TABLE) R"(
     HESAI_POINTS  hesai_armv7m_points_u3_l1, 3, 1
     HESAI_POINTS  hesai_armv7m_points_u4_l0, 4, 0
     HESAI_POINTS  hesai_armv7m_points_u4_l1, 4, 1
+    @ The unit scan's: u3 (the Pandars: a rated range, no blockage markers), u4m (the QT128C2X:
+    @ both) and u4 (the PandarQT64 and XT: neither, so the first returns take the loops above).
+    HESAI_POINTS  hesai_armv7m_points_scan_u3_l0, 3, 0, 1, 1, 0
+    HESAI_POINTS  hesai_armv7m_points_scan_u3_l1, 3, 1, 1, 1, 0
+    HESAI_POINTS  hesai_armv7m_points_scan_u4m_l0, 4, 0, 1, 1, 1
+    HESAI_POINTS  hesai_armv7m_points_scan_u4m_l1, 4, 1, 1, 1, 1
+    HESAI_POINTS  hesai_armv7m_points_repeat_u3_l0, 3, 0, 2, 1, 0
+    HESAI_POINTS  hesai_armv7m_points_repeat_u3_l1, 3, 1, 2, 1, 0
+    HESAI_POINTS  hesai_armv7m_points_repeat_u4_l0, 4, 0, 2, 0, 0
+    HESAI_POINTS  hesai_armv7m_points_repeat_u4m_l0, 4, 0, 2, 1, 1
+    HESAI_POINTS  hesai_armv7m_points_repeat_u4m_l1, 4, 1, 2, 1, 1
     HESAI_COLUMNS hesai_armv7m_columns_u3_l0, 3, 0
     HESAI_COLUMNS hesai_armv7m_columns_u3_l1, 3, 1
     HESAI_COLUMNS hesai_armv7m_columns_u4_l0, 4, 0

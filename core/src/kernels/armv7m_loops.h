@@ -49,6 +49,10 @@ struct ArmPointsBlock {
   float full_turn;                // s14: 360
   std::uint32_t block_time_lo;    // s15, s16: the block time, ns, low and high words
   std::uint32_t block_time_hi;
+  // The unit scan's (the _scan and _repeat loops only):
+  std::uint32_t limit_bias;       // r11: 0x7FFFFFFF - the largest raw distance within the rated range
+  std::int32_t first_offset;      // r12: the first return's unit from this unit's end (_repeat): its
+                                  // block's units - this block's units - the unit size
 };
 
 // One block for the columns loop, the same way.
@@ -72,7 +76,8 @@ struct ArmColumnsBlock {
   std::uint8_t* return_column;
 };
 
-static_assert(sizeof(void*) == 4 && offsetof(ArmPointsBlock, sin_a) == 28 && offsetof(ArmPointsBlock, block_time_hi) == 52,
+static_assert(sizeof(void*) == 4 && offsetof(ArmPointsBlock, sin_a) == 28 && offsetof(ArmPointsBlock, block_time_hi) == 52 &&
+                  offsetof(ArmPointsBlock, limit_bias) == 56 && offsetof(ArmPointsBlock, first_offset) == 60,
               "armv7m_loops.cpp loads ArmPointsBlock at these offsets");
 static_assert(offsetof(ArmColumnsBlock, sin_a) == 48 && offsetof(ArmColumnsBlock, return_column) == 68,
               "armv7m_loops.cpp loads ArmColumnsBlock at these offsets");
@@ -87,10 +92,46 @@ Point* hesai_armv7m_points_u3_l0(const ArmPointsBlock* block) noexcept;
 Point* hesai_armv7m_points_u3_l1(const ArmPointsBlock* block) noexcept;
 Point* hesai_armv7m_points_u4_l0(const ArmPointsBlock* block) noexcept;
 Point* hesai_armv7m_points_u4_l1(const ArmPointsBlock* block) noexcept;
+// The same with the unit scan folded in (issue #43: the units read once). _scan: Q (the sticky
+// saturation flag of APSR, which nothing else on the path sets; clear it first) is set if any unit
+// lies beyond the rated range (raw > limit, a QADD a unit) or, in the u4m loops (models whose
+// smallest kept distance is above 1), is not kept yet not 0 (a blockage marker, distance 1, or
+// below the smallest kept distance: an SSAT a unit): then the caller counts those exactly in C.
+// The u4 loop checks neither (models with neither a rated range nor markers; their first returns
+// take the plain loops). _repeat, for the second return of a dual-return firing, at most 32 units
+// a call: the same, and returns in the high word the units that repeat the first return's (the
+// same distance and reflectivity, kept), unit i of n at bit 32 - n + i; the low word is the out
+// pointer.
+Point* hesai_armv7m_points_scan_u3_l0(const ArmPointsBlock* block) noexcept;
+Point* hesai_armv7m_points_scan_u3_l1(const ArmPointsBlock* block) noexcept;
+Point* hesai_armv7m_points_scan_u4m_l0(const ArmPointsBlock* block) noexcept;
+Point* hesai_armv7m_points_scan_u4m_l1(const ArmPointsBlock* block) noexcept;
+std::uint64_t hesai_armv7m_points_repeat_u3_l0(const ArmPointsBlock* block) noexcept;
+std::uint64_t hesai_armv7m_points_repeat_u3_l1(const ArmPointsBlock* block) noexcept;
+std::uint64_t hesai_armv7m_points_repeat_u4_l0(const ArmPointsBlock* block) noexcept;
+std::uint64_t hesai_armv7m_points_repeat_u4m_l0(const ArmPointsBlock* block) noexcept;
+std::uint64_t hesai_armv7m_points_repeat_u4m_l1(const ArmPointsBlock* block) noexcept;
 std::size_t hesai_armv7m_columns_u3_l0(const ArmColumnsBlock* block) noexcept;
 std::size_t hesai_armv7m_columns_u3_l1(const ArmColumnsBlock* block) noexcept;
 std::size_t hesai_armv7m_columns_u4_l0(const ArmColumnsBlock* block) noexcept;
 std::size_t hesai_armv7m_columns_u4_l1(const ArmColumnsBlock* block) noexcept;
+}
+
+// The Q flag of APSR: cleared before a packet's _scan/_repeat calls, read after them. A spurious
+// Q (a saturating instruction of the compiler's in between) only costs the exact count in C.
+inline void clear_saturation() noexcept { __asm volatile("msr APSR_nzcvq, %0" : : "r"(0u) : "cc"); }
+inline bool saturated() noexcept {
+  std::uint32_t apsr;
+  __asm volatile("mrs %0, APSR" : "=r"(apsr));
+  return (apsr & (1u << 27)) != 0;
+}
+
+// Set bits of a word (the repeated units of a chunk): ARMv7E-M has no popcount instruction.
+inline std::uint32_t bit_count(std::uint32_t v) noexcept {
+  v = v - ((v >> 1) & 0x55555555u);
+  v = (v & 0x33333333u) + ((v >> 2) & 0x33333333u);
+  v = (v + (v >> 4)) & 0x0F0F0F0Fu;
+  return (v * 0x01010101u) >> 24;
 }
 
 }  // namespace hesai::kernels

@@ -98,6 +98,103 @@ HESAI_NOINLINE_FOR_SIZE void scan_units(const kernels::BlockRef* blocks, std::si
   scan.duplicate_returns = static_cast<std::uint16_t>(duplicates);
 }
 
+#if defined(HESAI_KERNELS_ARMV7M)
+// scan_units' blockage markers and distances beyond the rated range, for the assembly loops'
+// packets that set Q (SensorBase::emit_blocks_armv7m), which count the repeated returns themselves.
+template <std::size_t kUnitBytes>
+HESAI_NOINLINE_FOR_SIZE void scan_rare_units(const kernels::BlockRef* blocks, std::size_t block_count, std::size_t unit_count,
+                                             const PacketInfo& info, std::uint16_t min_distance, UnitScan& scan) noexcept {
+  const std::uint32_t limit = beyond_limit(info);
+  const bool markers = min_distance > 1;
+  std::uint32_t blockage = 0, beyond = 0;
+  for (std::size_t b = 0; b < block_count; ++b) {
+    const std::uint8_t* u = blocks[b].units;
+    for (std::size_t j = 0; j < unit_count; ++j, u += kUnitBytes) {
+      const std::uint32_t distance = load_le16(u);
+      beyond += distance > limit ? 1u : 0u;
+      if (markers && distance == 1) {
+        ++blockage;
+        ++scan.blockage_by_channel[j % kMaxChannels];  // no channel map on this path
+      }
+    }
+  }
+  scan.blockage_units = static_cast<std::uint16_t>(blockage);
+  scan.beyond_rated_range = static_cast<std::uint16_t>(beyond);
+}
+#endif
+
+#if defined(HESAI_KERNELS_ARMV7M)
+// emit_blocks_armv7m's Points with the unit scan (the _scan and _repeat loops, armv7m_loops.h), a
+// function of its own so that the decode without a scan keeps its registers. `k` holds the
+// packet's constants; dir_cos: each firing loop's table. The loops that check for blockage markers
+// (an SSAT a unit) serve the models whose smallest kept distance is above 1 (the QT128C2X's 2):
+// no model has them with 3-byte units (emit_blocks scans such units in C); those that check for
+// neither markers nor a rated range (the PandarQT64 and XT) run their first returns by the plain
+// loops.
+template <std::size_t kUnitBytes>
+HESAI_NOINLINE_FOR_SIZE void emit_points_scanned_armv7m(kernels::ArmPointsBlock& k, const float* const dir_cos[2],
+                                                        const kernels::BlockRef* blocks, std::size_t block_count,
+                                                        std::size_t unit_count, std::uint16_t min_distance,
+                                                        const PacketInfo& info, DecodeOutput& out) noexcept {
+  UnitScan& scan = *out.scan;
+  const std::uint32_t limit = beyond_limit(info);
+  const bool checks = kUnitBytes == 3 || min_distance > 1 || limit != 0xFFFFu;  // else the u4 loops
+  const bool dual = info.returns == 2;
+  const float* const sin_el = k.sin_el;
+  const auto steps_left = static_cast<std::uint32_t>(unit_count / 2 - 1) << 8;
+  std::uint32_t duplicates = 0, return_index = 0;
+  SinCosF ab{};
+  std::uint32_t last_azimuth = 0x10000;
+  k.limit_bias = 0x7FFFFFFFu - limit;
+  kernels::clear_saturation();
+  for (std::size_t b = 0; b < block_count;
+       ++b, return_index = static_cast<std::uint32_t>(kernels::next_return_index(return_index, info.returns))) {
+    const kernels::BlockRef& r = blocks[b];
+    if (info.block_azimuth[b] != last_azimuth) ab = sin_cos_centideg(info.block_azimuth[b]);
+    last_azimuth = info.block_azimuth[b];
+    const auto block_time = static_cast<std::uint64_t>(info.time_ns + r.offset_ns);
+    const float* const table = dir_cos[r.loop];
+    const std::uint32_t return_tag = return_index << 16;
+    k.units = r.units, k.dir_cos = table;
+    k.tag = 1u << 8 | return_tag;
+    k.block_and_steps = static_cast<std::uint32_t>(b) | steps_left;
+    k.sin_a = ab.sin, k.cos_a = ab.cos, k.block_deg = static_cast<float>(info.block_azimuth[b]) * 0.01f;
+    k.block_time_lo = static_cast<std::uint32_t>(block_time), k.block_time_hi = static_cast<std::uint32_t>(block_time >> 32);
+    if (!dual || return_index == 0) {
+      k.out = kUnitBytes == 3 ? (r.loop == 0 ? hesai_armv7m_points_scan_u3_l0(&k) : hesai_armv7m_points_scan_u3_l1(&k))
+              : checks        ? (r.loop == 0 ? hesai_armv7m_points_scan_u4m_l0(&k) : hesai_armv7m_points_scan_u4m_l1(&k))
+                              : (r.loop == 0 ? hesai_armv7m_points_u4_l0(&k) : hesai_armv7m_points_u4_l1(&k));
+      continue;
+    }
+    // The second return of a firing (blocks 2f and 2f + 1): compared with the first unit by unit,
+    // 32 units (one word of the repeated bits) a call.
+    k.first_offset = static_cast<std::int32_t>(blocks[b - 1].units - r.units) - static_cast<std::int32_t>(kUnitBytes);
+    std::uint8_t* const row = b / 2 < kMaxDualFirings ? scan.repeated[b / 2].data() : nullptr;
+    for (std::size_t first = 0; first < unit_count; first += 32) {
+      const std::size_t n = unit_count - first < 32 ? unit_count - first : 32;
+      k.units = r.units + first * kUnitBytes, k.dir_cos = table + first, k.sin_el = sin_el + first;
+      k.tag = static_cast<std::uint32_t>(first + 1) << 8 | return_tag;
+      k.block_and_steps = static_cast<std::uint32_t>(b) | static_cast<std::uint32_t>(n / 2 - 1) << 8;
+      const std::uint64_t o =
+          kUnitBytes == 3 ? (r.loop == 0 ? hesai_armv7m_points_repeat_u3_l0(&k) : hesai_armv7m_points_repeat_u3_l1(&k))
+          : checks || r.loop != 0 ? (r.loop == 0 ? hesai_armv7m_points_repeat_u4m_l0(&k) : hesai_armv7m_points_repeat_u4m_l1(&k))
+                                  : hesai_armv7m_points_repeat_u4_l0(&k);
+      k.out = reinterpret_cast<Point*>(static_cast<std::uintptr_t>(static_cast<std::uint32_t>(o)));
+      const std::uint32_t repeated = static_cast<std::uint32_t>(o >> 32) >> (32 - n);
+      duplicates += kernels::bit_count(repeated);
+      // One unaligned word store (store_le32 is four byte stores here; ARMv7E-M is little-endian).
+      if (row != nullptr) __builtin_memcpy(row + first / 8, &repeated, 4);
+    }
+    k.sin_el = sin_el;
+  }
+  out.count = static_cast<std::size_t>(k.out - out.points);
+  scan.duplicate_returns = static_cast<std::uint16_t>(duplicates);
+  // A unit beyond the rated range or a blockage marker set Q (rare: none in the bundled captures):
+  // those counts exactly, by the reference's loop.
+  if (kernels::saturated()) scan_rare_units<kUnitBytes>(blocks, block_count, unit_count, info, min_distance, scan);
+}
+#endif
+
 // Where the units are scanned without a branch on them: every target but the microcontrollers
 // (ARM M profile), whose firmware images run the reference scan_units alone (a short pipeline,
 // and flash and instruction budgets: docs/FIRMWARE.md).
@@ -221,8 +318,21 @@ HESAI_NOINLINE_FOR_SIZE void SensorBase::emit_blocks(const Decoder& d, const ker
   }
   const float unit_m = static_cast<float>(info.dis_unit_mm) * 0.001f;
   const std::uint16_t min_distance = sensor_of(d.model_)->min_distance;
-  if (out.scan != nullptr) scan_packet<kUnitBytes>(blocks, block_count, unit_count, info, min_distance, out.path, *out.scan);
   if (out.compare.into != nullptr) out.compare.fill(blocks, block_count, unit_count, kUnitBytes, info, *out.compare.into);
+#if defined(HESAI_KERNELS_ARMV7M)
+  // The assembly loops; as Points, with the unit scan folded into them (the units read once).
+  if (kernels::vector_isa(out.path) == kernels::VectorIsa::armv7m && unit_count % 2 == 0 && unit_count >= 2 &&
+      unit_count <= 256 && !has_channel_map(blocks, block_count)) {
+    // Columns, and 3-byte units with blockage markers (no such model): the scan in C.
+    if (out.scan != nullptr && (out.points == nullptr || (kUnitBytes == 3 && min_distance > 1))) {
+      scan_packet<kUnitBytes>(blocks, block_count, unit_count, info, min_distance, out.path, *out.scan);
+      out.scan = nullptr;
+    }
+    emit_blocks_armv7m<kUnitBytes>(d, blocks, block_count, unit_count, unit_m, min_distance, info, out);
+    return;
+  }
+#endif
+  if (out.scan != nullptr) scan_packet<kUnitBytes>(blocks, block_count, unit_count, info, min_distance, out.path, *out.scan);
 #if defined(HESAI_KERNELS_VECTOR)
   const kernels::VectorIsa isa = kernels::vector_isa(out.path);  // none for DecodePath::portable
   if (isa != kernels::VectorIsa::none && block_count <= kernels::kMaxBlocks) {
@@ -247,13 +357,6 @@ HESAI_NOINLINE_FOR_SIZE void SensorBase::emit_blocks(const Decoder& d, const ker
     if (!has_channel_map(blocks, block_count) && (out.points != nullptr ? kernels::points_vector(k, isa, out.points, out.count)
                                           : kernels::columns_vector(k, isa, out.columns, out.count)))
       return;
-  }
-#endif
-#if defined(HESAI_KERNELS_ARMV7M)
-  if (kernels::vector_isa(out.path) == kernels::VectorIsa::armv7m && unit_count % 2 == 0 && unit_count >= 2 &&
-      unit_count <= 256 && !has_channel_map(blocks, block_count)) {
-    emit_blocks_armv7m<kUnitBytes>(d, blocks, block_count, unit_count, unit_m, min_distance, info, out);
-    return;
   }
 #endif
   for (std::size_t b = 0; b < block_count; ++b) {
@@ -336,20 +439,25 @@ HESAI_ALWAYS_INLINE inline void SensorBase::emit_blocks_armv7m(const Decoder& d,
   kernels::ArmPointsBlock k;
   k.out = out.points + out.count, k.sin_el = geo.sin_el.data(), k.keep_bias = keep_bias, k.unit_m = unit_m;
   k.full_turn = 360.0f;
-  for (std::size_t b = 0; b < block_count; ++b) {
-    const kernels::BlockRef& r = blocks[b];
-    if (info.block_azimuth[b] != last_azimuth) ab = sin_cos_centideg(info.block_azimuth[b]);
-    last_azimuth = info.block_azimuth[b];
-    const auto block_time = static_cast<std::uint64_t>(info.time_ns + r.offset_ns);
-    k.units = r.units, k.dir_cos = spin.loop[r.loop].dir_cos.data();
-    k.tag = 1u << 8 | std::uint32_t{kernels::return_index(info.returns, b)} << 16;
-    k.block_and_steps = static_cast<std::uint32_t>(b) | steps_left;
-    k.sin_a = ab.sin, k.cos_a = ab.cos, k.block_deg = static_cast<float>(info.block_azimuth[b]) * 0.01f;
-    k.block_time_lo = static_cast<std::uint32_t>(block_time), k.block_time_hi = static_cast<std::uint32_t>(block_time >> 32);
-    k.out = kUnitBytes == 3 ? (r.loop == 0 ? hesai_armv7m_points_u3_l0(&k) : hesai_armv7m_points_u3_l1(&k))
-                            : (r.loop == 0 ? hesai_armv7m_points_u4_l0(&k) : hesai_armv7m_points_u4_l1(&k));
+  if (out.scan == nullptr) {
+    for (std::size_t b = 0; b < block_count; ++b) {
+      const kernels::BlockRef& r = blocks[b];
+      if (info.block_azimuth[b] != last_azimuth) ab = sin_cos_centideg(info.block_azimuth[b]);
+      last_azimuth = info.block_azimuth[b];
+      const auto block_time = static_cast<std::uint64_t>(info.time_ns + r.offset_ns);
+      k.units = r.units, k.dir_cos = spin.loop[r.loop].dir_cos.data();
+      k.tag = 1u << 8 | std::uint32_t{kernels::return_index(info.returns, b)} << 16;
+      k.block_and_steps = static_cast<std::uint32_t>(b) | steps_left;
+      k.sin_a = ab.sin, k.cos_a = ab.cos, k.block_deg = static_cast<float>(info.block_azimuth[b]) * 0.01f;
+      k.block_time_lo = static_cast<std::uint32_t>(block_time), k.block_time_hi = static_cast<std::uint32_t>(block_time >> 32);
+      k.out = kUnitBytes == 3 ? (r.loop == 0 ? hesai_armv7m_points_u3_l0(&k) : hesai_armv7m_points_u3_l1(&k))
+                              : (r.loop == 0 ? hesai_armv7m_points_u4_l0(&k) : hesai_armv7m_points_u4_l1(&k));
+    }
+    out.count = static_cast<std::size_t>(k.out - out.points);
+    return;
   }
-  out.count = static_cast<std::size_t>(k.out - out.points);
+  const float* const dir_cos[2] = {spin.loop[0].dir_cos.data(), spin.loop[1].dir_cos.data()};
+  emit_points_scanned_armv7m<kUnitBytes>(k, dir_cos, blocks, block_count, unit_count, min_distance, info, out);
 }
 #endif
 

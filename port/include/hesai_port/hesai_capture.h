@@ -142,8 +142,8 @@ typedef struct hesai_capture_columns {
 } hesai_capture_columns;
 
 /* The capture's points by the core's columnar decode (hesai_decoder_decode_columns: the vector
- * path the CPU has) straight into the caller's columns, without the program's Pipeline: no
- * frames, no stream accounting. The points and their order are the CSV's with the same options
+ * path the CPU has) straight into the caller's columns: the program's Pipeline in its columns
+ * mode, without frames or the unit scan (nor counts to read). The points and their order are the CSV's with the same options
  * (held packets until each source's rotation is known included), for the options it takes:
  * calibration, firetimes, channel_config, reflectivity, firetime_azimuth, rotation, packets,
  * session_key, allow_unsigned. A capture opened with another option away from its default

@@ -104,7 +104,8 @@ int cmd_stats(Args& args) {
                   "                          gps_position_invalid, fs_packets, fs_states (per lidar state),\n"
                   "                          fs_current_fault, fs_past_fault, fs_reserved_fault_type,\n"
                   "                          fs_last_fault_code, fs_last_fault_id, fs_last_fault_total,\n"
-                  "                          fs_counter_stalls\n"
+                  "                          fs_counter_stalls, sensors (one object a sensor, when there\n"
+                  "                          are several)\n"
                   "  --quiet                 no progress line\n%s%s",
                   kDecodeOptionsHelp, kKeyOptionsHelp);
       return kExitOk;

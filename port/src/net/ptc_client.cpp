@@ -4,18 +4,11 @@
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
-#include <fcntl.h>
-#include <netdb.h>
 #include <netinet/in.h>
-#include <netinet/tcp.h>
-#include <poll.h>
-#include <sys/socket.h>
-#include <unistd.h>
 
 #include "hesai_port/base/clock.h"
 #include "hesai_port/base/text.h"
 #include "hesai_port/net/tls.h"
-#include "wait.h"
 
 namespace hesai::port {
 namespace {
@@ -31,86 +24,6 @@ std::string hex_byte(std::uint8_t b) {
 }
 
 }  // namespace
-
-TcpTransport::~TcpTransport() {
-  if (fd_ >= 0) ::close(fd_);
-}
-
-PtcTransport::Io TcpTransport::connect(const std::string& host, std::uint16_t port, std::int64_t deadline_ns,
-                                       std::string& error) {
-  addrinfo hints{};
-  hints.ai_family = AF_INET;
-  hints.ai_socktype = SOCK_STREAM;
-  addrinfo* res = nullptr;
-  const std::string service = std::to_string(port);
-  if (const int rc = getaddrinfo(host.c_str(), service.c_str(), &hints, &res); rc != 0) {
-    error = std::string("cannot resolve: ") + gai_strerror(rc);
-    return Io::error;
-  }
-  fd_ = socket(AF_INET, SOCK_STREAM | SOCK_CLOEXEC, 0);
-  if (fd_ < 0) {
-    error = std::string("socket: ") + std::strerror(errno);
-    freeaddrinfo(res);
-    return Io::error;
-  }
-  fcntl(fd_, F_SETFL, fcntl(fd_, F_GETFL) | O_NONBLOCK);
-  const int one = 1;
-  setsockopt(fd_, IPPROTO_TCP, TCP_NODELAY, &one, sizeof one);
-  const int rc = ::connect(fd_, res->ai_addr, res->ai_addrlen);
-  freeaddrinfo(res);
-  if (rc != 0 && errno != EINPROGRESS) {
-    error = std::string("cannot connect: ") + std::strerror(errno);
-    return Io::error;
-  }
-  if (rc != 0) {
-    if (const Wait w = wait_fd(fd_, POLLOUT, deadline_ns, stop_); w != Wait::ready) {
-      error = w == Wait::stopped ? "interrupted" : "no connection";
-      return w == Wait::stopped ? Io::stopped : Io::timeout;
-    }
-    int so_error = 0;
-    socklen_t len = sizeof so_error;
-    getsockopt(fd_, SOL_SOCKET, SO_ERROR, &so_error, &len);
-    if (so_error != 0) {
-      error = std::string("cannot connect: ") + std::strerror(so_error);
-      return Io::error;
-    }
-  }
-  return Io::ok;
-}
-
-PtcTransport::Io TcpTransport::send_all(const std::uint8_t* data, std::size_t size, std::int64_t deadline_ns) {
-  std::size_t done = 0;
-  while (done < size) {
-    const ssize_t n = ::send(fd_, data + done, size - done, MSG_NOSIGNAL);
-    if (n > 0) {
-      done += static_cast<std::size_t>(n);
-    } else if (n < 0 && (errno == EAGAIN || errno == EWOULDBLOCK || errno == EINTR)) {
-      if (const Wait w = wait_fd(fd_, POLLOUT, deadline_ns, stop_); w != Wait::ready)
-        return w == Wait::stopped ? Io::stopped : Io::timeout;
-    } else {
-      return (errno == EPIPE || errno == ECONNRESET) ? Io::closed : Io::error;
-    }
-  }
-  return Io::ok;
-}
-
-PtcTransport::Io TcpTransport::receive_exact(std::uint8_t* data, std::size_t size, std::int64_t deadline_ns) {
-  std::size_t done = 0;
-  while (done < size) {
-    const ssize_t n = ::recv(fd_, data + done, size - done, 0);
-    if (n > 0) {
-      done += static_cast<std::size_t>(n);
-    } else if (n == 0) {
-      return Io::closed;
-    } else if (errno == EAGAIN || errno == EWOULDBLOCK || errno == EINTR) {
-      if (const Wait w = wait_fd(fd_, POLLIN, deadline_ns, stop_); w != Wait::ready)
-        return w == Wait::stopped ? Io::stopped : Io::timeout;
-    } else {
-      return errno == ECONNRESET ? Io::closed : Io::error;
-    }
-  }
-  return Io::ok;
-}
 
 PtcClient::PtcClient(std::string host, std::uint16_t port, int timeout_ms)
     : host_(std::move(host)), connect_host_(host_), port_(port), timeout_ms_(timeout_ms) {}

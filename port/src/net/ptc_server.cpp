@@ -18,7 +18,7 @@
 #include "hesai/ptc_settings.h"
 #include "hesai_port/base/clock.h"
 #include "hesai_port/base/random.h"
-#include "hesai_port/net/ptc_client.h"
+#include "hesai_port/net/transport.h"
 #include "hesai_port/net/tls.h"
 
 namespace hesai::port {

@@ -1,4 +1,4 @@
-// Waiting on a socket with a deadline and a stop flag: what the PTC transports share (ptc_client.cpp,
+// Waiting on a socket with a deadline and a stop flag: what the PTC transports share (transport.cpp,
 // tls.cpp). Private to net/.
 #pragma once
 

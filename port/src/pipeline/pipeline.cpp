@@ -279,6 +279,7 @@ bool Pipeline::feed(ByteView payload, std::uint64_t source_key, bool pre_session
 }
 
 Error Pipeline::decode(Source& src, ByteView payload, PacketInfo& info) {
+  if (columns_) return src.decoder->decode(payload, info, columns_->room(), column_count_);
   if (return_types_) return src.decoder->decode(payload, info, points_, scan_, compare_, options_.returns);
   return src.decoder->decode(payload, info, points_, scan_, options_.returns);
 }
@@ -368,6 +369,13 @@ bool Pipeline::process(Source& src, std::uint64_t index, const PacketInfo& info)
     saturating_follow(stats_.duplicates, before.duplicates, after.duplicates);
     saturating_follow(stats_.reordered, before.reordered, after.reordered);
     saturating_follow(stats_.sequence_resyncs, before.resyncs, after.resyncs);
+  }
+
+  if (columns_) {  // the columns mode: every point kept as decoded, no frames
+    saturating_add(stats_.points, column_count_);
+    if (index >= options_.first_packet && index < options_.end_packet)
+      columns_->kept(column_count_, index, static_cast<std::uint32_t>(src.order), info);
+    return true;
   }
 
   // Each point goes to the frame of its own azimuth, a block's points at once (FrameAssembler::

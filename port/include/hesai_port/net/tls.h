@@ -21,7 +21,7 @@
 #include <string>
 #include <vector>
 
-#include "hesai_port/net/ptc_client.h"
+#include "hesai_port/net/transport.h"
 
 struct ssl_ctx_st;  // OpenSSL's SSL_CTX
 struct ssl_st;      // OpenSSL's SSL

@@ -89,6 +89,22 @@ class Sink {
   virtual bool wants_return_types() const { return false; }
 };
 
+/// The columns mode's receiver (Pipeline::set_columns): each point-cloud packet is decoded
+/// straight into room() by the core's columnar decode; kept() then says that the points last
+/// decoded there are the next ones of the output. A packet decoded but not kept (held until its
+/// sensor's direction is known, outside --packets, refused as replayed) is written over by the
+/// next decode: room() may be asked for again without a kept() in between.
+class ColumnSink {
+ public:
+  virtual ~ColumnSink() = default;
+  /// Room for kMaxPointsPerPacket points, where the next packet's points go (time_ns relative to
+  /// the packet's time, PacketInfo::time_ns).
+  virtual PointColumns room() = 0;
+  /// The `count` points last decoded into room() are kept: from point-cloud packet `index` (as
+  /// PointRun::packet) of `sensor` (as Sink::sensor_added numbered it), whose time is info.time_ns.
+  virtual void kept(std::size_t count, std::uint64_t index, std::uint32_t sensor, const PacketInfo& info) = 0;
+};
+
 /// One sensor's stream health, for the per-sensor report (`sensors` in stats --json).
 struct SensorReport {
   std::string source;             ///< "192.168.1.201:10000" (label_source), or "source N"
@@ -158,6 +174,19 @@ class Pipeline {
   }
   /// Decodes the packets still held and closes the open frames at the end of the input.
   void finish();
+
+  /// The columns mode (set before the first feed()): every point-cloud packet is decoded into
+  /// `columns` (ColumnSink) instead of into Points, then held, selected by --packets and accounted
+  /// per packet as in the points mode, with two costs left out, both per point or per unit: no
+  /// frames are assembled (the columns carry no azimuth; the Sink gets sensor_added() and
+  /// receive_time(), never points() or frame_closed()) and the units are not scanned. So
+  /// Stats::frames and what the scan counts (blockage, repeated returns, beyond rated range) stay
+  /// 0: a caller of this mode reports no counts. Every decoded point is kept: the options must
+  /// leave none out (no --fov, ranges or --returns distinct; the caller checks).
+  void set_columns(ColumnSink* columns) {
+    columns_ = columns;
+    scan_ = UnitScan{};  // what process() reads of it: nothing
+  }
 
   /// Sets up a fresh decoder as the pipeline sets up each source's: the calibration files (parsed
   /// for its model's channels), the channel configuration, reflectivity, firing-time correction,
@@ -262,6 +291,9 @@ class Pipeline {
   // A block's frame id per point, when its points went to more than one frame.
   std::array<std::uint64_t, kMaxPointsPerPacket> ids_;
   PointRun run_;  // the run under way (count 0: none)
+
+  ColumnSink* columns_ = nullptr;  // set_columns(): the columns mode
+  std::size_t column_count_ = 0;   // the points of the last decode into columns_->room()
 };
 
 /// The source a captured datagram comes from, for Pipeline::feed: its sender's address and port.
