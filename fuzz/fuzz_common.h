@@ -102,14 +102,19 @@ inline void check_points(hesai::Model model, const hesai::PacketInfo& info, cons
   const hesai::Error e1 = decoder.decode(payload, info1, out1);
   const hesai::Error e2 = decoder.decode(payload, info2, out2);
   const hesai::Error e3 = decoder.validate(payload, info3);
+  // survey(): the same verdict and info, and as many points as decode() made, none made.
+  hesai::PacketInfo info4;
+  hesai::UnitScan scan;
+  std::size_t surveyed = 12345;
+  const hesai::Error e4 = decoder.survey(payload, info4, scan, surveyed);
   check_named(e1);
-  check(e1 == e2 && e1 == e3);
+  check(e1 == e2 && e1 == e3 && e1 == e4);
   if (e1 != hesai::Error::ok) {
-    check(out1.count == 0 && out2.count == 0);
+    check(out1.count == 0 && out2.count == 0 && surveyed == 0);
     return e1;
   }
-  check(same_info(info1, info2) && same_info(info1, info3));
-  check(out1.count == out2.count);
+  check(same_info(info1, info2) && same_info(info1, info3) && same_info(info1, info4));
+  check(out1.count == out2.count && surveyed == out1.count);
   for (std::size_t i = 0; i < out1.count; ++i) check(same_point(out1.points[i], out2.points[i]));
   check_points(decoder.model(), info1, out1);
   // A packet that decodes is one identify() recognises as this model.

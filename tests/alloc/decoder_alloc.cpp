@@ -17,7 +17,7 @@ void decode_all_without_allocating(const char* capture, Model model) {
   static PacketPoints pts;
   static PacketColumns<kMaxPointsPerPacket> columns;
   PacketInfo info;
-  std::size_t points = 0, column_points = 0;
+  std::size_t points = 0, column_points = 0, surveyed_points = 0;
   Error worst = Error::ok;
   const std::size_t n = hesai_test::allocations_during([&] {
     Decoder dec(model);
@@ -25,6 +25,11 @@ void decode_all_without_allocating(const char* capture, Model model) {
       const Error e = dec.decode(ByteView{p.data(), p.size()}, info, pts);
       if (e != Error::ok) worst = e;
       points += pts.count;
+      // What --packets does with the packets outside its range.
+      UnitScan scan;
+      std::size_t surveyed = 0;
+      if (const Error s = dec.survey(ByteView{p.data(), p.size()}, info, scan, surveyed); s != Error::ok) worst = s;
+      surveyed_points += surveyed;
       // The columnar output, on the vector path and the portable one.
       for (const DecodePath path : {DecodePath::best, DecodePath::avx2, DecodePath::portable}) {
         const Error c = dec.decode(ByteView{p.data(), p.size()}, info, columns, path);
@@ -36,6 +41,7 @@ void decode_all_without_allocating(const char* capture, Model model) {
   EXPECT_EQ(worst, Error::ok);
   EXPECT_GT(points, 0u);
   EXPECT_EQ(column_points, 3 * points);
+  EXPECT_EQ(surveyed_points, points);
   EXPECT_EQ(n, 0u) << capture;
 }
 

@@ -229,9 +229,10 @@ def linked_sizes(map_file):
 # one a Decoder::CompareReturns points to (group 2, sensors/decoder.cpp), and which of them each
 # function that calls through a pointer calls (core/src/sensors/).
 REGISTRY_TARGET = re.compile(r'hesai::SensorCode<[^>]*>::(identify|design|validate|walk|sequence_at)\b|hesai::qt128::seal\b'
-                             r'|hesai::\{anonymous\}::(compare_returns)\b')
+                             r'|hesai::\{anonymous\}::(compare_returns|survey_units)\b')
 INDIRECT_CALLS = {
-    'hesai::SensorBase::emit_blocks': ('compare_returns',),
+    'hesai::SensorBase::emit_blocks': ('compare_returns', 'survey_units'),
+    'hesai::Decoder::survey': ('walk',),
     'hesai::Decoder::Decoder': ('design',),
     'hesai::identify': ('identify',),
     'hesai::Decoder::validate': ('identify', 'validate'),

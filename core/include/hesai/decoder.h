@@ -35,6 +35,8 @@
 //   at most kMaxPointsPerPacket (400) points. When the spin rate differs from the previous packet's
 //   (the first packet, a speed change), the per-rate cache is rebuilt first: at most 2 x 128
 //   channels of a few multiplications, no trigonometric call.
+// - survey(): validate(), then a read of each unit's distance (the scan, the point count); at a new
+//   spin rate the spread of the per-rate cache (its arrays too where the CPU path has no spread alone).
 // - Stack: under 1 KiB per call on Cortex-M (docs/FIRMWARE.md: measured and from the call graph).
 //
 // Memory (the caller owns every object; the core has no static RAM but the one CPUID byte on
@@ -305,8 +307,8 @@ class Decoder {
   void set_rotation(Rotation rotation) noexcept;
   Rotation rotation() const noexcept { return rotation_; }
   /// The spread of point azimuths around their block azimuth over every channel and firing loop,
-  /// at the spin rate and rotation of the last decode() (all zero before the first): what a
-  /// FrameAssembler needs to know how far behind or ahead of a block its points can land.
+  /// at the spin rate and rotation of the last decode() or survey() (all zero before the first):
+  /// what a FrameAssembler needs to know how far behind or ahead of a block its points can land.
   AzimuthSpread beam_spread() const noexcept { return spin_.spread; }
 
   /// QT128: the channel configuration (parse_channel_config_csv) that maps the units of packets
@@ -376,6 +378,17 @@ class Decoder {
   /// UnitScan; Returns::distinct is not offered for columns: every unit's point is written).
   [[nodiscard]] Error decode(ByteView payload, PacketInfo& info, const PointColumns& out, std::size_t& count,
                              UnitScan& scan, DecodePath path = DecodePath::best) noexcept;
+  /// What a packet gives besides its points, without making them: validate() (`info`, with the
+  /// block azimuths), the unit scan as decode() fills it, `points` the number of points decode()
+  /// with Returns::all makes of it, and beam_spread() at its spin rate: all a caller needs to
+  /// count a packet and follow its frames (FrameAssembler::block) when it keeps none of its
+  /// points, such as one outside a range of packets. Leaves the decoder as decode() would (the
+  /// points of later packets are the same bits). Cost: validate(), a read of each unit's
+  /// distance, the scan; no per-point arithmetic, no point stored; at a new spin rate the spread
+  /// (on x86-64 with vector code, without the per-rate arrays, which the next decode() builds).
+  /// On error `points` is 0 and `scan` reset.
+  [[nodiscard]] Error survey(ByteView payload, PacketInfo& info, UnitScan& scan, std::size_t& points,
+                             DecodePath path = DecodePath::best) noexcept;
   /// decode() into columns with their own storage (N >= max_points(model())).
   template <std::size_t N>
   [[nodiscard]] Error decode(ByteView payload, PacketInfo& info, PacketColumns<N>& out,
@@ -416,7 +429,7 @@ class Decoder {
   // the state below: SensorBase holds what every sensor shares, each sensor's functions are the
   // members of its SensorCode<tag> (sensors/sensor.h).
   friend struct SensorBase;
-  friend struct DecodeOutput;  // holds a CompareReturns
+  friend struct DecodeOutput;  // holds a UnitPass
   template <class Tag>
   friend struct SensorCode;
 
@@ -429,14 +442,17 @@ class Decoder {
   // in `loops` (the others' arrays when a later packet uses them). Const: SensorBase::emit_blocks
   // calls it, which sees the decoder const; spin_ is a cache of the geometry.
   void update_spin(std::uint16_t rpm, unsigned loops, DecodePath path) const noexcept;
-  // What fills a ReturnComparison (compare_returns, sensors/decoder.cpp). Only the decode() form
-  // that takes one hands it down, by address: a program that never calls that form links none of
-  // its code (the Cortex-M0+ image's 48 KiB of flash, tests/firmware).
+  // A pass over a validated packet's raw units that only one caller asks for (sensors/decoder.cpp):
+  // compare_returns fills a ReturnComparison (the decode() form that takes one), survey_units
+  // scans the units and counts the points survey() does not make. Each is handed down by address, so that a program
+  // that never calls its form links none of its code (the Cortex-M0+ image's 48 KiB of flash,
+  // tests/firmware). SensorBase::emit_blocks runs it first, and makes the points of the blocks it
+  // returns: block_count, or 0. `into`: its output (a ReturnComparison, survey()'s).
   // (No member initializers: a default argument below value-initializes it, both null.)
-  struct CompareReturns {
-    ReturnComparison* into;
-    void (*fill)(const kernels::BlockRef* blocks, std::size_t block_count, std::size_t unit_count,
-                 std::size_t unit_bytes, const PacketInfo& info, ReturnComparison& into) noexcept;
+  struct UnitPass {
+    void* into;
+    std::size_t (*run)(const kernels::BlockRef* blocks, std::size_t block_count, std::size_t unit_count,
+                std::size_t unit_bytes, const PacketInfo& info, void* into) noexcept;
   };
   // Every decode() form: the capacity check, validate(), the sensor's walk into `points` (when not
   // null) or `columns`; count 0 on error. (The form with a ReturnComparison has its own copy.)

@@ -31,7 +31,7 @@ struct DecodeOutput {
   DecodePath path = DecodePath::best;
   std::size_t count = 0;
   UnitScan* scan = nullptr;  // when set, the units are scanned too (scan_units)
-  Decoder::CompareReturns compare{};  // when set, each return compared with its firing's others
+  Decoder::UnitPass units{};  // when set, run over the units (each return compared with its firing's others; or counted)
 
   // Replaces the intensity of points [first, count) by table[intensity].
   void map_intensity(std::size_t first, const std::uint8_t* table) noexcept {
@@ -318,7 +318,18 @@ HESAI_NOINLINE_FOR_SIZE void SensorBase::emit_blocks(const Decoder& d, const ker
   }
   const float unit_m = static_cast<float>(info.dis_unit_mm) * 0.001f;
   const std::uint16_t min_distance = sensor_of(d.model_)->min_distance;
-  if (out.compare.into != nullptr) out.compare.fill(blocks, block_count, unit_count, kUnitBytes, info, *out.compare.into);
+  // The units' own pass, which leaves the blocks to make points of: none for Decoder::survey(),
+  // whose pass scans the units too. Where vector or assembly code follows, no block left is a
+  // return (and the walk's constant block count stays a constant below); elsewhere the scalar
+  // loop runs no block, which takes less flash than the return (the Cortex-M0+: 4 bytes, not 20).
+  if (out.units.into != nullptr) {
+    const std::size_t left = out.units.run(blocks, block_count, unit_count, kUnitBytes, info, out.units.into);
+#if defined(HESAI_KERNELS_VECTOR) || defined(HESAI_KERNELS_ARMV7M)
+    if (left == 0) return;
+#else
+    block_count = left;
+#endif
+  }
 #if defined(HESAI_KERNELS_ARMV7M)
   // The assembly loops; as Points, with the unit scan folded into them (the units read once).
   if (kernels::vector_isa(out.path) == kernels::VectorIsa::armv7m && unit_count % 2 == 0 && unit_count >= 2 &&

@@ -225,12 +225,14 @@ Error Decoder::decode(ByteView payload, PacketInfo& info, PacketPoints& out, Uni
 
 namespace {
 
-// Each unit against the other returns of its firing, raw (ReturnComparison, decoder.h); `compare`
-// was reset by the caller. Reached only through the decode() form that takes a ReturnComparison.
-void compare_returns(const kernels::BlockRef* blocks, std::size_t block_count, std::size_t unit_count,
-                     std::size_t unit_bytes, const PacketInfo& info, ReturnComparison& compare) noexcept {
+// Each unit against the other returns of its firing, raw (ReturnComparison, decoder.h), into the
+// ReturnComparison at `into`, which the caller reset; every block's points are made too. Reached
+// only through the decode() form that takes a ReturnComparison.
+std::size_t compare_returns(const kernels::BlockRef* blocks, std::size_t block_count, std::size_t unit_count,
+                            std::size_t unit_bytes, const PacketInfo& info, void* into) noexcept {
+  ReturnComparison& compare = *static_cast<ReturnComparison*>(into);
   const std::size_t returns = info.returns;
-  if (returns < 2 || block_count > kMaxBlocksPerPacket) return;
+  if (returns < 2 || block_count > kMaxBlocksPerPacket) return block_count;
   for (std::size_t first = 0; first + returns <= block_count; first += returns) {
     for (std::size_t b = first; b < first + returns; ++b) {
       const std::uint8_t* u = blocks[b].units;
@@ -250,6 +252,43 @@ void compare_returns(const kernels::BlockRef* blocks, std::size_t block_count, s
       }
     }
   }
+  return block_count;
+}
+
+// The units whose distance makes a point (raw >= the model's smallest, as the kernels keep them).
+template <std::size_t kUnitBytes>
+std::size_t count_kept(const kernels::BlockRef* blocks, std::size_t block_count, std::size_t unit_count,
+                       std::uint32_t min_distance) noexcept {
+  std::size_t n = 0;
+  for (std::size_t b = 0; b < block_count; ++b) {
+    const std::uint8_t* u = blocks[b].units;
+    for (std::size_t j = 0; j < unit_count; ++j, u += kUnitBytes) n += load_le16(u) >= min_distance ? 1u : 0u;
+  }
+  return n;
+}
+
+// What survey() asks of a packet's units: the scan (reset by the caller) and the point count.
+struct Survey {
+  UnitScan* scan;
+  std::size_t points;
+  DecodePath path;
+};
+
+// The unit scan and the points decode() (Returns::all) would make of the packet, into the Survey
+// at `into`; no point made (no block left). Reached only through survey().
+std::size_t survey_units(const kernels::BlockRef* blocks, std::size_t block_count, std::size_t unit_count,
+                         std::size_t unit_bytes, const PacketInfo& info, void* into) noexcept {
+  Survey& s = *static_cast<Survey*>(into);
+  const std::uint16_t min_distance = sensor_of(info.model)->min_distance;  // validate() named the model
+  // Every sensor's units are 3 or 4 bytes (emit_blocks' instances): the scan and the count want it known.
+  if (unit_bytes == 3) {
+    scan_packet<3>(blocks, block_count, unit_count, info, min_distance, s.path, *s.scan);
+    s.points = count_kept<3>(blocks, block_count, unit_count, min_distance);
+  } else {
+    scan_packet<4>(blocks, block_count, unit_count, info, min_distance, s.path, *s.scan);
+    s.points = count_kept<4>(blocks, block_count, unit_count, min_distance);
+  }
+  return 0;
 }
 
 // `scan = UnitScan{}`, by word stores on the ARMv7E-M: the assignment is a memset call, which
@@ -304,7 +343,7 @@ Error Decoder::decode(ByteView payload, PacketInfo& info, PacketPoints& out, Uni
   o.points = out.points.data();
   o.path = path;
   o.scan = &scan;
-  o.compare = CompareReturns{&compare, compare_returns};
+  o.units = UnitPass{&compare, compare_returns};
   sensor_of(model_)->walk(*this, payload.data, info, o);  // validate() found model_'s packet
   out.count = leave_out_repeats(out.points.data(), o.count, scan, returns);
   return Error::ok;
@@ -347,6 +386,29 @@ Error Decoder::decode(ByteView payload, PacketInfo& info, const PointColumns& co
     return Error::invalid_argument;
   }
   return decode_into(payload, info, nullptr, &columns, columns.capacity, count, path, &scan);
+}
+
+Error Decoder::survey(ByteView payload, PacketInfo& info, UnitScan& scan, std::size_t& points,
+                      DecodePath path) noexcept {
+  reset_scan(scan);
+  points = 0;
+  const Error e = validate(payload, info);
+  if (e != Error::ok) return e;
+  // The spread at the packet's rate, as decode() would leave it, without the per-rate arrays
+  // where the CPU path computes the spread alone (elsewhere update_spin() rebuilds them whole):
+  // the loops left stale are rebuilt by the next decode() that uses them (the same bits). The walk
+  // sees none stale, so that it does not rebuild them now.
+  const std::uint16_t rpm = firetime_correction_ ? info.motor_rpm : 0;
+  if (rpm != spin_.rpm) update_spin(rpm, 0, path);
+  const std::uint8_t stale = spin_.stale_loops;
+  spin_.stale_loops = 0;
+  Survey survey{&scan, 0, path};
+  DecodeOutput o;
+  o.units = UnitPass{&survey, survey_units};
+  sensor_of(model_)->walk(*this, payload.data, info, o);  // validate() found model_'s packet
+  spin_.stale_loops = stale;
+  points = survey.points;
+  return Error::ok;
 }
 
 bool decode_simd_available() noexcept {

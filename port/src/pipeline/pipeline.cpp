@@ -238,7 +238,7 @@ bool Pipeline::feed(ByteView payload, std::uint64_t source_key, bool pre_session
 
   allow_unsigned_for(*src, pre_session);
   PacketInfo info;
-  e = decode(*src, payload, info);
+  e = decode(*src, payload, point_packet_index_, info);  // the index it gets once accepted
   if (e != Error::ok) {
     count_error(stats_, e);
     ++rejections_[e];
@@ -266,7 +266,7 @@ bool Pipeline::feed(ByteView payload, std::uint64_t source_key, bool pre_session
         while (!src->held.empty())
           if (!release_held(*src)) return false;
         allow_unsigned_for(*src, pre_session);
-        e = decode(*src, payload, info);
+        e = decode(*src, payload, index, info);
         if (e != Error::ok) {  // the packet decoded once: a fault of ours, but counted as bad input
           count_error(stats_, e);
           ++rejections_[e];
@@ -278,8 +278,15 @@ bool Pipeline::feed(ByteView payload, std::uint64_t source_key, bool pre_session
   return process(*src, index, info);
 }
 
-Error Pipeline::decode(Source& src, ByteView payload, PacketInfo& info) {
+Error Pipeline::decode(Source& src, ByteView payload, std::uint64_t index, PacketInfo& info) {
+  // (The columns mode decodes every packet: its columnar decode is about what a survey costs.)
   if (columns_) return src.decoder->decode(payload, info, columns_->room(), column_count_);
+  // A packet outside --packets gives the run its counts (points, unit scan) and the frames its
+  // blocks at its spin rate's beam spread, as a decoded one does; its points are never made.
+  if (!wanted(index)) {
+    points_.count = 0;
+    return src.decoder->survey(payload, info, scan_, surveyed_points_);
+  }
   if (return_types_) return src.decoder->decode(payload, info, points_, scan_, compare_, options_.returns);
   return src.decoder->decode(payload, info, points_, scan_, options_.returns);
 }
@@ -289,7 +296,7 @@ bool Pipeline::release_held(Source& src) {
   const std::uint64_t index = src.held.front_tag() & ~kPreSessionTag;
   allow_unsigned_for(src, (src.held.front_tag() & kPreSessionTag) != 0);
   PacketInfo info;
-  const Error e = decode(src, payload, info);
+  const Error e = decode(src, payload, index, info);
   src.held.pop_front();
   if (e != Error::ok) {  // it decoded when it came: a fault of ours, but counted as bad input
     count_error(stats_, e);
@@ -373,17 +380,20 @@ bool Pipeline::process(Source& src, std::uint64_t index, const PacketInfo& info)
 
   if (columns_) {  // the columns mode: every point kept as decoded, no frames
     saturating_add(stats_.points, column_count_);
-    if (index >= options_.first_packet && index < options_.end_packet)
-      columns_->kept(column_count_, index, static_cast<std::uint32_t>(src.order), info);
+    if (wanted(index)) columns_->kept(column_count_, index, static_cast<std::uint32_t>(src.order), info);
     return true;
   }
 
   // Each point goes to the frame of its own azimuth, a block's points at once (FrameAssembler::
   // points(): one frame for the whole block unless it straddles a cut); frames close when the
   // blocks have moved far enough past their end that no later point can reach them.
-  // `points` counts every point decoded: with --returns distinct, the repeated ones left out too.
-  if (options_.returns == Returns::distinct) saturating_add(stats_.points, scan_.duplicate_returns);
-  const bool keep = index >= options_.first_packet && index < options_.end_packet;
+  // `points` counts every point decoded: with --returns distinct, the repeated ones left out too;
+  // and those of the packets outside --packets, surveyed (all their points: Returns::all).
+  const bool keep = wanted(index);
+  if (!keep)
+    saturating_add(stats_.points, surveyed_points_);
+  else if (options_.returns == Returns::distinct)
+    saturating_add(stats_.points, scan_.duplicate_returns);
   FrameAssembler& frames = src.frames;
   frames.begin_packet(index, lost_before);
   std::size_t next = 0;
@@ -392,10 +402,11 @@ bool Pipeline::process(Source& src, std::uint64_t index, const PacketInfo& info)
       flush_points();  // every point of a frame before its frame_closed()
       close_frames(src);
     }
+    if (!keep) continue;  // no point was made
     const std::size_t first = next;
     while (next < points_.count && points_.points[next].block == b) ++next;
     saturating_add(stats_.points, next - first);
-    if (keep && next > first) assign_frames(src, index, info, first, next);
+    if (next > first) assign_frames(src, index, info, first, next);
   }
   flush_points();
   return true;

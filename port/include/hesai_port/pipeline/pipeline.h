@@ -240,9 +240,14 @@ class Pipeline {
   Status parse_channel_config(const std::string& text);
   // Decodes the oldest held packet in the decoder's direction and processes it.
   bool release_held(Source& src);
-  // src's decoder on the payload into points_ and scan_, and compare_ when return_types_.
-  Error decode(Source& src, ByteView payload, PacketInfo& info);
-  // Accounts one decoded packet (points_ holds its points) and gives its points to the frames.
+  // Whether --packets keeps the point-cloud packet of `index`.
+  bool wanted(std::uint64_t index) const { return index >= options_.first_packet && index < options_.end_packet; }
+  // src's decoder on the payload of the packet that is (or would be, once accepted) `index`: a
+  // wanted one decoded into points_ and scan_, and compare_ when return_types_; any other
+  // surveyed (Decoder::survey: scan_ and surveyed_points_, no point made).
+  Error decode(Source& src, ByteView payload, std::uint64_t index, PacketInfo& info);
+  // Accounts one decoded or surveyed packet and gives its blocks to the frames, and the points of a
+  // wanted one (points_ holds them).
   bool process(Source& src, std::uint64_t index, const PacketInfo& info);
   // The kept points of points_[first, end) (one block) to their frames, and in runs to the sink.
   void assign_frames(Source& src, std::uint64_t index, const PacketInfo& info, std::size_t first, std::size_t end);
@@ -278,6 +283,7 @@ class Pipeline {
 
   PacketPoints points_;  // one packet's points (reused)
   UnitScan scan_;        // and what its units say beyond them
+  std::size_t surveyed_points_ = 0;  // the points of a packet surveyed, not decoded (not wanted)
   ReturnComparison compare_;  // and how each of its returns compares with its firing's others
   // The nebula ReturnType of each of points_ (when return_types_), computed a block at a time
   // from the packet's table.
