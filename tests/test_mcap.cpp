@@ -220,6 +220,73 @@ TEST(PointCloud2, PointRecordCheckedByHand) {
   EXPECT_EQ(le(v, 28, 4), 70000u);
 }
 
+// PointCloud2Data encodes each point as it comes, before the message's stamp (its earliest point)
+// is known; finish() gives every record's time_stamp from that stamp, clamped to 32 bits.
+namespace {
+Point timed(std::int64_t t, std::uint8_t channel) {
+  Point p;
+  p.x = 1.5f;
+  p.channel = channel;
+  p.azimuth_deg = 180;
+  p.time_ns = t;
+  return p;
+}
+// time_stamp of each record of `d` after finish().
+std::vector<std::uint64_t> time_stamps(port::PointCloud2Data& d) {
+  const std::uint8_t* b = d.finish();
+  const std::vector<std::uint8_t> v(b, b + d.size() * port::kPointStep);
+  std::vector<std::uint64_t> t;
+  for (std::size_t i = 0; i < d.size(); ++i) t.push_back(le(v, i * port::kPointStep + 28, 4));
+  return t;
+}
+}  // namespace
+
+TEST(PointCloud2, DataTimesFromTheEarliestPointWhereverItComes) {
+  const std::int64_t t0 = 1700000000000000000;
+  port::PointCloud2Data d;
+  const Point first[] = {timed(t0 + 1000, 1), timed(t0 + 1500, 2)};
+  const port::NebulaReturnType types[] = {port::NebulaReturnType::last, port::NebulaReturnType::strongest};
+  d.add(first, types, 2);
+  const Point later[] = {timed(t0 + 900, 3)};  // earlier than every point before it: the stamp
+  d.add(later, nullptr, 1);
+  EXPECT_EQ(d.size(), 3u);
+  EXPECT_EQ(d.stamp_ns(), t0 + 900);
+  (void)d.finish(1);  // in pieces: the first record, then the rest
+  EXPECT_EQ(time_stamps(d), (std::vector<std::uint64_t>{100, 600, 0}));
+  // The other fields as encode_point writes them; no type given: unknown (0).
+  const std::uint8_t* b = d.finish();
+  EXPECT_EQ(b[13], 1);   // LAST
+  EXPECT_EQ(b[32 + 13], 3);  // STRONGEST
+  EXPECT_EQ(b[64 + 13], 0);
+  EXPECT_EQ(b[64 + 14], 2);  // channel 3, 0-based
+  std::uint8_t r[32];
+  port::encode_point(later[0], port::NebulaReturnType::unknown, t0 + 900, r);
+  EXPECT_EQ(std::memcmp(b + 64, r, 32), 0);
+  EXPECT_EQ(time_stamps(d), (std::vector<std::uint64_t>{100, 600, 0}));  // finish() twice: the same
+
+  d.clear();  // the storage stays; the times start over
+  const Point one[] = {timed(t0 - 5, 4), timed(t0 - 7, 4)};
+  d.add(one, nullptr, 2);
+  EXPECT_EQ(d.stamp_ns(), t0 - 7);
+  EXPECT_EQ(time_stamps(d), (std::vector<std::uint64_t>{2, 0}));
+}
+
+TEST(PointCloud2, DataTimesSpanningSecondsClampAt32Bits) {
+  const std::int64_t t0 = 1700000000000000000;
+  port::PointCloud2Data d;
+  // 1.5 s apart, then 3 s after the first (a span of 2^31 ns and more: the times are kept), then
+  // 2 s before it: the stamp. 5 s after the stamp does not fit 32 bits: 2^32 - 1.
+  const Point a[] = {timed(t0, 1), timed(t0 + 1500000000, 1)};
+  const Point b[] = {timed(t0 + 3000000000, 1)};
+  const Point c[] = {timed(t0 - 2000000000, 1), timed(t0 + 250, 1)};
+  d.add(a, nullptr, 2);
+  d.add(b, nullptr, 1);
+  d.add(c, nullptr, 2);
+  EXPECT_EQ(d.stamp_ns(), t0 - 2000000000);
+  (void)d.finish(2);
+  EXPECT_EQ(time_stamps(d), (std::vector<std::uint64_t>{2000000000, 3500000000, 0xFFFFFFFFu, 0, 2000000250}));
+}
+
 TEST(PointCloud2, DefinitionAsRosbag2WritesIt) {
   const std::string& d = port::pointcloud2_definition();
   const std::string rule = "\n" + std::string(80, '=') + "\nMSG: ";
@@ -363,6 +430,50 @@ TEST(NebulaReturnType, Pandar64DualCaptureByHand) {
 
 // The same packet sent in a single-return mode (the tail byte set to 0x37, then 0x38): every
 // block is a firing of its own, every point STRONGEST, then LAST (Pandar64 manual 3.1.2.3).
+// The per-packet table (PacketReturnTypes) gives what nebula_return_type gives, for every model,
+// every return-mode byte, return index and comparison.
+TEST(NebulaReturnType, PacketTableIsTheFunction) {
+  ReturnComparison compare;
+  compare.identical[1][0] = 0x05;  // block 1: channels 1 and 3 identical
+  compare.weaker[1][0] = 0x06;     // channels 2 and 3 weaker
+  compare.weaker[3][1] = 0x01;     // block 3: channel 9 weaker
+  int checked = 0;
+  for (std::size_t m = 0; m < kModelCount; ++m) {
+    for (int mode = 0; mode < 256; ++mode) {
+      PacketInfo info;
+      info.model = static_cast<Model>(m);
+      info.return_mode = static_cast<std::uint8_t>(mode);
+      const port::PacketReturnTypes table(info);
+      for (std::uint8_t block = 0; block < 4; ++block) {
+        for (std::uint8_t index = 0; index < 6; ++index) {
+          // A block's points (channel 0: none, as channel 1; 200: beyond every model), and one of
+          // another block among them: of_block() gives each what the function gives.
+          std::vector<Point> points;
+          for (const int channel : {0, 1, 2, 3, 4, 9, 10, 200}) {
+            Point p;
+            p.block = block;
+            p.channel = static_cast<std::uint8_t>(channel);
+            p.return_index = index;
+            points.push_back(p);
+          }
+          points[5].block = static_cast<std::uint8_t>(block ^ 1);
+          std::vector<port::NebulaReturnType> types(points.size());
+          table.of_block(compare, points.data(), points.size(), types.data());
+          for (std::size_t i = 0; i < points.size(); ++i) {
+            const port::NebulaReturnType want = port::nebula_return_type(info, compare, points[i]);
+            ASSERT_EQ(table(compare, points[i]), want) << "model " << m << " mode " << mode << " block " << int(block)
+                                                       << " channel " << int(points[i].channel) << " index " << int(index);
+            ASSERT_EQ(types[i], want) << "of_block: model " << m << " mode " << mode << " block " << int(block)
+                                      << " point " << i << " index " << int(index);
+            ++checked;
+          }
+        }
+      }
+    }
+  }
+  EXPECT_EQ(checked, static_cast<int>(kModelCount) * 256 * 4 * 6 * 8);
+}
+
 TEST(NebulaReturnType, Pandar64SingleReturnByHand) {
   const auto packets = pcap_payloads("pandar64_dual.pcap");
   ASSERT_FALSE(packets.empty());

@@ -42,7 +42,7 @@ struct Closure {
 // names (in every mode: the Pipeline names its sensors to its Sink).
 class RowSink : public port::Sink {
  public:
-  void points(const port::OutPoint* p, std::size_t count) override;
+  void points(const port::PointRun& run) override;
   void sensor_added(std::uint32_t sensor, const std::string& label) override;
   void receive_time(std::uint64_t) override {}
   void frame_closed(const FrameInfo& frame, std::uint32_t sensor) override;

@@ -10,36 +10,36 @@ namespace hesai::capi {
 
 namespace {
 
-hesai_capture_row row(const port::OutPoint& p) {
+hesai_capture_row row(const port::PointRun& run, const Point& p) {
   hesai_capture_row r;
-  r.frame = p.frame;
-  r.packet = p.packet;
-  r.time_ns = p.point.time_ns;
-  r.azimuth_deg = p.point.azimuth_deg;
-  r.elevation_deg = p.point.elevation_deg;
-  r.distance_m = p.point.distance_m;
-  r.x = p.point.x;
-  r.y = p.point.y;
-  r.z = p.point.z;
-  r.block = p.point.block;
-  r.channel = p.point.channel;
-  r.return_index = p.point.return_index;
-  r.intensity = p.point.intensity;
-  r.sensor = static_cast<std::uint16_t>(p.sensor);
+  r.frame = run.frame;
+  r.packet = run.packet;
+  r.time_ns = p.time_ns;
+  r.azimuth_deg = p.azimuth_deg;
+  r.elevation_deg = p.elevation_deg;
+  r.distance_m = p.distance_m;
+  r.x = p.x;
+  r.y = p.y;
+  r.z = p.z;
+  r.block = p.block;
+  r.channel = p.channel;
+  r.return_index = p.return_index;
+  r.intensity = p.intensity;
+  r.sensor = static_cast<std::uint16_t>(run.sensor);
   return r;
 }
 
 }  // namespace
 
-// One packet's points, so one sensor's: those that fit go straight into the caller's rows, the
-// rest to the staging rows.
-void RowSink::points(const port::OutPoint* p, std::size_t count) {
-  if (discard || count == 0 || p[0].sensor >= kMaxSensors) return;
-  const std::size_t direct_count = std::min(count, direct_capacity - direct_n);
+// A run of one packet's points of one frame: those that fit go straight into the caller's rows,
+// the rest to the staging rows.
+void RowSink::points(const port::PointRun& run) {
+  if (discard || run.count == 0 || run.sensor >= kMaxSensors) return;
+  const std::size_t direct_count = std::min(run.count, direct_capacity - direct_n);
   hesai_capture_row* out = direct + direct_n;
-  for (std::size_t i = 0; i < direct_count; ++i) out[i] = row(p[i]);
+  for (std::size_t i = 0; i < direct_count; ++i) out[i] = row(run, run.points[i]);
   direct_n += direct_count;
-  for (std::size_t i = direct_count; i < count; ++i) rows.push_back(row(p[i]));
+  for (std::size_t i = direct_count; i < run.count; ++i) rows.push_back(row(run, run.points[i]));
 }
 
 void RowSink::sensor_added(std::uint32_t sensor, const std::string& label) {

@@ -1,8 +1,13 @@
 #include "hesai_port/formats/pointcloud2.h"
 
+#include <algorithm>
+#include <cstddef>
 #include <cstring>
 #include <limits>
 #include <utility>
+
+#include "hesai/bytes.h"
+#include "le_store.h"
 
 namespace hesai {
 namespace port {
@@ -117,16 +122,6 @@ constexpr Field kFields[] = {
     {"channel", 14, 4},  {"azimuth", 16, 7},  {"elevation", 20, 7}, {"distance", 24, 7},  {"time_stamp", 28, 6},
 };
 
-void store_le32(std::uint8_t* p, std::uint32_t v) {
-  for (int i = 0; i < 4; ++i) p[i] = static_cast<std::uint8_t>(v >> (8 * i));
-}
-void store_f32(std::uint8_t* p, float f) {
-  static_assert(sizeof(float) == 4 && std::numeric_limits<float>::is_iec559, "IEEE 754 binary32");
-  std::uint32_t bits = 0;
-  std::memcpy(&bits, &f, 4);
-  store_le32(p, bits);
-}
-
 constexpr double kRadPerDeg = 3.14159265358979323846 / 180.0;
 
 }  // namespace
@@ -232,21 +227,134 @@ NebulaReturnType nebula_return_type(const PacketInfo& info, const ReturnComparis
                             compare.is_weaker(p.block, ch));
 }
 
-void encode_point(const Point& p, NebulaReturnType return_type, std::int64_t stamp_ns, std::uint8_t out[kPointStep]) {
-  store_f32(out + 0, p.x);
-  store_f32(out + 4, p.y);
-  store_f32(out + 8, p.z);
+namespace {
+static_assert(offsetof(Point, y) == offsetof(Point, x) + 4 && offsetof(Point, z) == offsetof(Point, x) + 8,
+              "Point::x, y, z consecutive");
+
+// One record with `time` in its time_stamp, each field one fixed-size little-endian store.
+inline void encode_record(const Point& p, NebulaReturnType return_type, std::uint32_t time, std::uint8_t* out) {
+  if constexpr (kLittleEndianHost) {
+    std::memcpy(out, &p.x, 12);
+  } else {
+    store_le(out + 0, p.x);
+    store_le(out + 4, p.y);
+    store_le(out + 8, p.z);
+  }
   out[12] = p.intensity;
   out[13] = static_cast<std::uint8_t>(return_type);
-  const std::uint16_t channel = p.channel > 0 ? static_cast<std::uint16_t>(p.channel - 1) : 0;
-  out[14] = static_cast<std::uint8_t>(channel);
-  out[15] = static_cast<std::uint8_t>(channel >> 8);
-  store_f32(out + 16, static_cast<float>(p.azimuth_deg * kRadPerDeg));
-  store_f32(out + 20, static_cast<float>(p.elevation_deg * kRadPerDeg));
-  store_f32(out + 24, p.distance_m);
-  const std::int64_t dt = p.time_ns - stamp_ns;
-  const std::uint32_t t = dt <= 0 ? 0 : dt >= 0xFFFFFFFFll ? 0xFFFFFFFFu : static_cast<std::uint32_t>(dt);
-  store_le32(out + 28, t);
+  store_le(out + 14, static_cast<std::uint16_t>(p.channel > 0 ? p.channel - 1 : 0));
+  store_le(out + 16, static_cast<float>(p.azimuth_deg * kRadPerDeg));
+  store_le(out + 20, static_cast<float>(p.elevation_deg * kRadPerDeg));
+  store_le(out + 24, p.distance_m);
+  store_le(out + 28, time);
+}
+
+// b - a for a <= b, exact whatever the two (their difference as int64 may overflow).
+inline std::uint64_t span(std::int64_t a, std::int64_t b) {
+  return static_cast<std::uint64_t>(b) - static_cast<std::uint64_t>(a);
+}
+
+// time_stamp: the time after the stamp, clamped to 0 .. 2^32 - 1.
+inline std::uint32_t time_after(std::int64_t time_ns, std::int64_t stamp_ns) {
+  if (time_ns <= stamp_ns) return 0;
+  const std::uint64_t dt = span(stamp_ns, time_ns);
+  return dt >= 0xFFFFFFFFu ? 0xFFFFFFFFu : static_cast<std::uint32_t>(dt);
+}
+
+constexpr std::uint64_t kNarrowSpan = std::uint64_t{1} << 31;  // wrapping 32-bit offsets are exact below it
+constexpr std::size_t kTimeAt = 28;                            // time_stamp's offset in a record
+}  // namespace
+
+PacketReturnTypes::PacketReturnTypes(const PacketInfo& info) noexcept
+    : model_(info.model), return_mode_(info.return_mode) {
+  for (std::size_t k = 0; k < 16; ++k)
+    table_[k] = nebula_return_type(info.model, info.return_mode, static_cast<std::uint8_t>(k / 4), (k & 2) != 0,
+                                   (k & 1) != 0);
+}
+
+void PacketReturnTypes::of_block(const ReturnComparison& compare, const Point* points, std::size_t count,
+                                 NebulaReturnType* out) const noexcept {
+  if (count == 0) return;
+  const std::uint8_t block = points[0].block, index = points[0].return_index;
+  if (block >= kMaxBlocksPerPacket || index > 3) {
+    for (std::size_t i = 0; i < count; ++i) out[i] = (*this)(compare, points[i]);
+    return;
+  }
+  const std::uint8_t* identical = compare.identical[block].data();
+  const std::uint8_t* weaker = compare.weaker[block].data();
+  const NebulaReturnType* row = table_ + 4 * static_cast<std::size_t>(index);
+  for (std::size_t i = 0; i < count; ++i) {
+    const Point& p = points[i];
+    const unsigned ch = p.channel > 0 ? p.channel - 1u : 0u;
+    if (p.block != block || p.return_index != index || ch >= kMaxChannels) {
+      out[i] = (*this)(compare, p);
+      continue;
+    }
+    const unsigned bit = ch % 8;
+    out[i] = row[(static_cast<unsigned>(identical[ch / 8]) >> bit & 1u) * 2 + (static_cast<unsigned>(weaker[ch / 8]) >> bit & 1u)];
+  }
+}
+
+void encode_point(const Point& p, NebulaReturnType return_type, std::int64_t stamp_ns, std::uint8_t out[kPointStep]) {
+  encode_record(p, return_type, time_after(p.time_ns, stamp_ns), out);
+}
+
+void PointCloud2Data::reserve(std::size_t points) {
+  if (points <= capacity_) return;
+  std::unique_ptr<std::uint8_t[]> bigger(new std::uint8_t[points * kPointStep]);  // not zeroed: written before read
+  if (count_ != 0) std::memcpy(bigger.get(), bytes_.get(), count_ * kPointStep);
+  bytes_ = std::move(bigger);
+  capacity_ = points;
+}
+
+void PointCloud2Data::add(const Point* points, const NebulaReturnType* types, std::size_t count) {
+  if (count == 0) return;
+  if (count > capacity_ - count_) reserve(std::max(count_ + count, 2 * capacity_));
+  if (count_ == 0) base_ = min_ = max_ = points[0].time_ns;
+  // Each record's time_stamp: its time after base_, wrapping at 32 bits.
+  std::uint8_t* out = bytes_.get() + count_ * kPointStep;
+  const auto base = static_cast<std::uint64_t>(base_);
+  std::int64_t lo = min_, hi = max_;
+  for (std::size_t i = 0; i < count; ++i) {
+    const std::int64_t t = points[i].time_ns;
+    lo = std::min(lo, t);
+    hi = std::max(hi, t);
+    encode_record(points[i], types != nullptr ? types[i] : NebulaReturnType::unknown,
+                  static_cast<std::uint32_t>(static_cast<std::uint64_t>(t) - base), out + i * kPointStep);
+  }
+  if (!wide_ && span(lo, hi) >= kNarrowSpan) {
+    // The span reaches 2^31 ns: the offsets no longer tell the times. Those of the records before
+    // these, all within 2^31 ns of base_ (it lies in their span), come back from them.
+    wide_ = true;
+    times_.resize(count_);
+    for (std::size_t i = 0; i < count_; ++i)
+      times_[i] = base_ + static_cast<std::int32_t>(load_le32(bytes_.get() + i * kPointStep + kTimeAt));
+  }
+  if (wide_)
+    for (std::size_t i = 0; i < count; ++i) times_.push_back(points[i].time_ns);
+  min_ = lo;
+  max_ = hi;
+  count_ += count;
+}
+
+const std::uint8_t* PointCloud2Data::finish(std::size_t end) {
+  std::uint8_t* t = bytes_.get() + kTimeAt;
+  if (wide_) {
+    for (std::size_t i = finished_; i < end; ++i) store_le(t + i * kPointStep, time_after(times_[i], min_));
+  } else if (base_ != min_) {  // every offset grows by base_ - min_ (< 2^31: no clamp)
+    const auto shift = static_cast<std::uint32_t>(span(min_, base_));
+    for (std::size_t i = finished_; i < end; ++i) store_le(t + i * kPointStep, load_le32(t + i * kPointStep) + shift);
+  }
+  if (end > finished_) finished_ = end;
+  return bytes_.get();
+}
+
+void PointCloud2Data::clear() {
+  count_ = 0;
+  base_ = min_ = max_ = 0;
+  times_.clear();
+  wide_ = false;
+  finished_ = 0;
 }
 
 namespace {

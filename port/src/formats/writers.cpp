@@ -4,10 +4,12 @@
 #include <cerrno>
 #include <charconv>
 #include <cmath>
+#include <cstddef>
 #include <cstring>
 #include <system_error>
 
 #include "hesai/bytes.h"
+#include "le_store.h"
 
 namespace hesai {
 namespace port {
@@ -186,24 +188,6 @@ char* put_fixed(char* p, char* end, float v) {
   return put_scaled<D>(p, static_cast<std::uint64_t>(r < 0 ? -r : r));
 }
 
-// ---- little-endian record fields ----
-
-void put_f32(std::uint8_t*& p, float v) {
-  std::uint32_t u = 0;
-  static_assert(sizeof u == sizeof v, "IEEE-754 binary32 float");
-  std::memcpy(&u, &v, sizeof u);
-  store_le32(p, u);
-  p += 4;
-}
-void put_f64(std::uint8_t*& p, double v) {
-  std::uint64_t u = 0;
-  static_assert(sizeof u == sizeof v, "IEEE-754 binary64 double");
-  std::memcpy(&u, &v, sizeof u);
-  store_le32(p, static_cast<std::uint32_t>(u));
-  store_le32(p + 4, static_cast<std::uint32_t>(u >> 32));
-  p += 8;
-}
-
 // Seconds since the epoch as a double, rounded once (time_ns itself does not fit a double).
 double seconds(std::int64_t time_ns) {
   std::int64_t s = time_ns / 1000000000;
@@ -236,6 +220,8 @@ class FileSink {
     if (buffer_.size() - used_ < n) drain();
     return buffer_.data() + used_;
   }
+  // Bytes free at the end of the buffer (at least n after reserve(n)).
+  std::size_t room() const { return buffer_.size() - used_; }
   void commit(std::size_t n) { used_ += n; }
   // Fails with ESPIPE unless the file can be rewound (a pipe, FIFO, socket or terminal cannot).
   WriteResult check_seekable() {
@@ -462,38 +448,68 @@ std::string count_text(std::uint64_t n, int digits) {
   return t;
 }
 
-void encode_pcd(std::uint8_t* q, const Point& pt) {
-  put_f32(q, pt.x);
-  put_f32(q, pt.y);
-  put_f32(q, pt.z);
-  put_f32(q, static_cast<float>(pt.intensity));
-  store_le16(q, pt.channel);
-  q += 2;
-  *q++ = pt.return_index;
-  put_f64(q, seconds(pt.time_ns));
+// The records, field by field (writers.h), each a fixed-size little-endian store. A Point's x, y
+// and z are three consecutive floats, the records' first 12 bytes.
+static_assert(offsetof(Point, y) == offsetof(Point, x) + 4 && offsetof(Point, z) == offsetof(Point, x) + 8,
+              "Point::x, y, z consecutive");
+
+inline void store_xyz(std::uint8_t* q, const Point& pt) {
+  if constexpr (kLittleEndianHost) {
+    std::memcpy(q, &pt.x, 12);
+  } else {
+    store_le(q, pt.x);
+    store_le(q + 4, pt.y);
+    store_le(q + 8, pt.z);
+  }
 }
 
-void encode_ply(std::uint8_t* q, const Point& pt) {
-  put_f32(q, pt.x);
-  put_f32(q, pt.y);
-  put_f32(q, pt.z);
-  *q++ = pt.intensity;
-  *q++ = pt.channel;
-  *q++ = pt.return_index;
-  put_f64(q, seconds(pt.time_ns));
+struct PcdRecord {
+  static constexpr std::size_t kBytes = kPcdPointBytes;
+  static void encode(std::uint8_t* q, const Point& pt) {
+    store_xyz(q, pt);
+    store_le(q + 12, static_cast<float>(pt.intensity));
+    store_le(q + 16, static_cast<std::uint16_t>(pt.channel));
+    q[18] = pt.return_index;
+    store_le(q + 19, seconds(pt.time_ns));
+  }
+};
+static_assert(12 + 4 + 2 + 1 + 8 == kPcdPointBytes, "PCD record");
+
+struct PlyRecord {
+  static constexpr std::size_t kBytes = kPlyPointBytes;
+  static void encode(std::uint8_t* q, const Point& pt) {
+    store_xyz(q, pt);
+    q[12] = pt.intensity;
+    q[13] = pt.channel;
+    q[14] = pt.return_index;
+    store_le(q + 15, seconds(pt.time_ns));
+  }
+};
+static_assert(12 + 3 + 8 == kPlyPointBytes, "PLY record");
+
+// `count` records into the sink's buffer: as many as its block has room for in one loop, then
+// the block goes to the file.
+template <typename Record>
+void put_records(FileSink& sink, const Point* points, std::size_t count) {
+  while (count > 0) {
+    std::uint8_t* q = sink.reserve(Record::kBytes);
+    std::size_t n = sink.room() / Record::kBytes;
+    if (n > count) n = count;
+    for (std::size_t i = 0; i < n; ++i) Record::encode(q + i * Record::kBytes, points[i]);
+    sink.commit(n * Record::kBytes);
+    points += n;
+    count -= n;
+  }
 }
 
 // The whole file when the count is known before the first point.
-WriteResult write_cloud(const std::string& path, const std::string& header, const Point* points, std::size_t count,
-                        std::size_t record_bytes, void (*encode)(std::uint8_t*, const Point&)) {
+template <typename Record>
+WriteResult write_cloud(const std::string& path, const std::string& header, const Point* points, std::size_t count) {
   FileSink sink;
   WriteResult r = sink.open(path);
   if (!r) return r;
   sink.append(header.data(), header.size());
-  for (std::size_t i = 0; i < count; ++i) {
-    encode(sink.reserve(record_bytes), points[i]);
-    sink.commit(record_bytes);
-  }
+  put_records<Record>(sink, points, count);
   return sink.close();
 }
 
@@ -515,7 +531,7 @@ std::string pcd_header(std::uint64_t n, int digits) {
 }
 
 WriteResult write_pcd(const std::string& path, const Point* points, std::size_t count) {
-  return write_cloud(path, pcd_header(count), points, count, kPcdPointBytes, encode_pcd);
+  return write_cloud<PcdRecord>(path, pcd_header(count), points, count);
 }
 
 WriteResult write_pcd(const std::string& path, const std::vector<Point>& points) {
@@ -538,7 +554,7 @@ std::string ply_header(std::uint64_t n, int digits) {
 }
 
 WriteResult write_ply(const std::string& path, const Point* points, std::size_t count) {
-  return write_cloud(path, ply_header(count), points, count, kPlyPointBytes, encode_ply);
+  return write_cloud<PlyRecord>(path, ply_header(count), points, count);
 }
 
 WriteResult write_ply(const std::string& path, const std::vector<Point>& points) {
@@ -584,13 +600,8 @@ void CloudWriter::write(const Point& p) { write(&p, 1); }
 
 void CloudWriter::write(const Point* points, std::size_t count) {
   if (!file_) return;
-  const std::size_t n = format_ == CloudFormat::pcd ? kPcdPointBytes : kPlyPointBytes;
-  void (*const encode)(std::uint8_t*, const Point&) = format_ == CloudFormat::pcd ? encode_pcd : encode_ply;
-  FileSink& sink = file_->sink;
-  for (std::size_t i = 0; i < count; ++i) {
-    encode(sink.reserve(n), points[i]);
-    sink.commit(n);
-  }
+  if (format_ == CloudFormat::pcd) put_records<PcdRecord>(file_->sink, points, count);
+  else put_records<PlyRecord>(file_->sink, points, count);
   count_ += count;
 }
 

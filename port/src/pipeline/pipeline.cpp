@@ -416,32 +416,57 @@ void Pipeline::assign_frames(Source& src, std::uint64_t index, const PacketInfo&
                              std::size_t end) {
   const Point* p = points_.points.data();
   std::uint64_t* ids = sink_ ? ids_.data() : nullptr;  // stats needs no point's frame
-  std::size_t n = 0;  // kept points
-  std::uint64_t id = 0;
-  if (!filtered_) {  // every point is kept: the block's Points as they are
-    n = end - first;
-    id = src.frames.points(&p[first].azimuth_deg, n, sizeof(Point), ids);
-  } else {
+  const Point* kept = p + first;  // the block's kept points, in order
+  NebulaReturnType* types = return_types_ ? types_.data() + first : nullptr;
+  std::size_t n = end - first;
+  if (filtered_) {  // gathered after those of the packet's earlier blocks: one run where one frame
+    Point* g = gathered_.data() + gathered_n_;
+    NebulaReturnType* gt = gathered_types_.data() + gathered_n_;
+    n = 0;
     for (std::size_t i = first; i < end; ++i) {
       if (p[i].distance_m < options_.min_range || p[i].distance_m > options_.max_range) continue;
       if (!src.frames.in_fov(p[i].azimuth_deg)) continue;
-      kept_[n] = static_cast<std::uint16_t>(i);
-      azimuths_[n++] = p[i].azimuth_deg;
+      g[n++] = p[i];
     }
-    id = src.frames.points(azimuths_.data(), n, sizeof(float), ids);
+    kept = g;
+    types = return_types_ ? gt : nullptr;
+    gathered_n_ += n;
   }
+  const std::uint64_t id = src.frames.points(&kept->azimuth_deg, n, sizeof(Point), ids);
   if (!sink_) return;
-  for (std::size_t k = 0; k < n; ++k) {
-    const Point& q = p[filtered_ ? kept_[k] : first + k];  // unfiltered: the block's points in order
-    batch_.push_back(OutPoint{q, id != 0 ? id : ids_[k], index, static_cast<std::uint32_t>(src.order),
-                              return_types_ ? nebula_return_type(info, compare_, q) : NebulaReturnType::unknown});
+  if (types != nullptr) {
+    if (first == 0) type_of_ = PacketReturnTypes(info);  // the packet's first block of points
+    type_of_.of_block(compare_, kept, n, types);
+  }
+  const auto sensor = static_cast<std::uint32_t>(src.order);
+  if (id != 0) {
+    run_points(kept, types, n, id, index, sensor);
+    return;
+  }
+  // The block straddles a cut: a run a change of frame.
+  for (std::size_t k = 0; k < n;) {
+    std::size_t e = k + 1;
+    while (e < n && ids_[e] == ids_[k]) ++e;
+    run_points(kept + k, types ? types + k : nullptr, e - k, ids_[k], index, sensor);
+    k = e;
   }
 }
 
+void Pipeline::run_points(const Point* points, const NebulaReturnType* types, std::size_t count, std::uint64_t frame,
+                          std::uint64_t packet, std::uint32_t sensor) {
+  if (count == 0) return;
+  if (run_.count != 0 && run_.frame == frame && run_.packet == packet && run_.points + run_.count == points) {
+    run_.count += count;  // the next points of the same arrays (types follow the points)
+    return;
+  }
+  if (run_.count != 0) sink_->points(run_);
+  run_ = PointRun{points, types, count, frame, packet, sensor};
+}
+
 void Pipeline::flush_points() {
-  if (batch_.empty()) return;
-  sink_->points(batch_.data(), batch_.size());
-  batch_.clear();
+  if (run_.count != 0) sink_->points(run_);
+  run_.count = 0;
+  gathered_n_ = 0;  // no run points into gathered_ any more
 }
 
 std::vector<SensorReport> Pipeline::sensors() const {

@@ -78,18 +78,14 @@ std::string OutputSink::frame_path(FrameKey key) const {
 OutputSink::Frame& OutputSink::open_frame(FrameKey key) {
   const auto [it, fresh] = open_.try_emplace(key);
   if (fresh && format_ == Format::png) it->second.png = png_;  // empty, with the options
-  // MCAP: room for as many points as the largest frame so far (grown a point at a time, a frame's
-  // 40-byte points were copied about twice over). The storage of the last frame written is taken
-  // over: no fresh pages (and their faults) a frame.
+  // MCAP: room for as many points as the largest frame so far (grown, a frame's records would be
+  // copied about twice over). The storage of the last frame written is taken over: no fresh pages
+  // (and their faults) a frame.
   if (fresh && format_ == Format::mcap) {
-    it->second.points = std::move(spare_points_);
-    spare_points_ = std::vector<Point>();
-    it->second.points.clear();
-    it->second.points.reserve(mcap_frame_points_);
-    it->second.return_types = std::move(spare_return_types_);
-    spare_return_types_ = std::vector<NebulaReturnType>();
-    it->second.return_types.clear();
-    it->second.return_types.reserve(mcap_frame_points_);
+    it->second.cloud = std::move(spare_cloud_);
+    spare_cloud_ = PointCloud2Data();
+    it->second.cloud.clear();
+    it->second.cloud.reserve(mcap_frame_points_);
   }
   return it->second;
 }
@@ -194,81 +190,63 @@ Status OutputSink::open_mcap() {
   return {};
 }
 
-void OutputSink::write_mcap_frame(FrameKey key, const std::vector<Point>& points,
-                                  const std::vector<NebulaReturnType>& return_types) {
-  if (points.empty() || !mcap_.is_open()) return;  // no point, no stamp: no message
+void OutputSink::write_mcap_frame(FrameKey key, PointCloud2Data& cloud) {
+  if (cloud.size() == 0 || !mcap_.is_open()) return;  // no point, no stamp: no message
   const SensorOut& s = sensor(key.first);
   if (s.frame_id.empty()) return;  // its topic was refused (deferred_error_)
-  mcap_frame_points_ = std::max(mcap_frame_points_, points.size());
+  mcap_frame_points_ = std::max(mcap_frame_points_, cloud.size());
   // header.stamp: the frame's earliest point, so that every time_stamp offset is >= 0.
-  std::int64_t stamp = points[0].time_ns;
-  for (const Point& p : points) stamp = std::min(stamp, p.time_ns);
   const std::vector<std::uint8_t> head =
-      pointcloud2_head(stamp, s.frame_id, static_cast<std::uint32_t>(points.size()));
+      pointcloud2_head(cloud.stamp_ns(), s.frame_id, static_cast<std::uint32_t>(cloud.size()));
   // log_time (and publish_time): when the frame was complete, the receive time of the datagram
   // that closed it, never before the previous message's, so the file is in log-time order across
   // sensors whose clocks differ.
   last_log_ns_ = std::max(last_log_ns_, receive_ns_);
   const std::uint64_t t = last_log_ns_;
   WriteResult r = mcap_.begin_message(s.channel, static_cast<std::uint32_t>(key.second), t, t,
-                                            pointcloud2_size(head.size(), points.size()));
+                                      pointcloud2_size(head.size(), cloud.size()));
   if (r) r = mcap_.append(head.data(), head.size());
-  std::uint8_t block[2048 * kPointStep];
-  for (std::size_t i = 0; r && i < points.size();) {
-    std::size_t n = 0;
-    for (; n < 2048 && i < points.size(); ++n, ++i)
-      encode_point(points[i], return_types[i], stamp, block + n * kPointStep);
-    r = mcap_.append(block, n * kPointStep);
+  // The records a slice at a time, each finished (its time_stamp) just before it is written.
+  constexpr std::size_t kSlice = 8192;  // records: 256 KiB
+  for (std::size_t i = 0; r && i < cloud.size(); i += kSlice) {
+    const std::size_t end = std::min(cloud.size(), i + kSlice);
+    r = mcap_.append(cloud.finish(end) + i * kPointStep, (end - i) * kPointStep);
   }
   if (r) r = mcap_.append(&kPointCloud2Tail, 1);
   if (r) r = mcap_.end_message();
   if (!r && deferred_error_.empty()) deferred_error_ = r.message();
 }
 
-void OutputSink::points(const OutPoint* pts, std::size_t count) {
-  points_written_ += count;
-  if (format_ == Format::mcap || options_.per_frame) {
-    // Near a cut the points of two frames interleave: each goes to its own frame (looked up when
-    // the frame changes; no frame closes during this call, so the pointer stays valid).
-    Frame* f = nullptr;
-    FrameKey key{};
-    for (std::size_t i = 0; i < count; ++i) {
-      const FrameKey k{pts[i].sensor, pts[i].frame};
-      if (f == nullptr || k != key) {
-        key = k;
-        f = &open_frame(key);
-      }
-      if (format_ == Format::png) {
-        f->png.add(pts[i].point);
-        continue;
-      }
-      f->points.push_back(pts[i].point);
-      if (format_ == Format::csv) f->packets.push_back(pts[i].packet);
-      if (format_ == Format::mcap) f->return_types.push_back(pts[i].return_type);
-    }
+void OutputSink::points(const PointRun& run) {
+  points_written_ += run.count;
+  const FrameKey key{run.sensor, run.frame};
+  if (format_ == Format::mcap) {
+    open_frame(key).cloud.add(run.points, run.return_types, run.count);
     return;
   }
-  // The one file: the points of each run of one frame (a packet's, but where it straddles a cut)
-  // go to the writer in one call; a packet is one sensor's.
-  for (std::size_t i = 0; i < count;) {
-    std::size_t end = i + 1;
-    while (end < count && pts[end].frame == pts[i].frame && pts[end].packet == pts[i].packet) ++end;
-    run_.clear();
-    for (std::size_t k = i; k < end; ++k) run_.push_back(pts[k].point);
-    switch (format_) {
-      case Format::png: png_.add(run_.data(), run_.size()); break;
-      case Format::csv:
-        if (csv_open_) {
-          const WriteResult r = csv_.write(run_.data(), run_.size(), static_cast<std::uint32_t>(pts[i].frame),
-                                                 pts[i].packet, sensor(pts[i].sensor).label);
-          if (!r && deferred_error_.empty()) deferred_error_ = r.message();
-        }
-        break;
-      case Format::pcd:
-      case Format::ply: stream_.write(run_.data(), run_.size()); break;
-      case Format::mcap: break;
+  if (options_.per_frame) {
+    Frame& f = open_frame(key);
+    if (format_ == Format::png) {
+      f.png.add(run.points, run.count);
+      return;
     }
-    i = end;
+    f.points.insert(f.points.end(), run.points, run.points + run.count);
+    if (format_ == Format::csv) f.packets.insert(f.packets.end(), run.count, run.packet);
+    return;
+  }
+  // The one file: a run's points go to the writer in one call, read where the pipeline has them.
+  switch (format_) {
+    case Format::png: png_.add(run.points, run.count); break;
+    case Format::csv:
+      if (csv_open_) {
+        const WriteResult r = csv_.write(run.points, run.count, static_cast<std::uint32_t>(run.frame), run.packet,
+                                         sensor(run.sensor).label);
+        if (!r && deferred_error_.empty()) deferred_error_ = r.message();
+      }
+      break;
+    case Format::pcd:
+    case Format::ply: stream_.write(run.points, run.count); break;
+    case Format::mcap: break;
   }
 }
 
@@ -277,10 +255,8 @@ void OutputSink::frame_closed(const FrameInfo& frame, std::uint32_t sensor_index
   if (format_ == Format::mcap) {
     const auto it = open_.find(key);
     if (it == open_.end()) return;  // no point was kept
-    write_mcap_frame(key, it->second.points, it->second.return_types);
-    if (it->second.points.capacity() > spare_points_.capacity()) spare_points_ = std::move(it->second.points);
-    if (it->second.return_types.capacity() > spare_return_types_.capacity())
-      spare_return_types_ = std::move(it->second.return_types);
+    write_mcap_frame(key, it->second.cloud);
+    if (it->second.cloud.capacity() > spare_cloud_.capacity()) spare_cloud_ = std::move(it->second.cloud);
     open_.erase(it);
     return;
   }
@@ -321,7 +297,7 @@ bool OutputSink::write_cloud(const std::string& path, const std::vector<Point>& 
 Status OutputSink::close() {
   std::string error;
   if (mcap_.is_open()) {
-    for (const auto& [key, frame] : open_) write_mcap_frame(key, frame.points, frame.return_types);  // frames never closed
+    for (auto& [key, frame] : open_) write_mcap_frame(key, frame.cloud);  // frames never closed
     open_.clear();
     // The rosbag2 metadata record, as rosbag2's MCAP storage plugin writes it (the distribution
     // under ROS_DISTRO), so that `ros2 bag info` names it.

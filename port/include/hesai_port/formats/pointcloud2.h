@@ -21,6 +21,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -83,9 +84,78 @@ NebulaReturnType nebula_return_type(Model model, std::uint8_t return_mode, std::
 /// The same for a decoded point of the packet `info`, its returns compared in `compare`.
 NebulaReturnType nebula_return_type(const PacketInfo& info, const ReturnComparison& compare, const Point& p) noexcept;
 
+/// nebula_return_type() for the points of one packet, from a table of the packet's 16 cases
+/// (return_index 0..3, identical, weaker) made once: a point costs two bit reads and a load.
+class PacketReturnTypes {
+ public:
+  PacketReturnTypes() = default;  ///< no packet: every point unknown
+  explicit PacketReturnTypes(const PacketInfo& info) noexcept;
+  /// nebula_return_type(info, compare, p) for a point of the packet, its returns compared in `compare`.
+  NebulaReturnType operator()(const ReturnComparison& compare, const Point& p) const noexcept {
+    const std::size_t ch = static_cast<std::size_t>(p.channel > 0 ? p.channel - 1 : 0);
+    const bool identical = compare.is_identical(p.block, ch), weaker = compare.is_weaker(p.block, ch);
+    if (p.return_index > 3) return nebula_return_type(model_, return_mode_, p.return_index, identical, weaker);
+    return table_[static_cast<std::size_t>(p.return_index) * 4 + (identical ? 2u : 0u) + (weaker ? 1u : 0u)];
+  }
+  /// The same for `count` points into `out`; fastest for the points of one block (one block and
+  /// return index: their comparison rows and table row are read once).
+  void of_block(const ReturnComparison& compare, const Point* points, std::size_t count,
+                NebulaReturnType* out) const noexcept;
+
+ private:
+  Model model_ = Model::unknown;
+  std::uint8_t return_mode_ = 0;
+  NebulaReturnType table_[16] = {};
+};
+
 /// One point record (the layout above); `stamp_ns` is the message's header.stamp, `return_type`
 /// the point's nebula ReturnType.
 void encode_point(const Point& p, NebulaReturnType return_type, std::int64_t stamp_ns, std::uint8_t out[kPointStep]);
+
+/// The data of one PointCloud2 message, its records (the layout above) encoded as the points come.
+/// Its header.stamp, the earliest point's time, is known only once the last point has come: until
+/// then each record holds its point's time after that of the earliest point of the first add(),
+/// and finish() makes them offsets from stamp_ns() (a store a record only when a later point was
+/// earlier still). Memory: kPointStep bytes a point, and 8 more a point in a message
+/// whose points' times span 2^31 ns (2.1 s) or more; clear() keeps the storage for the next one.
+/// Not copyable.
+class PointCloud2Data {
+ public:
+  PointCloud2Data() = default;
+  PointCloud2Data(PointCloud2Data&&) = default;
+  PointCloud2Data& operator=(PointCloud2Data&&) = default;
+
+  /// Appends the records of `count` points; `types`: their return types (null: unknown).
+  void add(const Point* points, const NebulaReturnType* types, std::size_t count);
+  /// Room for `points` records in all without growing.
+  void reserve(std::size_t points);
+  /// Points added.
+  std::size_t size() const { return count_; }
+  /// Room for this many points without growing.
+  std::size_t capacity() const { return capacity_; }
+  /// header.stamp: the earliest point's time, ns since the Unix epoch (0 without points).
+  std::int64_t stamp_ns() const { return count_ != 0 ? min_ : 0; }
+  /// Finishes the records up to `end` (<= size()) and returns them all, kPointStep bytes each: those
+  /// before `end` byte for byte encode_point(point, its type, stamp_ns()). A record is finished
+  /// once, whatever the calls: finish(end) in pieces lets each piece be used while it is in cache.
+  /// add() after finish() is not allowed until clear().
+  const std::uint8_t* finish(std::size_t end);
+  const std::uint8_t* finish() { return finish(count_); }
+  /// No points; the storage stays.
+  void clear();
+
+ private:
+  std::unique_ptr<std::uint8_t[]> bytes_;  // capacity_ records, count_ of them written
+  std::size_t capacity_ = 0;
+  std::size_t count_ = 0;
+  // The records' time_stamp: the point's time minus base_, as a wrapping 32-bit number (exact
+  // while the times span less than 2^31 ns); min_ and max_: the earliest and latest time.
+  std::int64_t base_ = 0, min_ = 0, max_ = 0;
+  // Each point's time, from the first add() that made the span 2^31 ns or more (wide_) on.
+  std::vector<std::int64_t> times_;
+  bool wide_ = false;
+  std::size_t finished_ = 0;  // records finished (finish())
+};
 
 /// `name` as a bag records a topic: checked against ROS 2's topic-name rules (rcl's
 /// validate_topic_name, for a name whose substitutions are done): only letters, digits, '_' and

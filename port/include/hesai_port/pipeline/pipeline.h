@@ -50,24 +50,29 @@ struct DecodeOptions {
   std::string session_secret;
 };
 
-/// A point with the context the outputs need.
-struct OutPoint {
-  Point point;
+/// Consecutive kept points of one packet that belong to one frame, for Sink::points: the points
+/// as the decoder made them (read in place where the packet keeps every point; where --min-range,
+/// --max-range or --fov leave some out, the kept ones gathered once). Valid during the call only.
+struct PointRun {
+  const Point* points = nullptr;
+  /// nebula's ReturnType of each point, for the MCAP's return_type (from the packet's return mode
+  /// and the other returns of the point's firing: nebula_return_type); null unless the sink
+  /// wants_return_types().
+  const NebulaReturnType* return_types = nullptr;
+  std::size_t count = 0;
   std::uint64_t frame = 0;   ///< frame id (1-based) within its sensor's frames
   std::uint64_t packet = 0;  ///< 0-based index of the point-cloud packet in the input
   std::uint32_t sensor = 0;  ///< its sensor, as Sink::sensor_added named it
-  /// nebula's ReturnType for the MCAP's return_type, from the packet's return mode and the other
-  /// returns of the point's firing (nebula_return_type)
-  NebulaReturnType return_type = NebulaReturnType::unknown;
 };
 
 /// Receives what the pipeline produces. A sensor is one source (an address and port, or a bag
 /// topic): sensor_added() names it before its first point. Each sensor's frames close in order;
 /// every point of a frame is given to points() before its frame_closed(). Points come in packet
-/// order, so near a cut the points of two frames interleave (a packet that straddles the cut gives
-/// points to both), and the points of several sensors interleave as their packets do. points()
-/// gets a packet's kept points at a time (fewer where a frame closes inside the packet): one call
-/// per packet, not per point.
+/// order, as runs (PointRun): a run is a packet's consecutive kept points of one frame, so a
+/// packet whose points all fall in one frame is one call, not one per point. Near a cut a packet
+/// gives points to two frames, and there its points can alternate between them (channels' azimuth
+/// offsets): each change of frame starts a new run, and a frame that closes inside the packet
+/// ends the run under way. The points of several sensors interleave as their packets do.
 class Sink {
  public:
   virtual ~Sink() = default;
@@ -77,10 +82,10 @@ class Sink {
   /// The receive time (ns since 1970) of the datagram now being fed: the capture's record time, or
   /// the kernel's for a live socket. Frames that close while it is processed closed at this time.
   virtual void receive_time(std::uint64_t ns) = 0;
-  virtual void points(const OutPoint* p, std::size_t count) = 0;
+  virtual void points(const PointRun& run) = 0;
   virtual void frame_closed(const FrameInfo& frame, std::uint32_t sensor) = 0;
-  /// Whether OutPoint::return_type is wanted (the MCAP's return_type): it costs the decoder a pass
-  /// more over each packet's units, so it is left unknown otherwise.
+  /// Whether PointRun::return_types are wanted (the MCAP's return_type): it costs the decoder a
+  /// pass more over each packet's units, so they are left out otherwise.
   virtual bool wants_return_types() const { return false; }
 };
 
@@ -96,7 +101,7 @@ class ColumnSink {
   /// the packet's time, PacketInfo::time_ns).
   virtual PointColumns room() = 0;
   /// The `count` points last decoded into room() are kept: from point-cloud packet `index` (as
-  /// OutPoint::packet) of `sensor` (as Sink::sensor_added numbered it), whose time is info.time_ns.
+  /// PointRun::packet) of `sensor` (as Sink::sensor_added numbered it), whose time is info.time_ns.
   virtual void kept(std::size_t count, std::uint64_t index, std::uint32_t sensor, const PacketInfo& info) = 0;
 };
 
@@ -244,13 +249,13 @@ class Pipeline {
   // Accounts one decoded or surveyed packet and gives its blocks to the frames, and the points of a
   // wanted one (points_ holds them).
   bool process(Source& src, std::uint64_t index, const PacketInfo& info);
-  // The kept points of points_[first, end) (one block) to their frames, and to batch_ for the sink.
+  // The kept points of points_[first, end) (one block) to their frames, and in runs to the sink.
   void assign_frames(Source& src, std::uint64_t index, const PacketInfo& info, std::size_t first, std::size_t end);
   void close_frames(Source& src);
 
   DecodeOptions options_;
   Sink* sink_;
-  bool return_types_;  // the sink wants OutPoint::return_type
+  bool return_types_;  // the sink wants PointRun::return_types
   bool filtered_;      // --min-range, --max-range or --fov may leave points out
   std::string angles_text_, firetimes_text_;
   std::unique_ptr<ChannelConfig> channel_config_;  // --channel-config, parsed once
@@ -268,19 +273,30 @@ class Pipeline {
   std::map<Error, std::uint64_t> rejections_;
   std::uint64_t point_packet_index_ = 0;
   std::string error_;
-  // Gives the sink the points gathered in batch_ (before a frame closes, and at a packet's end).
+  // Gives the sink the run under way (before a frame closes, and at a packet's end); the gathered
+  // points start over.
   void flush_points();
+  // Points [points, points + count) of one frame to the sink: added to the run under way when
+  // they continue it (the same frame and packet, the next points in memory), else a new run.
+  void run_points(const Point* points, const NebulaReturnType* types, std::size_t count, std::uint64_t frame,
+                  std::uint64_t packet, std::uint32_t sensor);
 
   PacketPoints points_;  // one packet's points (reused)
-  std::vector<OutPoint> batch_;  // its kept points for the sink (reused: no allocation per packet)
   UnitScan scan_;        // and what its units say beyond them
   std::size_t surveyed_points_ = 0;  // the points of a packet surveyed, not decoded (not wanted)
   ReturnComparison compare_;  // and how each of its returns compares with its firing's others
-  // One block's kept points (assign_frames): their index in points_ and azimuth (when filtered), and
-  // frame id (when they went to more than one frame).
-  std::array<std::uint16_t, kMaxPointsPerPacket> kept_;
-  std::array<float, kMaxPointsPerPacket> azimuths_;
+  // The nebula ReturnType of each of points_ (when return_types_), computed a block at a time
+  // from the packet's table.
+  std::array<NebulaReturnType, kMaxPointsPerPacket> types_;
+  PacketReturnTypes type_of_;
+  // A filtered packet's kept points (and their return types), gathered a block at a time:
+  // gathered_n_ of them so far; reset when the sink has them (flush_points).
+  std::array<Point, kMaxPointsPerPacket> gathered_;
+  std::array<NebulaReturnType, kMaxPointsPerPacket> gathered_types_;
+  std::size_t gathered_n_ = 0;
+  // A block's frame id per point, when its points went to more than one frame.
   std::array<std::uint64_t, kMaxPointsPerPacket> ids_;
+  PointRun run_;  // the run under way (count 0: none)
 
   ColumnSink* columns_ = nullptr;  // set_columns(): the columns mode
   std::size_t column_count_ = 0;   // the points of the last decode into columns_->room()

@@ -17,6 +17,7 @@
 
 #include "hesai_port/base/status.h"
 #include "hesai_port/formats/mcap.h"
+#include "hesai_port/formats/pointcloud2.h"
 #include "hesai_port/formats/writers.h"
 #include "hesai_port/pipeline/pipeline.h"
 
@@ -48,13 +49,13 @@ class OutputSink : public Sink {
   Status open();
   void sensor_added(std::uint32_t sensor, const std::string& label) override;
   void receive_time(std::uint64_t ns) override { receive_ns_ = ns; }
-  void points(const OutPoint* p, std::size_t count) override;
+  void points(const PointRun& run) override;
   void frame_closed(const FrameInfo& frame, std::uint32_t sensor) override;
   bool wants_return_types() const override { return format_ == Format::mcap; }
   /// Writes what is still held (the single PNG), closes the file. Status::input when a write failed.
-  /// Memory: the open frames' points or PNG views with --per-frame, and the open frames' points
-  /// for MCAP (two frames near a cut, where a packet gives points to both); otherwise a block of
-  /// output or the PNG's pixels, whatever the number of points.
+  /// Memory: the open frames' points or PNG views with --per-frame, and the open frames' encoded
+  /// PointCloud2 data for MCAP (32 bytes a point; two frames near a cut, where a packet gives
+  /// points to both); otherwise a block of output or the PNG's pixels, whatever the number of points.
   Status close();
   /// Files written so far.
   const std::vector<std::string>& files() const { return files_; }
@@ -65,8 +66,8 @@ class OutputSink : public Sink {
   struct Frame {
     std::vector<Point> points;           // CSV, PCD, PLY
     std::vector<std::uint64_t> packets;  // packet index of each point (CSV)
-    std::vector<NebulaReturnType> return_types;  // nebula's ReturnType of each point (MCAP)
-    BirdseyeView png;              // PNG
+    PointCloud2Data cloud;               // MCAP: the message's data, encoded as the points come
+    BirdseyeView png;                    // PNG
   };
   // What each sensor's outputs need.
   struct SensorOut {
@@ -81,8 +82,7 @@ class OutputSink : public Sink {
                    std::string& error);
   std::string frame_path(FrameKey key) const;
   Status open_mcap();
-  void write_mcap_frame(FrameKey key, const std::vector<Point>& points,
-                        const std::vector<NebulaReturnType>& return_types);
+  void write_mcap_frame(FrameKey key, PointCloud2Data& cloud);
   Frame& open_frame(FrameKey key);
   const SensorOut& sensor(std::uint32_t s) const;
 
@@ -101,11 +101,9 @@ class OutputSink : public Sink {
   std::uint64_t last_log_ns_ = 0;  // the last message's log_time (they never go back)
   std::vector<SensorOut> sensors_;  // by sensor
   std::size_t mcap_frame_points_ = 0;  // the largest frame written to the MCAP file so far
-  std::vector<Point> spare_points_;     // a written MCAP frame's storage, for the next frame
-  std::vector<NebulaReturnType> spare_return_types_;  // and its return types'
+  PointCloud2Data spare_cloud_;        // a written MCAP frame's storage, for the next frame
   BirdseyeView png_;      // the PNG of every point; with --per-frame, the empty view each frame starts from
   std::map<FrameKey, Frame> open_;  // --per-frame and MCAP: the frames not yet closed
-  std::vector<Point> run_;  // the points of one frame of a packet, for the one file's writer (reused)
   std::vector<std::string> files_;
   std::uint64_t points_written_ = 0;
   std::string deferred_error_;
