@@ -60,38 +60,42 @@ PtcTransport::Io TcpTransport::connect(const std::string& host, std::uint16_t po
   return Io::ok;
 }
 
-PtcTransport::Io TcpTransport::send_all(const std::uint8_t* data, std::size_t size, std::int64_t deadline_ns) {
-  std::size_t done = 0;
-  while (done < size) {
-    const ssize_t n = ::send(fd_, data + done, size - done, MSG_NOSIGNAL);
-    if (n > 0) {
-      done += static_cast<std::size_t>(n);
-    } else if (n < 0 && (errno == EAGAIN || errno == EWOULDBLOCK || errno == EINTR)) {
-      if (const Wait w = wait_fd(fd_, POLLOUT, deadline_ns, stop_); w != Wait::ready)
-        return w == Wait::stopped ? Io::stopped : Io::timeout;
-    } else {
-      return (errno == EPIPE || errno == ECONNRESET) ? Io::closed : Io::error;
-    }
-  }
-  return Io::ok;
-}
+namespace {
 
-PtcTransport::Io TcpTransport::receive_exact(std::uint8_t* data, std::size_t size, std::int64_t deadline_ns) {
+// Moves `size` bytes by `step` (a send or a recv of the bytes left, returning what the call
+// returns), waiting for `events` on `fd` while the socket has no room or no data. A step of 0 (recv:
+// the peer ended the stream) and a reset or broken pipe are the peer's close; any other error is
+// an error.
+template <typename Step>
+PtcTransport::Io transfer(int fd, std::size_t size, short events, std::int64_t deadline_ns,
+                          const std::atomic<bool>* stop, Step step) {
   std::size_t done = 0;
   while (done < size) {
-    const ssize_t n = ::recv(fd_, data + done, size - done, 0);
+    const ssize_t n = step(done);
     if (n > 0) {
       done += static_cast<std::size_t>(n);
     } else if (n == 0) {
-      return Io::closed;
+      return PtcTransport::Io::closed;
     } else if (errno == EAGAIN || errno == EWOULDBLOCK || errno == EINTR) {
-      if (const Wait w = wait_fd(fd_, POLLIN, deadline_ns, stop_); w != Wait::ready)
-        return w == Wait::stopped ? Io::stopped : Io::timeout;
+      if (const Wait w = wait_fd(fd, events, deadline_ns, stop); w != Wait::ready)
+        return w == Wait::stopped ? PtcTransport::Io::stopped : PtcTransport::Io::timeout;
     } else {
-      return errno == ECONNRESET ? Io::closed : Io::error;
+      return (errno == EPIPE || errno == ECONNRESET) ? PtcTransport::Io::closed : PtcTransport::Io::error;
     }
   }
-  return Io::ok;
+  return PtcTransport::Io::ok;
+}
+
+}  // namespace
+
+PtcTransport::Io TcpTransport::send_all(const std::uint8_t* data, std::size_t size, std::int64_t deadline_ns) {
+  return transfer(fd_, size, POLLOUT, deadline_ns, stop_,
+                  [&](std::size_t done) { return ::send(fd_, data + done, size - done, MSG_NOSIGNAL); });
+}
+
+PtcTransport::Io TcpTransport::receive_exact(std::uint8_t* data, std::size_t size, std::int64_t deadline_ns) {
+  return transfer(fd_, size, POLLIN, deadline_ns, stop_,
+                  [&](std::size_t done) { return ::recv(fd_, data + done, size - done, 0); });
 }
 
 }  // namespace hesai::port
