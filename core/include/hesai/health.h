@@ -24,6 +24,7 @@
 
 #include "hesai/decoder.h"
 #include "hesai/saturating.h"
+#include "hesai/detail/seen_window.h"
 
 namespace hesai {
 
@@ -121,8 +122,6 @@ class HealthMonitor {
   void reset() noexcept { *this = HealthMonitor{}; }
 
  private:
-  bool test(std::uint32_t slot) const noexcept;
-  void set(std::uint32_t slot) noexcept;
   std::uint32_t advance(std::uint32_t k) noexcept;
   void late(std::uint32_t k_back) noexcept;
   void restart(const PacketInfo& info) noexcept;
@@ -140,7 +139,7 @@ class HealthMonitor {
   std::int64_t time_ns_ = 0;      // time of the newest packet that was not late
   std::int64_t trusted_ns_ = 0;   // time of the last packet whose time agreed (or set a new base)
   std::uint32_t trusted_slot_ = 0;  // its slot
-  std::array<std::uint32_t, kHealthWindow / 32> seen_{};  // bit (slot mod window): that packet arrived
+  detail::SeenWindow<kHealthWindow> seen_;  // which slots of the window arrived
   std::uint32_t newest_ = 0;      // slot of the newest packet that was not late, counted from the first
   std::uint32_t span_ = 0;        // slots newest - span + 1 .. newest were counted (lost or seen)
   std::uint16_t azimuth_ = 0;     // its first block azimuth, 0.01 degree

@@ -25,6 +25,7 @@
 #include <cstdint>
 
 #include "hesai/decoder.h"
+#include "hesai/detail/seen_window.h"
 
 namespace hesai {
 
@@ -46,7 +47,7 @@ class ReplayGuard {
   bool accept_sequence(std::uint32_t seq) noexcept;
   bool accept_time(std::int64_t time_ns) noexcept;
 
-  std::array<std::uint32_t, kReplayWindow / 32> seen_{};  // bit (n mod window): n accepted
+  detail::SeenWindow<kReplayWindow> seen_;  // which numbers of the window were accepted
   std::uint32_t newest_ = 0;
   bool has_sequence_ = false;  // newest_ holds an accepted number
   std::array<std::int64_t, kReplayTimes> times_{};  // the last accepted times, a ring

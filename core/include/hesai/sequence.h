@@ -7,6 +7,7 @@
 
 #include <array>
 #include <cstdint>
+#include "hesai/detail/seen_window.h"
 
 namespace hesai {
 
@@ -75,14 +76,10 @@ class SequenceTracker {
   void reset() noexcept { *this = SequenceTracker{}; }
 
  private:
-  static constexpr std::uint32_t kWords = kSequenceWindow / 32;
-
-  bool test(std::uint32_t seq) const noexcept;
-  void set(std::uint32_t seq) noexcept;
   void start_series(std::uint32_t seq) noexcept;
   std::uint32_t advance(std::uint32_t k) noexcept;
 
-  std::array<std::uint32_t, kWords> seen_{};  // bit (n mod W): n arrived
+  detail::SeenWindow<kSequenceWindow> seen_;  // which numbers of the window arrived
   SequenceCounts counts_;
   std::uint32_t newest_ = 0;
   std::uint32_t span_ = 0;        // numbers h - span + 1 .. h belong to the current series

@@ -7,7 +7,6 @@
 namespace hesai {
 
 namespace {
-constexpr std::uint32_t kMask = kHealthWindow - 1;
 constexpr std::int64_t kHourNs = 3600LL * 1000000000;
 constexpr std::int64_t kTurn = 36000;  // 0.01 degree
 
@@ -70,27 +69,10 @@ std::uint32_t clamp_k(std::int64_t k) {
 }
 }  // namespace
 
-bool HealthMonitor::test(std::uint32_t slot) const noexcept {
-  const std::uint32_t bit = slot & kMask;
-  return (seen_[bit / 32] >> (bit % 32) & 1u) != 0;
-}
-
-void HealthMonitor::set(std::uint32_t slot) noexcept {
-  const std::uint32_t bit = slot & kMask;
-  seen_[bit / 32] |= 1u << (bit % 32);
-}
-
 std::uint32_t HealthMonitor::advance(std::uint32_t k) noexcept {
-  if (k >= kHealthWindow) {
-    seen_.fill(0);
-  } else {
-    for (std::uint32_t i = 1; i <= k; ++i) {
-      const std::uint32_t bit = (newest_ + i) & kMask;
-      seen_[bit / 32] &= ~(1u << (bit % 32));
-    }
-  }
+  seen_.clear_after(newest_, k);
   newest_ += k;
-  set(newest_);
+  seen_.set(newest_);
   span_ = span_ + k < kHealthWindow ? span_ + k : kHealthWindow;
   saturating_add(counts_.lost, k - 1);
   return k - 1;
@@ -100,12 +82,12 @@ void HealthMonitor::late(std::uint32_t k_back) noexcept {
   bump(counts_.reordered);
   if (k_back >= kHealthWindow) return;  // too far behind to know: reordered only
   const std::uint32_t slot = newest_ - k_back;
-  if (test(slot)) {
+  if (seen_.test(slot)) {
     take_back(counts_.reordered);
     bump(counts_.duplicates);
     return;
   }
-  set(slot);
+  seen_.set(slot);
   if (k_back < span_) take_back(counts_.lost);  // counted lost when it was skipped
 }
 
@@ -163,8 +145,8 @@ std::uint32_t HealthMonitor::observe(const PacketInfo& info) noexcept {
     restart(info);
     newest_ = 0;
     span_ = 1;
-    seen_.fill(0);
-    set(0);
+    seen_.clear();
+    seen_.set(0);
     trusted_slot_ = 0;
     trusted_ns_ = info.time_ns;
     time_ns_ = info.time_ns;

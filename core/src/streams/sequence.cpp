@@ -5,7 +5,6 @@
 namespace hesai {
 
 namespace {
-constexpr std::uint32_t kMask = kSequenceWindow - 1;
 constexpr std::uint32_t kSerialHalf = 0x80000000u;  // 2^31: RFC 1982's undefined distance
 
 // (b - a) mod 2^32 is "ahead" when in 1 .. 2^31 - 1.
@@ -15,35 +14,18 @@ static_assert(!is_ahead(0xFFFFFFFEu - 1u), "0xFFFFFFFE is behind 1");
 static_assert(!is_ahead(kSerialHalf), "half the space counts as behind");
 }  // namespace
 
-bool SequenceTracker::test(std::uint32_t seq) const noexcept {
-  const std::uint32_t bit = seq & kMask;
-  return (seen_[bit / 32] >> (bit % 32) & 1u) != 0;
-}
-
-void SequenceTracker::set(std::uint32_t seq) noexcept {
-  const std::uint32_t bit = seq & kMask;
-  seen_[bit / 32] |= 1u << (bit % 32);
-}
-
 void SequenceTracker::start_series(std::uint32_t seq) noexcept {
-  seen_.fill(0);
+  seen_.clear();
   newest_ = seq;
   span_ = 1;
-  set(seq);
+  seen_.set(seq);
 }
 
 // Moves the newest number k ahead (1 <= k <= window); the k - 1 numbers between are lost.
 std::uint32_t SequenceTracker::advance(std::uint32_t k) noexcept {
-  if (k >= kSequenceWindow) {
-    seen_.fill(0);
-  } else {
-    for (std::uint32_t i = 1; i <= k; ++i) {
-      const std::uint32_t bit = (newest_ + i) & kMask;
-      seen_[bit / 32] &= ~(1u << (bit % 32));
-    }
-  }
+  seen_.clear_after(newest_, k);
   newest_ += k;
-  set(newest_);
+  seen_.set(newest_);
   span_ = span_ + k < kSequenceWindow ? span_ + k : kSequenceWindow;
   const std::uint32_t lost = k - 1;
   saturating_add(counts_.lost, lost);
@@ -90,12 +72,12 @@ std::uint32_t SequenceTracker::observe(std::uint32_t seq) noexcept {
   }
 
   if (behind < kSequenceWindow) {
-    if (test(seq)) {
+    if (seen_.test(seq)) {
       saturating_increment(counts_.duplicates);
       last_ = SequenceEvent::duplicate;
       return 0;
     }
-    set(seq);
+    seen_.set(seq);
     saturating_increment(counts_.reordered);
     if (behind < span_ && counts_.lost > 0) saturating_subtract(counts_.lost, 1);  // it was counted lost when skipped
     last_ = SequenceEvent::late;
