@@ -331,7 +331,16 @@ PtcTransport::Io TlsTransport::handshake(bool client, std::int64_t deadline_ns, 
   }
 }
 
-PtcTransport::Io TlsTransport::send_all(const std::uint8_t* data, std::size_t size, std::int64_t deadline_ns) {
+namespace {
+
+// Moves `size` bytes by `step` (SSL_write_ex or SSL_read_ex of the bytes left from `done`, setting
+// the count it moved; a read may write too, a key update, so both run under the SIGPIPE guard),
+// waiting on the socket for what OpenSSL wants between steps. Any other outcome is the caller's
+// to classify: `failure` gets SSL_get_error's code, with errno and OpenSSL's error queue as the
+// failed step left them.
+template <typename Step, typename Failure>
+PtcTransport::Io ssl_transfer(SSL* ssl, int fd, const std::atomic<bool>* stop, std::size_t size, std::int64_t deadline_ns,
+                              Step step, Failure failure) {
   std::size_t done = 0;
   while (done < size) {
     ERR_clear_error();
@@ -340,18 +349,28 @@ PtcTransport::Io TlsTransport::send_all(const std::uint8_t* data, std::size_t si
     int r = 0;
     {
       SigpipeGuard guard;
-      r = SSL_write_ex(ssl_, data + done, size - done, &n);
+      r = step(done, n);
     }
     if (r == 1) {
       done += n;
       continue;
     }
-    const int e = SSL_get_error(ssl_, r);
+    const int e = SSL_get_error(ssl, r);
     if (e == SSL_ERROR_WANT_READ || e == SSL_ERROR_WANT_WRITE) {
-      if (const Wait w = wait_fd(fd_, e == SSL_ERROR_WANT_READ ? POLLIN : POLLOUT, deadline_ns, stop_); w != Wait::ready)
-        return w == Wait::stopped ? Io::stopped : Io::timeout;
+      if (const Wait w = wait_fd(fd, e == SSL_ERROR_WANT_READ ? POLLIN : POLLOUT, deadline_ns, stop); w != Wait::ready)
+        return w == Wait::stopped ? PtcTransport::Io::stopped : PtcTransport::Io::timeout;
       continue;
     }
+    return failure(e);
+  }
+  return PtcTransport::Io::ok;
+}
+
+}  // namespace
+
+PtcTransport::Io TlsTransport::send_all(const std::uint8_t* data, std::size_t size, std::int64_t deadline_ns) {
+  const auto step = [&](std::size_t done, std::size_t& n) { return SSL_write_ex(ssl_, data + done, size - done, &n); };
+  return ssl_transfer(ssl_, fd_, stop_, size, deadline_ns, step, [&](int e) {
     if (e == SSL_ERROR_SSL) {
       error_ = ssl_failure(ssl_, *context_);
       return Io::error;
@@ -368,31 +387,12 @@ PtcTransport::Io TlsTransport::send_all(const std::uint8_t* data, std::size_t si
     }
     error_ = std::string("socket error: ") + std::strerror(saved);
     return Io::error;
-  }
-  return Io::ok;
+  });
 }
 
 PtcTransport::Io TlsTransport::receive_exact(std::uint8_t* data, std::size_t size, std::int64_t deadline_ns) {
-  std::size_t done = 0;
-  while (done < size) {
-    ERR_clear_error();
-    errno = 0;
-    std::size_t n = 0;
-    int r = 0;
-    {
-      SigpipeGuard guard;  // a read may write (a key update)
-      r = SSL_read_ex(ssl_, data + done, size - done, &n);
-    }
-    if (r == 1) {
-      done += n;
-      continue;
-    }
-    const int e = SSL_get_error(ssl_, r);
-    if (e == SSL_ERROR_WANT_READ || e == SSL_ERROR_WANT_WRITE) {
-      if (const Wait w = wait_fd(fd_, e == SSL_ERROR_WANT_READ ? POLLIN : POLLOUT, deadline_ns, stop_); w != Wait::ready)
-        return w == Wait::stopped ? Io::stopped : Io::timeout;
-      continue;
-    }
+  const auto step = [&](std::size_t done, std::size_t& n) { return SSL_read_ex(ssl_, data + done, size - done, &n); };
+  return ssl_transfer(ssl_, fd_, stop_, size, deadline_ns, step, [&](int e) {
     if (e == SSL_ERROR_ZERO_RETURN) {
       ERR_clear_error();
       error_ = "the peer ended the TLS session";
@@ -419,8 +419,7 @@ PtcTransport::Io TlsTransport::receive_exact(std::uint8_t* data, std::size_t siz
     }
     error_ = std::string("socket error: ") + std::strerror(saved);
     return Io::error;
-  }
-  return Io::ok;
+  });
 }
 
 bool TlsTransport::pending() const { return ssl_ != nullptr && SSL_pending(ssl_) > 0; }
