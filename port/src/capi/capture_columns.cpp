@@ -29,7 +29,8 @@ void put_context(std::int64_t* time_ns, std::uint64_t* packet, std::uint16_t* se
 
 template <typename T>
 void move_part(const std::vector<T>& from, std::size_t first, std::size_t count, T* to) {
-  if (to != nullptr) std::memcpy(to, from.data() + first, count * sizeof(T));
+  // count 0 from a vector never filled: its data() may be null, which memcpy may not be given.
+  if (to != nullptr && count != 0) std::memcpy(to, from.data() + first, count * sizeof(T));
 }
 
 template <typename Staged, typename F>
