@@ -40,7 +40,7 @@ CORE_HEADERS = {  # public header (under core/include/hesai/) -> concern
     'detail/pandar64_packet.h': 'sensors', 'detail/qt128_packet.h': 'sensors', 'detail/xt_packet.h': 'sensors',
     'detail/tables/': 'sensors', 'detail/qt64_packet.h': 'sensors',
     'frame.h': 'streams', 'sequence.h': 'streams', 'stats.h': 'streams', 'safety.h': 'streams', 'health.h': 'streams',
-    'rotation.h': 'streams', 'held_packets.h': 'streams', 'replay.h': 'streams',
+    'rotation.h': 'streams', 'held_packets.h': 'streams', 'replay.h': 'streams', 'detail/seen_window.h': 'streams',
     'hesai.h': 'capi', 'packet_info_list.h': 'capi',
 }
 
