@@ -131,7 +131,7 @@ void check_runs(const Case& c) {
   for (std::size_t i = 0; i < want.size(); ++i) {
     const Given& g = sink.given[i];
     ASSERT_EQ(g.packet, want[i].packet) << "point " << i;
-    ASSERT_EQ(std::memcmp(&g.point, &want[i].point, sizeof(Point)), 0) << "point " << i << " of packet " << g.packet;
+    ASSERT_TRUE(hesai_test::same_point_bits(g.point, want[i].point)) << "point " << i << " of packet " << g.packet;
     ASSERT_EQ(g.type, want[i].type) << "point " << i << " of packet " << g.packet;
   }
   EXPECT_EQ(sink.closed.size(), sink.per_frame.size());  // finish() closed every frame

@@ -10,6 +10,7 @@
 
 #include <chrono>
 #include <cerrno>
+#include <cstddef>
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
@@ -23,6 +24,7 @@
 #include <vector>
 
 #include "hesai/bytes.h"
+#include "hesai/point.h"
 
 namespace hesai_test {
 
@@ -110,6 +112,21 @@ inline CmdResult run_cli(const std::string& args, const std::string& env = "", b
   return r;
 }
 #endif
+
+/// Whether two Points hold the same bits in every field. Their tail padding is not compared: a
+/// decode stores the fields, and what the padding holds is whatever the memory held (clang's
+/// builds leave it, GCC's happened to write it).
+inline bool same_point_bits(const hesai::Point& a, const hesai::Point& b) {
+  static_assert(offsetof(hesai::Point, time_ns) == 24 && offsetof(hesai::Point, intensity) == 32 &&
+                    offsetof(hesai::Point, block) == 36,
+                "no padding before the last field");
+  return std::memcmp(&a, &b, offsetof(hesai::Point, block) + sizeof a.block) == 0;
+}
+inline bool same_point_bits(const hesai::Point* a, const hesai::Point* b, std::size_t count) {
+  for (std::size_t i = 0; i < count; ++i)
+    if (!same_point_bits(a[i], b[i])) return false;
+  return true;
+}
 
 inline std::string data_path(const std::string& name) { return std::string(HESAI_DATA_DIR) + "/" + name; }
 
