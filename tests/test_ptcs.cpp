@@ -52,7 +52,6 @@ using hesai_test::cli;
 using hesai_test::data_path;
 using hesai_test::read_text;
 
-std::string temp_path(const std::string& name) { return "/tmp/hesai_ptcs_test_" + std::to_string(getpid()) + "_" + name; }
 
 using Ran = hesai_test::CmdResult;
 
@@ -121,6 +120,8 @@ TEST(Ptcs, BuiltWithoutTls) {
 }
 
 #else
+
+std::string temp_path(const std::string& name) { return "/tmp/hesai_ptcs_test_" + std::to_string(getpid()) + "_" + name; }
 
 // ---- The test's CA and certificates ----
 
