@@ -15,30 +15,21 @@ import numpy as np
 import hesai
 from hesai import _lib
 from test_package import DATA
+from test_sensors import pcap_records, resend_from
 
 SENDERS = 40  # each sends two QT128C2X packets, too few for its direction to be decided
-
-
-def qt128_records():
-    data = (DATA / "qt128c2x_dual.pcap").read_bytes()
-    out, off = [], 24
-    while off + 16 <= len(data):
-        incl = struct.unpack_from("<I", data, off + 8)[0]
-        out.append(bytearray(data[off + 16: off + 16 + incl]))
-        off += 16 + incl
-    return out
 
 
 def many_senders(path):
     """SENDERS senders (192.168.1.10 ... :2368) of the capture's first two packets each, then the
     whole capture from its own sender. A dual-return QT128C2X's direction shows only in its third
     packet: each of the first senders holds both packets to the end."""
-    recs = qt128_records()
+    _, recs = pcap_records(DATA / "qt128c2x_dual.pcap")
     frames = []
     for s in range(SENDERS):
         for k in range(2):
             f = bytearray(recs[k])
-            f[14 + 12: 14 + 16] = bytes([192, 168, 1, 10 + s])  # IPv4 source; the port stays
+            resend_from(f, 10 + s, 2368)
             frames.append(f)
     frames += recs
     out = bytearray(struct.pack("<IHHiIII", 0xA1B2C3D4, 2, 4, 0, 0, 65535, 1))

@@ -61,12 +61,16 @@ HESAI_ALWAYS_INLINE inline std::uint32_t beyond_limit(const PacketInfo& info) no
 // themselves (UnitScan, decoder.h); `scan` was reset by the caller. The reference: the firmware
 // builds run it; the hosted scans below (branch-free, AVX2) are tested against it
 // (tests/kernels/test_scan.cpp).
+//
+// Its first pass, blockage markers and distances beyond the rated range, is also what the
+// ARMv7E-M loops leave to C for a packet that sets Q (scan_rare_units).
 template <std::size_t kUnitBytes>
-HESAI_NOINLINE_FOR_SIZE void scan_units(const kernels::BlockRef* blocks, std::size_t block_count, std::size_t unit_count,
-                                        const PacketInfo& info, std::uint16_t min_distance, UnitScan& scan) noexcept {
+HESAI_ALWAYS_INLINE inline void scan_markers_and_range(const kernels::BlockRef* blocks, std::size_t block_count,
+                                                       std::size_t unit_count, const PacketInfo& info,
+                                                       std::uint16_t min_distance, UnitScan& scan) noexcept {
   const std::uint32_t limit = beyond_limit(info);
   const bool markers = min_distance > 1;  // distance 1 is a marker only where it is not a point
-  std::uint32_t blockage = 0, beyond = 0, duplicates = 0;
+  std::uint32_t blockage = 0, beyond = 0;
   for (std::size_t b = 0; b < block_count; ++b) {
     const std::uint8_t* u = blocks[b].units;
     for (std::size_t j = 0; j < unit_count; ++j, u += kUnitBytes) {
@@ -79,6 +83,15 @@ HESAI_NOINLINE_FOR_SIZE void scan_units(const kernels::BlockRef* blocks, std::si
       }
     }
   }
+  scan.blockage_units = static_cast<std::uint16_t>(blockage);
+  scan.beyond_rated_range = static_cast<std::uint16_t>(beyond);
+}
+
+template <std::size_t kUnitBytes>
+HESAI_NOINLINE_FOR_SIZE void scan_units(const kernels::BlockRef* blocks, std::size_t block_count, std::size_t unit_count,
+                                        const PacketInfo& info, std::uint16_t min_distance, UnitScan& scan) noexcept {
+  scan_markers_and_range<kUnitBytes>(blocks, block_count, unit_count, info, min_distance, scan);
+  std::uint32_t duplicates = 0;
   if (info.returns == 2) {  // blocks 2i and 2i + 1 are the two returns of a firing
     for (std::size_t b = 0; b + 1 < block_count; b += 2) {
       const std::uint8_t* u0 = blocks[b].units;
@@ -93,8 +106,6 @@ HESAI_NOINLINE_FOR_SIZE void scan_units(const kernels::BlockRef* blocks, std::si
       }
     }
   }
-  scan.blockage_units = static_cast<std::uint16_t>(blockage);
-  scan.beyond_rated_range = static_cast<std::uint16_t>(beyond);
   scan.duplicate_returns = static_cast<std::uint16_t>(duplicates);
 }
 
@@ -104,22 +115,7 @@ HESAI_NOINLINE_FOR_SIZE void scan_units(const kernels::BlockRef* blocks, std::si
 template <std::size_t kUnitBytes>
 HESAI_NOINLINE_FOR_SIZE void scan_rare_units(const kernels::BlockRef* blocks, std::size_t block_count, std::size_t unit_count,
                                              const PacketInfo& info, std::uint16_t min_distance, UnitScan& scan) noexcept {
-  const std::uint32_t limit = beyond_limit(info);
-  const bool markers = min_distance > 1;
-  std::uint32_t blockage = 0, beyond = 0;
-  for (std::size_t b = 0; b < block_count; ++b) {
-    const std::uint8_t* u = blocks[b].units;
-    for (std::size_t j = 0; j < unit_count; ++j, u += kUnitBytes) {
-      const std::uint32_t distance = load_le16(u);
-      beyond += distance > limit ? 1u : 0u;
-      if (markers && distance == 1) {
-        ++blockage;
-        ++scan.blockage_by_channel[j % kMaxChannels];  // no channel map on this path
-      }
-    }
-  }
-  scan.blockage_units = static_cast<std::uint16_t>(blockage);
-  scan.beyond_rated_range = static_cast<std::uint16_t>(beyond);
+  scan_markers_and_range<kUnitBytes>(blocks, block_count, unit_count, info, min_distance, scan);
 }
 #endif
 
