@@ -67,10 +67,10 @@ HESAI_ALWAYS_INLINE inline std::uint32_t beyond_limit(const PacketInfo& info) no
 template <std::size_t kUnitBytes>
 HESAI_ALWAYS_INLINE inline void scan_markers_and_range(const kernels::BlockRef* blocks, std::size_t block_count,
                                                        std::size_t unit_count, const PacketInfo& info,
-                                                       std::uint16_t min_distance, UnitScan& scan) noexcept {
+                                                       std::uint16_t min_distance, UnitScan& scan,
+                                                       std::uint32_t& blockage, std::uint32_t& beyond) noexcept {
   const std::uint32_t limit = beyond_limit(info);
   const bool markers = min_distance > 1;  // distance 1 is a marker only where it is not a point
-  std::uint32_t blockage = 0, beyond = 0;
   for (std::size_t b = 0; b < block_count; ++b) {
     const std::uint8_t* u = blocks[b].units;
     for (std::size_t j = 0; j < unit_count; ++j, u += kUnitBytes) {
@@ -83,15 +83,13 @@ HESAI_ALWAYS_INLINE inline void scan_markers_and_range(const kernels::BlockRef* 
       }
     }
   }
-  scan.blockage_units = static_cast<std::uint16_t>(blockage);
-  scan.beyond_rated_range = static_cast<std::uint16_t>(beyond);
 }
 
 template <std::size_t kUnitBytes>
 HESAI_NOINLINE_FOR_SIZE void scan_units(const kernels::BlockRef* blocks, std::size_t block_count, std::size_t unit_count,
                                         const PacketInfo& info, std::uint16_t min_distance, UnitScan& scan) noexcept {
-  scan_markers_and_range<kUnitBytes>(blocks, block_count, unit_count, info, min_distance, scan);
-  std::uint32_t duplicates = 0;
+  std::uint32_t blockage = 0, beyond = 0, duplicates = 0;
+  scan_markers_and_range<kUnitBytes>(blocks, block_count, unit_count, info, min_distance, scan, blockage, beyond);
   if (info.returns == 2) {  // blocks 2i and 2i + 1 are the two returns of a firing
     for (std::size_t b = 0; b + 1 < block_count; b += 2) {
       const std::uint8_t* u0 = blocks[b].units;
@@ -106,6 +104,8 @@ HESAI_NOINLINE_FOR_SIZE void scan_units(const kernels::BlockRef* blocks, std::si
       }
     }
   }
+  scan.blockage_units = static_cast<std::uint16_t>(blockage);
+  scan.beyond_rated_range = static_cast<std::uint16_t>(beyond);
   scan.duplicate_returns = static_cast<std::uint16_t>(duplicates);
 }
 
@@ -115,7 +115,10 @@ HESAI_NOINLINE_FOR_SIZE void scan_units(const kernels::BlockRef* blocks, std::si
 template <std::size_t kUnitBytes>
 HESAI_NOINLINE_FOR_SIZE void scan_rare_units(const kernels::BlockRef* blocks, std::size_t block_count, std::size_t unit_count,
                                              const PacketInfo& info, std::uint16_t min_distance, UnitScan& scan) noexcept {
-  scan_markers_and_range<kUnitBytes>(blocks, block_count, unit_count, info, min_distance, scan);
+  std::uint32_t blockage = 0, beyond = 0;
+  scan_markers_and_range<kUnitBytes>(blocks, block_count, unit_count, info, min_distance, scan, blockage, beyond);
+  scan.blockage_units = static_cast<std::uint16_t>(blockage);
+  scan.beyond_rated_range = static_cast<std::uint16_t>(beyond);
 }
 #endif
 
