@@ -334,7 +334,10 @@ int listening_socket(int& port) {
 // (SO_LINGER 0), `close_delay_us` after its alert: a unit that does not wait for the client.
 class TinyTlsServer {
  public:
-  TinyTlsServer(int max_version, const std::string& cert, const std::string& client_ca = "", int close_delay_us = 0) {
+  // end_session: after the handshake and the first request's 8-byte header, the server ends the
+  // TLS session (close_notify) without an answer.
+  TinyTlsServer(int max_version, const std::string& cert, const std::string& client_ca = "", int close_delay_us = 0,
+                bool end_session = false) {
     signal(SIGPIPE, SIG_IGN);  // its session tickets may meet a client that has gone
     fd_ = listening_socket(port_);
     ctx_ = SSL_CTX_new(TLS_server_method());
@@ -347,7 +350,7 @@ class TinyTlsServer {
       if (SSL_CTX_load_verify_locations(ctx_, pki().path(client_ca).c_str(), nullptr) != 1) port_ = 0;
     }
     const bool reset = !client_ca.empty();
-    thread_ = std::thread([this, reset, close_delay_us] {
+    thread_ = std::thread([this, reset, close_delay_us, end_session] {
       pollfd p{fd_, POLLIN, 0};
       if (poll(&p, 1, 5000) != 1) return;
       const int c = accept(fd_, nullptr, nullptr);
@@ -360,7 +363,8 @@ class TinyTlsServer {
         handshake_ = true;
         char buf[256];
         int n;
-        while ((n = SSL_read(ssl, buf, sizeof buf)) > 0) bytes_ += n;
+        while ((!end_session || bytes_ < 8) && (n = SSL_read(ssl, buf, sizeof buf)) > 0) bytes_ += n;
+        if (end_session) SSL_shutdown(ssl);
       } else if (reset) {
         if (close_delay_us > 0) usleep(static_cast<useconds_t>(close_delay_us));
         const linger abort{1, 0};
@@ -536,6 +540,16 @@ TEST(Ptcs, ExpectSerialIsCheckedBeforeAnyCommand) {
                  {"(CN=STANDIN) does not name the expected serial 'QT-0001'", "no command was sent"});
   EXPECT_TRUE(server.handshake_done());
   EXPECT_EQ(server.application_bytes(), 0);  // not a byte of PTC
+}
+
+// A unit that ends the TLS session (close_notify) instead of answering cut the answer short: the
+// client says the sensor closed the connection, exit 2 at once, not a TLS error or a timeout.
+TEST(Ptcs, SessionEndedWithinTheAnswerIsACutShortAnswer) {
+  TinyTlsServer server(TLS1_3_VERSION, "server.pem", "", 0, true);
+  ASSERT_NE(server.port(), 0);
+  expect_failure("sensor info 127.0.0.1 --ptc-port " + std::to_string(server.port()) + tls_client(),
+                 {"the sensor closed the connection within the"});
+  EXPECT_TRUE(server.handshake_done());
 }
 
 TEST(Ptcs, ServerWithTls12Only) {
